@@ -1,0 +1,323 @@
+#include "render/frame/frame_renderer.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gi/sampling/sequences.h"
+#include "render/frame/scene_gpu.h"
+#include "render/gl/context.h"
+#include "render/gl/program.h"
+#include "render/gl/resources.h"
+
+namespace voxgi {
+
+namespace {
+
+// View matrices of the six cube faces in GL's face order (+X, -X, +Y, -Y, +Z, -Z).
+glm::mat4 cubeFaceView(int face, glm::vec3 eye) {
+    static const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    return glm::lookAt(eye, eye + dirs[face], ups[face]);
+}
+
+glm::vec3 anyPerpendicular(glm::vec3 d) {
+    return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+}
+
+}  // namespace
+
+int defaultFrameCount(const Scene& scene) {
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Quad) return 64;
+    return 1;
+}
+
+struct FrameRenderer::Impl {
+    const Scene& scene;
+    FrameOptions options;
+    int width, height;
+    int frames = 0;
+    float sceneRadius;
+    glm::vec3 sceneCenter;
+    SceneGpu gpu;
+    gl::StageTimers timers;
+
+    gl::Program gbufferProgram, shadowDepthProgram, shadowDistanceProgram, lightProgram, emissionProgram;
+    gl::Handle gbufferFbo, gPosition, gNormal, gAlbedo, gEmission, gDepth;
+    gl::Handle accumFbo, accum;
+    gl::Handle shadowFbo, shadowDepth;
+    gl::Handle cubeFbo, cubeDistance, cubeDepth;
+    gl::Handle emptyVao;
+
+    Impl(const Scene& s, const FrameOptions& o)
+        : scene(s), options(o), width(o.width > 0 ? o.width : s.camera.width),
+          height(o.height > 0 ? o.height : s.camera.height), gpu(s) {
+        Bounds b = s.bounds();
+        sceneCenter = b.valid() ? b.center() : glm::vec3(0.0f);
+        sceneRadius = b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
+
+        gbufferProgram = gl::Program::graphics("frame/gbuffer.vert", "frame/gbuffer.frag");
+        shadowDepthProgram = gl::Program::graphics("frame/shadow.vert", "frame/shadow_depth.frag");
+        shadowDistanceProgram = gl::Program::graphics("frame/shadow.vert", "frame/shadow_distance.frag");
+        lightProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/direct_light.frag");
+        emissionProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/emission.frag");
+        emptyVao = gl::createVertexArray();
+
+        gPosition = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
+        gNormal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+        gAlbedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+        gEmission = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
+        gDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, width, height);
+        gbufferFbo = gl::createFramebuffer();
+        GLuint fbo = gbufferFbo.id();
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, gPosition.id(), 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, gNormal.id(), 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, gAlbedo.id(), 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT3, gEmission.id(), 0);
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, gDepth.id(), 0);
+        const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                   GL_COLOR_ATTACHMENT3};
+        glNamedFramebufferDrawBuffers(fbo, 4, buffers);
+        gl::checkFramebuffer(fbo, "G-buffer");
+
+        accum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
+        accumFbo = gl::createFramebuffer();
+        glNamedFramebufferTexture(accumFbo.id(), GL_COLOR_ATTACHMENT0, accum.id(), 0);
+        gl::checkFramebuffer(accumFbo.id(), "accumulation");
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(accumFbo.id(), GL_COLOR, 0, zero);
+
+        shadowDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, options.shadowMapSize,
+                                        options.shadowMapSize);
+        glTextureParameteri(shadowDepth.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(shadowDepth.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+        shadowFbo = gl::createFramebuffer();
+        glNamedFramebufferTexture(shadowFbo.id(), GL_DEPTH_ATTACHMENT, shadowDepth.id(), 0);
+        glNamedFramebufferDrawBuffer(shadowFbo.id(), GL_NONE);
+        gl::checkFramebuffer(shadowFbo.id(), "shadow map");
+
+        cubeDistance = gl::createTexture(GL_TEXTURE_CUBE_MAP, GL_R32F, options.cubeShadowSize, options.cubeShadowSize);
+        glTextureParameteri(cubeDistance.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(cubeDistance.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        cubeDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, options.cubeShadowSize,
+                                      options.cubeShadowSize);
+        cubeFbo = gl::createFramebuffer();
+        glNamedFramebufferTexture(cubeFbo.id(), GL_DEPTH_ATTACHMENT, cubeDepth.id(), 0);
+        glNamedFramebufferTextureLayer(cubeFbo.id(), GL_COLOR_ATTACHMENT0, cubeDistance.id(), 0, 0);
+        gl::checkFramebuffer(cubeFbo.id(), "cube shadow map");
+    }
+
+    glm::mat4 cameraViewProjection(glm::vec2 jitterPixels) const {
+        Camera cam = scene.camera;
+        cam.width = width;
+        cam.height = height;
+        glm::mat4 proj = cam.projection();
+        proj[2][0] += 2.0f * jitterPixels.x / float(width);
+        proj[2][1] += 2.0f * jitterPixels.y / float(height);
+        return proj * cam.view();
+    }
+
+    void renderGBuffer() {
+        glm::vec2 jitter = (options.jitter && frames > 0) ? r2Sequence(frames, glm::vec2(0.5f)) - glm::vec2(0.5f) : glm::vec2(0.0f);
+        timers.begin("gbuffer");
+        glBindFramebuffer(GL_FRAMEBUFFER, gbufferFbo.id());
+        glViewport(0, 0, width, height);
+        const float zero[4] = {0, 0, 0, 0};
+        for (int i = 0; i < 4; ++i) glClearBufferfv(GL_COLOR, i, zero);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_BLEND);
+        gbufferProgram.use();
+        gbufferProgram.set("uViewProjection", cameraViewProjection(jitter));
+        gbufferProgram.set("uEye", scene.camera.eye);
+        gbufferProgram.set("uTextures", 0);
+        gpu.bind(0);
+        gpu.draw();
+        timers.end();
+    }
+
+    void renderCubeShadow(glm::vec3 eye) {
+        glBindFramebuffer(GL_FRAMEBUFFER, cubeFbo.id());
+        glViewport(0, 0, options.cubeShadowSize, options.cubeShadowSize);
+        glEnable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        shadowDistanceProgram.use();
+        shadowDistanceProgram.set("uLightPosition", eye);
+        glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-4f * sceneRadius, 4.0f * sceneRadius + 1e-3f);
+        const float far[4] = {1e30f, 0, 0, 0};
+        for (int face = 0; face < 6; ++face) {
+            glNamedFramebufferTextureLayer(cubeFbo.id(), GL_COLOR_ATTACHMENT0, cubeDistance.id(), 0, face);
+            glClearBufferfv(GL_COLOR, 0, far);
+            glClear(GL_DEPTH_BUFFER_BIT);
+            shadowDistanceProgram.set("uViewProjection", proj * cubeFaceView(face, eye));
+            gpu.draw();
+        }
+    }
+
+    glm::mat4 renderMapShadow(const glm::mat4& viewProjection) {
+        glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo.id());
+        glViewport(0, 0, options.shadowMapSize, options.shadowMapSize);
+        glEnable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(1.5f, 2.0f);
+        shadowDepthProgram.use();
+        shadowDepthProgram.set("uViewProjection", viewProjection);
+        gpu.draw();
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+        return bias * viewProjection;
+    }
+
+    void beginLightPass() {
+        glBindFramebuffer(GL_FRAMEBUFFER, accumFbo.id());
+        glViewport(0, 0, width, height);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        lightProgram.use();
+        glBindTextureUnit(0, gPosition.id());
+        glBindTextureUnit(1, gNormal.id());
+        glBindTextureUnit(2, gAlbedo.id());
+        glBindTextureUnit(3, gEmission.id());
+        glBindTextureUnit(4, cubeDistance.id());
+        glBindTextureUnit(5, shadowDepth.id());
+        const char* names[6] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uShadowCube", "uShadow2D"};
+        for (int i = 0; i < 6; ++i) lightProgram.set(names[i], i);
+        lightProgram.set("uEye", scene.camera.eye);
+        glBindVertexArray(emptyVao.id());
+    }
+
+    void drawLight(int kind, glm::vec3 position, glm::vec3 direction, glm::vec3 color, glm::vec3 emitterNormal,
+                   glm::vec2 spotCos, const glm::mat4& shadowMatrix, float shadowTexel) {
+        beginLightPass();
+        lightProgram.set("uKind", kind);
+        lightProgram.set("uLightPosition", position);
+        lightProgram.set("uLightDirection", direction);
+        lightProgram.set("uLightColor", color);
+        lightProgram.set("uEmitterNormal", emitterNormal);
+        lightProgram.set("uSpotCos", spotCos);
+        lightProgram.set("uShadowMatrix", shadowMatrix);
+        lightProgram.set("uShadowTexel", shadowTexel);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    void renderLight(const Light& light, std::size_t index) {
+        const float cubeTexel = 2.0f / float(options.cubeShadowSize);
+        switch (light.type) {
+            case LightType::Point:
+                renderCubeShadow(light.position);
+                drawLight(0, light.position, glm::vec3(0.0f), light.color, glm::vec3(0.0f), glm::vec2(0.0f),
+                          glm::mat4(1.0f), cubeTexel);
+                break;
+            case LightType::Quad: {
+                // One sample point per frame on the quad; as a point light its intensity is
+                // L * A * cos(theta) about the quad normal (W/sr), which averages to the area light.
+                glm::vec2 uv = r2Sequence(frames, glm::vec2(0.5f) + 0.1f * float(index));
+                glm::vec3 n = light.quadNormal();
+                glm::vec3 p = light.position + uv.x * light.edgeU + uv.y * light.edgeV + n * (1e-4f * sceneRadius);
+                renderCubeShadow(p);
+                drawLight(0, p, glm::vec3(0.0f), light.color * light.area(), n, glm::vec2(0.0f), glm::mat4(1.0f),
+                          cubeTexel);
+                break;
+            }
+            case LightType::Spot: {
+                float outer = glm::radians(light.outerConeDegrees);
+                glm::mat4 view = glm::lookAt(light.position, light.position + light.direction,
+                                             anyPerpendicular(light.direction));
+                glm::mat4 proj = glm::perspective(2.0f * outer + 0.05f, 1.0f, 1e-3f * sceneRadius,
+                                                  glm::length(light.position - sceneCenter) + 2.0f * sceneRadius);
+                glm::mat4 shadow = renderMapShadow(proj * view);
+                float texel = 2.0f * std::tan(outer + 0.025f) / float(options.shadowMapSize);
+                drawLight(1, light.position, light.direction, light.color, glm::vec3(0.0f),
+                          glm::vec2(std::cos(outer), std::cos(glm::radians(light.innerConeDegrees))), shadow, texel);
+                break;
+            }
+            case LightType::Directional: {
+                glm::vec3 eye = sceneCenter - light.direction * (2.0f * sceneRadius);
+                glm::mat4 view = glm::lookAt(eye, sceneCenter, anyPerpendicular(light.direction));
+                glm::mat4 proj = glm::ortho(-sceneRadius, sceneRadius, -sceneRadius, sceneRadius, 0.0f, 4.0f * sceneRadius);
+                glm::mat4 shadow = renderMapShadow(proj * view);
+                drawLight(2, glm::vec3(0.0f), light.direction, light.color, glm::vec3(0.0f), glm::vec2(0.0f), shadow,
+                          2.0f * sceneRadius / float(options.shadowMapSize));
+                break;
+            }
+        }
+    }
+
+    void renderEmission() {
+        glBindFramebuffer(GL_FRAMEBUFFER, accumFbo.id());
+        glViewport(0, 0, width, height);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        emissionProgram.use();
+        glBindTextureUnit(0, gPosition.id());
+        glBindTextureUnit(3, gEmission.id());
+        emissionProgram.set("uPosition", 0);
+        emissionProgram.set("uEmission", 3);
+        emissionProgram.set("uSky", scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f));
+        glBindVertexArray(emptyVao.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    void renderFrame() {
+        renderGBuffer();
+        timers.begin("direct");
+        for (std::size_t i = 0; i < scene.lights.size(); ++i) renderLight(scene.lights[i], i);
+        renderEmission();
+        timers.end();
+        glDisable(GL_BLEND);
+        ++frames;
+        timers.collect();
+    }
+
+    Image resolve() {
+        Image image(width, height);
+        // GL rows run bottom to top; images are stored top row first.
+        auto copyFlipped = [&](const std::vector<float>& src, int srcChannels, ImageLayer& dst, float scale) {
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x)
+                    for (int c = 0; c < dst.channels; ++c)
+                        dst.data[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(dst.channels) +
+                                 std::size_t(c)] =
+                            scale * src[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) *
+                                            std::size_t(srcChannels) + std::size_t(c)];
+        };
+        float inv = frames > 0 ? 1.0f / float(frames) : 0.0f;
+        std::vector<float> hdr = gl::readTexture(accum.id(), width, height, 4);
+        copyFlipped(hdr, 4, image.layer("beauty"), inv);
+        copyFlipped(hdr, 4, image.layer("direct"), inv);
+        image.layer("indirect");
+        copyFlipped(gl::readTexture(gAlbedo.id(), width, height, 4), 4, image.layer("albedo"), 1.0f);
+        copyFlipped(gl::readTexture(gNormal.id(), width, height, 4), 4, image.layer("normal"), 1.0f);
+        // Depth as distance from the eye along the ray (0 for background).
+        std::vector<float> pos = gl::readTexture(gPosition.id(), width, height, 4);
+        ImageLayer& depth = image.layer("depth", 1);
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const float* p = &pos[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) * 4];
+                depth.data[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
+                    p[3] > 0.0f ? glm::length(glm::vec3(p[0], p[1], p[2]) - scene.camera.eye) : 0.0f;
+            }
+        return image;
+    }
+};
+
+FrameRenderer::FrameRenderer(const Scene& scene, const FrameOptions& options)
+    : impl_(std::make_unique<Impl>(scene, options)) {}
+FrameRenderer::~FrameRenderer() = default;
+void FrameRenderer::renderFrame() { impl_->renderFrame(); }
+int FrameRenderer::framesAccumulated() const { return impl_->frames; }
+int FrameRenderer::width() const { return impl_->width; }
+int FrameRenderer::height() const { return impl_->height; }
+Image FrameRenderer::resolve() { return impl_->resolve(); }
+gl::StageTimers& FrameRenderer::timers() { return impl_->timers; }
+
+}  // namespace voxgi

@@ -1,0 +1,48 @@
+// The rasterized frame: G-buffer, shadow maps, physically based direct light for every light
+// kind, HDR accumulation over frames (pixel jitter and area-light samples), read back as an
+// Image with AOVs. GI techniques add their indirect light on top of this.
+#pragma once
+
+#include <memory>
+
+#include "render/gl/timers.h"
+#include "scenes/image.h"
+#include "scenes/scene.h"
+
+namespace voxgi {
+
+struct FrameOptions {
+    int width = 0;    // 0 = the scene camera's resolution
+    int height = 0;
+    int shadowMapSize = 2048;     // directional and spot maps
+    int cubeShadowSize = 512;     // point lights and quad-light samples, per face
+    bool jitter = true;           // sub-pixel jitter from the second frame on (antialiasing)
+};
+
+class FrameRenderer {
+public:
+    // Needs a current GL 4.5 context. Throws gl::GlError on shader or framebuffer failure.
+    FrameRenderer(const Scene& scene, const FrameOptions& options);
+    ~FrameRenderer();
+    FrameRenderer(const FrameRenderer&) = delete;
+    FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+    // Renders one frame (one sample of every light) and adds it to the accumulation.
+    void renderFrame();
+    int framesAccumulated() const;
+    int width() const;
+    int height() const;
+
+    // The average so far: layers beauty, direct, indirect (zero without GI), albedo, normal, depth.
+    Image resolve();
+    gl::StageTimers& timers();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// How many frames a scene needs by default: area lights are sampled once per frame.
+int defaultFrameCount(const Scene& scene);
+
+}  // namespace voxgi

@@ -1,0 +1,57 @@
+#include "render/gl/resources.h"
+
+#include <string>
+
+#include "render/gl/context.h"
+
+namespace voxgi::gl {
+
+Handle createTexture(GLenum target, GLenum internalFormat, int width, int height, int depth, int levels) {
+    GLuint id = 0;
+    glCreateTextures(target, 1, &id);
+    if (target == GL_TEXTURE_3D || target == GL_TEXTURE_2D_ARRAY || target == GL_TEXTURE_CUBE_MAP_ARRAY)
+        glTextureStorage3D(id, levels, internalFormat, width, height, depth);
+    else
+        glTextureStorage2D(id, levels, internalFormat, width, height);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return Handle(id, [](GLuint i) { glDeleteTextures(1, &i); });
+}
+
+Handle createBuffer(std::size_t bytes, const void* data, GLbitfield flags) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    glNamedBufferStorage(id, GLsizeiptr(bytes > 0 ? bytes : 4), data, flags);
+    return Handle(id, [](GLuint i) { glDeleteBuffers(1, &i); });
+}
+
+Handle createFramebuffer() {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    return Handle(id, [](GLuint i) { glDeleteFramebuffers(1, &i); });
+}
+
+Handle createVertexArray() {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);
+    return Handle(id, [](GLuint i) { glDeleteVertexArrays(1, &i); });
+}
+
+void checkFramebuffer(GLuint framebuffer, const char* what) {
+    GLenum status = glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw GlError(std::string(what) + ": framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+}
+
+std::vector<float> readTexture(GLuint texture, int width, int height, int channels) {
+    std::vector<float> out(std::size_t(width) * std::size_t(height) * std::size_t(channels));
+    GLenum format = channels == 1 ? GL_RED : channels == 3 ? GL_RGB : GL_RGBA;
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(texture, 0, format, GL_FLOAT, GLsizei(out.size() * sizeof(float)), out.data());
+    return out;
+}
+
+}  // namespace voxgi::gl

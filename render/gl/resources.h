@@ -1,0 +1,53 @@
+// Owning handles for GL objects (DSA style, GL 4.5). Move-only; deleted with their owner.
+#pragma once
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+namespace voxgi::gl {
+
+class Handle {
+public:
+    using Deleter = void (*)(GLuint);
+    Handle() = default;
+    Handle(GLuint id, Deleter deleter) : id_(id), deleter_(deleter) {}
+    ~Handle() { reset(); }
+    Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, 0)), deleter_(o.deleter_) {}
+    Handle& operator=(Handle&& o) noexcept {
+        if (this != &o) {
+            reset();
+            id_ = std::exchange(o.id_, 0);
+            deleter_ = o.deleter_;
+        }
+        return *this;
+    }
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    GLuint id() const { return id_; }
+    explicit operator bool() const { return id_ != 0; }
+    void reset() {
+        if (id_ && deleter_) deleter_(id_);
+        id_ = 0;
+    }
+
+private:
+    GLuint id_ = 0;
+    Deleter deleter_ = nullptr;
+};
+
+// A 2D texture (or 2D array / 3D / cube, by target) with immutable storage.
+Handle createTexture(GLenum target, GLenum internalFormat, int width, int height, int depth = 1,
+                     int levels = 1);
+Handle createBuffer(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+Handle createFramebuffer();
+Handle createVertexArray();
+// Throws GlError naming `what` unless the framebuffer is complete.
+void checkFramebuffer(GLuint framebuffer, const char* what);
+
+// Reads a whole RGBA32F (or R32F with channels = 1) texture level back to the CPU.
+std::vector<float> readTexture(GLuint texture, int width, int height, int channels);
+
+}  // namespace voxgi::gl

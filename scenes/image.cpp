@@ -1,0 +1,191 @@
+#include "scenes/image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <system_error>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImathBox.h>
+
+#include "scenes/errors.h"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+
+namespace voxgi {
+
+namespace fs = std::filesystem;
+
+ImageLayer& Image::layer(const std::string& name, int channels) {
+    for (ImageLayer& l : layers_)
+        if (l.name == name) return l;
+    ImageLayer l;
+    l.name = name;
+    l.channels = channels;
+    l.data.assign(pixelCount() * std::size_t(channels), 0.0f);
+    layers_.push_back(std::move(l));
+    return layers_.back();
+}
+
+const ImageLayer* Image::find(const std::string& name) const {
+    for (const ImageLayer& l : layers_)
+        if (l.name == name) return &l;
+    return nullptr;
+}
+
+glm::vec3 Image::rgb(const std::string& name, int x, int y) const {
+    const ImageLayer* l = find(name);
+    if (!l) return glm::vec3(0.0f);
+    std::size_t i = (std::size_t(y) * std::size_t(width_) + std::size_t(x)) * std::size_t(l->channels);
+    if (l->channels == 1) return glm::vec3(l->data[i]);
+    return {l->data[i], l->data[i + 1], l->data[i + 2]};
+}
+
+void Image::setRgb(const std::string& name, int x, int y, glm::vec3 v) {
+    ImageLayer& l = layer(name, 3);
+    std::size_t i = (std::size_t(y) * std::size_t(width_) + std::size_t(x)) * 3;
+    l.data[i] = v.x;
+    l.data[i + 1] = v.y;
+    l.data[i + 2] = v.z;
+}
+
+std::string temporaryPathFor(const std::string& path) {
+    std::random_device rd;
+    fs::path p(path);
+    return (p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(rd() % 1000000))).string();
+}
+
+void renameInto(const std::string& temporary, const std::string& path) {
+    std::error_code ec;
+    fs::rename(temporary, path, ec);
+    if (ec) {
+        fs::remove(temporary, ec);
+        throw InputError(path + ": cannot write (" + ec.message() + ")");
+    }
+}
+
+namespace {
+void ensureParentExists(const std::string& path) {
+    fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent))
+        throw InputError(path + ": output directory does not exist");
+}
+const char* kRgb[3] = {"R", "G", "B"};
+}  // namespace
+
+void writeExr(const std::string& path, const Image& image) {
+    ensureParentExists(path);
+    Imf::Header header(image.width(), image.height());
+    Imf::FrameBuffer fb;
+    const std::size_t xStride = sizeof(float);
+    for (const ImageLayer& l : image.layers()) {
+        for (int c = 0; c < l.channels; ++c) {
+            std::string name = l.channels == 1 ? (l.name == "depth" ? std::string("Z") : l.name + ".Y")
+                                               : (l.name == "beauty" ? std::string(kRgb[c]) : l.name + "." + kRgb[c]);
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            char* base = reinterpret_cast<char*>(const_cast<float*>(l.data.data())) + std::size_t(c) * sizeof(float);
+            fb.insert(name, Imf::Slice(Imf::FLOAT, base, xStride * std::size_t(l.channels),
+                                       xStride * std::size_t(l.channels) * std::size_t(image.width())));
+        }
+    }
+    std::string tmp = temporaryPathFor(path);
+    try {
+        Imf::OutputFile file(tmp.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(image.height());
+    } catch (const std::exception& e) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw InputError(path + ": cannot write EXR (" + e.what() + ")");
+    }
+    renameInto(tmp, path);
+}
+
+Image readExr(const std::string& path) {
+    if (!fs::exists(path)) throw InputError(path + ": file not found");
+    try {
+        Imf::InputFile file(path.c_str());
+        Imath::Box2i dw = file.header().dataWindow();
+        int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        Image image(w, h);
+        // Group channels into layers: "R","G","B" -> beauty, "a.R" -> a, "Z" -> depth.
+        std::map<std::string, std::vector<std::string>> groups;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+            std::string name = it.name();
+            auto dot = name.rfind('.');
+            std::string layer = dot == std::string::npos ? "" : name.substr(0, dot);
+            std::string chan = dot == std::string::npos ? name : name.substr(dot + 1);
+            if (layer.empty()) layer = (chan == "Z") ? "depth" : "beauty";
+            groups[layer].push_back(name);
+        }
+        Imf::FrameBuffer fb;
+        std::vector<std::pair<std::string, std::vector<std::string>>> order(groups.begin(), groups.end());
+        for (auto& [layer, names] : order) {
+            bool rgb = names.size() >= 3;
+            ImageLayer& l = image.layer(layer, rgb ? 3 : 1);
+            if (rgb) {
+                for (int c = 0; c < 3; ++c) {
+                    std::string want = layer == "beauty" ? kRgb[c] : layer + "." + kRgb[c];
+                    char* base = reinterpret_cast<char*>(l.data.data()) + std::size_t(c) * sizeof(float) -
+                                 (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * 3 * std::ptrdiff_t(sizeof(float));
+                    fb.insert(want, Imf::Slice(Imf::FLOAT, base, 3 * sizeof(float), 3 * sizeof(float) * std::size_t(w)));
+                }
+            } else {
+                char* base = reinterpret_cast<char*>(l.data.data()) -
+                             (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * std::ptrdiff_t(sizeof(float));
+                fb.insert(names.front(), Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * std::size_t(w)));
+            }
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        return image;
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InputError(path + ": cannot read EXR (" + e.what() + ")");
+    }
+}
+
+glm::vec3 toneMapToSrgb(glm::vec3 x, float exposureStops) {
+    x = glm::max(x, glm::vec3(0.0f)) * std::exp2(exposureStops);
+    for (int c = 0; c < 3; ++c) {
+        float v = x[c];
+        if (!std::isfinite(v)) v = 0.0f;
+        v = (v * (2.51f * v + 0.03f)) / (v * (2.43f * v + 0.59f) + 0.14f);
+        v = std::clamp(v, 0.0f, 1.0f);
+        x[c] = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+    }
+    return x;
+}
+
+void writePngRgb8(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
+    ensureParentExists(path);
+    std::string tmp = temporaryPathFor(path) + ".png";
+    if (!stbi_write_png(tmp.c_str(), width, height, 3, rgb.data(), width * 3)) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw InputError(path + ": cannot write PNG");
+    }
+    renameInto(tmp, path);
+}
+
+void writePng(const std::string& path, const Image& image, const std::string& layer, float exposureStops) {
+    if (!image.find(layer)) throw InputError(path + ": image has no layer '" + layer + "'");
+    std::vector<std::uint8_t> rgb(image.pixelCount() * 3);
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+            glm::vec3 c = toneMapToSrgb(image.rgb(layer, x, y), exposureStops);
+            std::size_t i = (std::size_t(y) * std::size_t(image.width()) + std::size_t(x)) * 3;
+            for (int k = 0; k < 3; ++k) rgb[i + std::size_t(k)] = std::uint8_t(std::lround(c[k] * 255.0f));
+        }
+    writePngRgb8(path, image.width(), image.height(), rgb);
+}
+
+}  // namespace voxgi

@@ -1,0 +1,123 @@
+// The scene model every part of voxgi reads: geometry in world space (metres), materials,
+// lights in physical units, the camera, the sky and the GI settings block.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scenes/gi_settings.h"
+
+namespace voxgi {
+
+struct Camera {
+    glm::vec3 eye{0.0f, 0.0f, 1.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovYDegrees = 45.0f;  // vertical field of view
+    int width = 512;
+    int height = 512;
+    float nearPlane = 0.01f;
+    float farPlane = 100.0f;
+
+    glm::mat4 view() const;
+    glm::mat4 projection() const;  // OpenGL clip space, depth in [-1, 1]
+    float aspect() const { return float(width) / float(height); }
+};
+
+enum class LightType { Point, Spot, Directional, Quad };
+
+// Units: point and spot carry intensity in W/sr, directional (sun) irradiance in W/m^2 at
+// normal incidence, quad lights radiance in W/(m^2 sr) leaving the front face only.
+struct Light {
+    LightType type = LightType::Point;
+    std::string name;
+    glm::vec3 position{0.0f};   // point, spot; quad: one corner
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot, directional: the way light travels
+    glm::vec3 color{1.0f};      // intensity, irradiance or radiance, per the type
+    float innerConeDegrees = 20.0f;  // spot: full intensity inside this half-angle
+    float outerConeDegrees = 30.0f;  // spot: zero outside this half-angle
+    glm::vec3 edgeU{0.0f};      // quad: corner + s*edgeU + t*edgeV, s,t in [0,1]
+    glm::vec3 edgeV{0.0f};
+
+    // Quad helpers; the emitting side is cross(edgeU, edgeV).
+    float area() const { return glm::length(glm::cross(edgeU, edgeV)); }
+    glm::vec3 quadNormal() const { return glm::normalize(glm::cross(edgeU, edgeV)); }
+    glm::vec3 quadCenter() const { return position + 0.5f * (edgeU + edgeV); }
+};
+
+// Constant sky radiance in W/(m^2 sr), seen by rays that leave the scene.
+struct Sky {
+    bool enabled = false;
+    glm::vec3 radiance{0.0f};
+};
+
+// An 8-bit texture stored as sRGB-encoded RGBA, rows top first.
+struct Texture {
+    std::string path;
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;
+    glm::vec3 averageLinear{0.0f};  // mean linear colour, for voxel albedo and sanity checks
+
+    // Bilinear, repeat-wrapped lookup returning linear RGB; uv with v = 0 at the image bottom.
+    glm::vec3 sampleLinear(glm::vec2 uv) const;
+};
+
+struct Material {
+    std::string name;
+    glm::vec3 albedo{0.8f};      // linear base colour (multiplied by the texture if any)
+    glm::vec3 emission{0.0f};    // emitted radiance, W/(m^2 sr)
+    float roughness = 1.0f;      // GGX perceptual roughness in [0, 1]
+    float metallic = 0.0f;
+    float specular = 0.0f;       // F0 of the dielectric GGX coat; 0 = pure Lambert
+    float ior = 1.5f;
+    float transmission = 0.0f;   // 1 = clear dielectric
+    int albedoTexture = -1;      // index into Scene::textures
+
+    bool isEmissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
+};
+
+// Triangles in world space. One material index per triangle.
+struct Mesh {
+    std::string name;
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;   // per vertex, may be empty (flat shading)
+    std::vector<glm::vec2> uvs;       // per vertex, may be empty
+    std::vector<std::uint32_t> indices;       // 3 per triangle
+    std::vector<std::uint32_t> materialIds;   // 1 per triangle
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+struct Bounds {
+    glm::vec3 min{1e30f};
+    glm::vec3 max{-1e30f};
+    void extend(glm::vec3 p) { min = glm::min(min, p); max = glm::max(max, p); }
+    bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
+    glm::vec3 center() const { return 0.5f * (min + max); }
+    glm::vec3 extent() const { return max - min; }
+};
+
+struct Scene {
+    std::string sourcePath;   // the file it was loaded from, or "" when built in code
+    Camera camera;
+    std::vector<Light> lights;
+    Sky sky;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Mesh> meshes;
+    GiSettings gi;
+
+    Bounds bounds() const;
+    std::size_t triangleCount() const;
+    bool hasGlossyOrRefractive() const;
+
+    // Appends the emitting geometry of every quad light as a one-sided mesh, so rasterizers
+    // see the light and path tracers can hit it. Called by the loader; idempotent.
+    void addQuadLightGeometry();
+};
+
+}  // namespace voxgi

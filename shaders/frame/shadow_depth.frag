@@ -1,0 +1,3 @@
+#version 450 core
+// Directional and spot shadow maps keep only the depth buffer.
+void main() {}

@@ -1,0 +1,57 @@
+#include "support/test_support.h"
+
+#include <array>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "scenes/scene_loader.h"
+
+namespace voxgi::test {
+
+namespace fs = std::filesystem;
+
+RunResult runVoxgi(const std::string& arguments) {
+    RunResult r;
+    std::string cmd = std::string("\"") + VOXGI_BINARY + "\" " + arguments + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+    int status = pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string makeTempDir(const std::string& tag) {
+    static std::atomic<int> counter{0};
+    fs::path dir = fs::temp_directory_path() /
+                   ("voxgi-test-" + tag + "-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+bool fileExists(const std::string& path) { return fs::exists(path); }
+
+std::string sourcePath(const std::string& relative) { return (fs::path(VOXGI_SOURCE_DIR) / relative).string(); }
+
+std::string sharedScenesDir() {
+    const char* env = std::getenv("VOXGI_SCENES");
+    fs::path dir = env && *env ? fs::path(env) : fs::path(VOXGI_SHARED_SCENES);
+    return fs::is_directory(dir) ? dir.string() : std::string();
+}
+
+Scene cornellBox() { return loadSceneFile(sourcePath("scenes/cornell-box.json")); }
+
+}  // namespace voxgi::test

@@ -1,0 +1,31 @@
+// Helpers for voxgi tests: temporary directories, running the voxgi binary, scene locations.
+#pragma once
+
+#include <string>
+
+#include "scenes/scene.h"
+
+namespace voxgi::test {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string output;  // stdout and stderr together
+};
+
+// Runs `voxgi <arguments>` through the shell and captures its output and exit status.
+RunResult runVoxgi(const std::string& arguments);
+
+// A fresh empty directory under the system temp dir, unique per call.
+std::string makeTempDir(const std::string& tag);
+void writeFile(const std::string& path, const std::string& text);
+bool fileExists(const std::string& path);
+
+// Path of a file in the source tree ("scenes/cornell-box.json").
+std::string sourcePath(const std::string& relative);
+// ../shared/scenes, or $VOXGI_SCENES; empty when absent (tests then skip).
+std::string sharedScenesDir();
+
+// The built-in Cornell box.
+Scene cornellBox();
+
+}  // namespace voxgi::test

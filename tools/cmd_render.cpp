@@ -1,0 +1,78 @@
+// voxgi render: the real-time path, headless. Renders N frames with a GI method, writes the
+// averaged HDR image (EXR with AOV layers), an optional PNG preview and per-stage timings.
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "render/frame/frame_plan.h"
+#include "render/frame/frame_renderer.h"
+#include "render/gl/context.h"
+#include "scenes/errors.h"
+#include "scenes/image.h"
+#include "tools/commands.h"
+#include "tools/scene_arg.h"
+
+namespace voxgi::cli {
+
+namespace {
+
+const char* kUsage =
+    "voxgi render SCENE [--method direct] -o OUT.exr [--png OUT.png] [--width W --height H] [--frames N]\n"
+    "       [--timings T.json] [--exposure STOPS] [--set section.key=value]... [--plan]\n"
+    "  SCENE: a scene .json, a mesh file, or a built-in scene name (cornell-box)\n"
+    "  --frames: frames accumulated (default 64 with area lights, else 1)";
+
+void writeTextAtomically(const std::string& path, const std::string& text) {
+    std::string tmp = temporaryPathFor(path);
+    {
+        std::ofstream out(tmp);
+        out << text;
+        if (!out) throw InputError(path + ": cannot write");
+    }
+    renameInto(tmp, path);
+}
+
+int runRender(const std::vector<std::string>& argv) {
+    Args args(argv, {"--method", "-o", "--png", "--width", "--height", "--frames", "--timings", "--exposure", "--set"},
+              {"--plan"}, {"--set"});
+    args.requirePositional(1, kUsage);
+    const std::string method = args.value("--method", "direct");
+    auto out = args.value("-o");
+    if (!out && !args.flag("--plan")) throw InputError("-o OUT.exr is required; usage: " + std::string(kUsage));
+    if (out) requireWritable(*out, "-o");
+    if (auto png = args.value("--png")) requireWritable(*png, "--png");
+    if (auto t = args.value("--timings")) requireWritable(*t, "--timings");
+    float exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
+
+    Scene scene = loadSceneArgument(args.positional()[0]);
+    applySceneOverrides(args, scene);
+    validateMethod(method);
+    const int frames = args.integer("--frames", defaultFrameCount(scene), 1, 1 << 20);
+    FramePlan plan = planFrame(scene, method, frames);
+    if (args.flag("--plan")) {
+        std::printf("%s", plan.describe().c_str());
+        if (!out) return kOk;
+    }
+
+    auto start = std::chrono::steady_clock::now();
+    auto context = gl::Context::createHeadless();
+    FrameRenderer renderer(scene, FrameOptions{});
+    for (int f = 0; f < frames; ++f) renderer.renderFrame();
+    Image image = renderer.resolve();
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    writeExr(*out, image);
+    if (auto png = args.value("--png")) writePng(*png, image, "beauty", exposure);
+    if (auto t = args.value("--timings")) writeTextAtomically(*t, renderer.timers().toJson());
+    std::printf("rendered %s with %s: %dx%d, %d frame(s) in %.2f s on %s\n", args.positional()[0].c_str(),
+                method.c_str(), renderer.width(), renderer.height(), frames, seconds, context->description().c_str());
+    std::printf("wrote %s%s%s\n", out->c_str(), args.has("--png") ? (" and " + *args.value("--png")).c_str() : "",
+                args.has("--timings") ? (" and " + *args.value("--timings")).c_str() : "");
+    return kOk;
+}
+
+}  // namespace
+
+VOXGI_REGISTER_COMMAND("render", kUsage, runRender);
+
+}  // namespace voxgi::cli
