@@ -6,6 +6,7 @@
 
 #include "render/frame/frame_plan.h"
 #include "render/frame/frame_renderer.h"
+#include "render/frame/techniques.h"
 #include "render/gl/context.h"
 #include "scenes/errors.h"
 #include "scenes/image.h"
@@ -56,7 +57,7 @@ int runRender(const std::vector<std::string>& argv) {
 
     auto start = std::chrono::steady_clock::now();
     auto context = gl::Context::createHeadless();
-    FrameRenderer renderer(scene, FrameOptions{});
+    FrameRenderer renderer(scene, FrameOptions{}, createTechnique(method, scene));
     for (int f = 0; f < frames; ++f) renderer.renderFrame();
     Image image = renderer.resolve();
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,29 +1,10 @@
 #include "render/frame/frame_plan.h"
 
-#include <algorithm>
 #include <sstream>
 
-#include "scenes/errors.h"
 
 namespace voxgi {
 
-namespace {
-const std::vector<std::string> kBuilt = {"direct"};
-const std::vector<std::string> kPlanned = {"ambient", "lpv", "clpv", "ilpv", "ddgi", "isr", "hybrid"};
-
-bool contains(const std::vector<std::string>& v, const std::string& s) {
-    return std::find(v.begin(), v.end(), s) != v.end();
-}
-}  // namespace
-
-void validateMethod(const std::string& method) {
-    if (contains(kBuilt, method)) return;
-    if (contains(kPlanned, method)) throw NotImplementedError("method '" + method + "' is not implemented yet");
-    std::string all;
-    for (const auto& m : kBuilt) all += (all.empty() ? "" : ", ") + m;
-    for (const auto& m : kPlanned) all += ", " + m;
-    throw InputError("--method " + method + ": unknown method (known: " + all + ")");
-}
 
 FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     FramePlan plan;
@@ -46,6 +27,7 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     add("emission_sky", scene.sky.enabled ? "emitters and constant sky" : "emitters (no sky)");
     if (!scene.sky.enabled) skip("sky_volume", "no sky");
     if (!scene.hasGlossyOrRefractive()) skip("reflections", "no glossy or refractive material");
+    if (method != "direct") add("gi_" + method, "indirect light from " + method);
     if (frames > 1) add("accumulate", std::to_string(frames) + " frames (pixel jitter, light samples)");
     return plan;
 }

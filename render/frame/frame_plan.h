@@ -22,10 +22,6 @@ struct FramePlan {
     std::string describe() const;
 };
 
-// Methods the engine knows; a known but unbuilt one raises NotImplementedError, an unknown
-// one InputError.
-void validateMethod(const std::string& method);
-
 FramePlan planFrame(const Scene& scene, const std::string& method, int frames);
 
 }  // namespace voxgi

@@ -5,7 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gi/sampling/sequences.h"
-#include "render/frame/scene_gpu.h"
+#include "render/gl/scene_gpu.h"
 #include "render/gl/context.h"
 #include "render/gl/program.h"
 #include "render/gl/resources.h"
@@ -42,17 +42,18 @@ struct FrameRenderer::Impl {
     glm::vec3 sceneCenter;
     SceneGpu gpu;
     gl::StageTimers timers;
+    std::unique_ptr<GiTechnique> technique;
 
     gl::Program gbufferProgram, shadowDepthProgram, shadowDistanceProgram, lightProgram, emissionProgram;
     gl::Handle gbufferFbo, gPosition, gNormal, gAlbedo, gEmission, gDepth;
-    gl::Handle accumFbo, accum;
+    gl::Handle accumFbo, accum, indirectFbo, indirectAccum;
     gl::Handle shadowFbo, shadowDepth;
     gl::Handle cubeFbo, cubeDistance, cubeDepth;
     gl::Handle emptyVao;
 
-    Impl(const Scene& s, const FrameOptions& o)
+    Impl(const Scene& s, const FrameOptions& o, std::unique_ptr<GiTechnique> t)
         : scene(s), options(o), width(o.width > 0 ? o.width : s.camera.width),
-          height(o.height > 0 ? o.height : s.camera.height), gpu(s) {
+          height(o.height > 0 ? o.height : s.camera.height), gpu(s), technique(std::move(t)) {
         Bounds b = s.bounds();
         sceneCenter = b.valid() ? b.center() : glm::vec3(0.0f);
         sceneRadius = b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
@@ -85,8 +86,13 @@ struct FrameRenderer::Impl {
         accumFbo = gl::createFramebuffer();
         glNamedFramebufferTexture(accumFbo.id(), GL_COLOR_ATTACHMENT0, accum.id(), 0);
         gl::checkFramebuffer(accumFbo.id(), "accumulation");
+        indirectAccum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
+        indirectFbo = gl::createFramebuffer();
+        glNamedFramebufferTexture(indirectFbo.id(), GL_COLOR_ATTACHMENT0, indirectAccum.id(), 0);
+        gl::checkFramebuffer(indirectFbo.id(), "indirect accumulation");
         const float zero[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(accumFbo.id(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(indirectFbo.id(), GL_COLOR, 0, zero);
 
         shadowDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, options.shadowMapSize,
                                         options.shadowMapSize);
@@ -106,6 +112,21 @@ struct FrameRenderer::Impl {
         glNamedFramebufferTexture(cubeFbo.id(), GL_DEPTH_ATTACHMENT, cubeDepth.id(), 0);
         glNamedFramebufferTextureLayer(cubeFbo.id(), GL_COLOR_ATTACHMENT0, cubeDistance.id(), 0, 0);
         gl::checkFramebuffer(cubeFbo.id(), "cube shadow map");
+    }
+
+    glm::mat4 lastViewProjection{1.0f};
+
+    GBufferView gbufferView() const {
+        GBufferView v;
+        v.position = gPosition.id();
+        v.normal = gNormal.id();
+        v.albedo = gAlbedo.id();
+        v.emission = gEmission.id();
+        v.width = width;
+        v.height = height;
+        v.eye = scene.camera.eye;
+        v.viewProjection = lastViewProjection;
+        return v;
     }
 
     glm::mat4 cameraViewProjection(glm::vec2 jitterPixels) const {
@@ -131,7 +152,8 @@ struct FrameRenderer::Impl {
         glDisable(GL_CULL_FACE);
         glDisable(GL_BLEND);
         gbufferProgram.use();
-        gbufferProgram.set("uViewProjection", cameraViewProjection(jitter));
+        lastViewProjection = cameraViewProjection(jitter);
+        gbufferProgram.set("uViewProjection", lastViewProjection);
         gbufferProgram.set("uEye", scene.camera.eye);
         gbufferProgram.set("uTextures", 0);
         gpu.bind(0);
@@ -269,10 +291,22 @@ struct FrameRenderer::Impl {
 
     void renderFrame() {
         renderGBuffer();
+        FrameInput input{scene, gpu, frames, timers};
+        GBufferView view = gbufferView();
+        if (technique) technique->update(input, view);
         timers.begin("direct");
         for (std::size_t i = 0; i < scene.lights.size(); ++i) renderLight(scene.lights[i], i);
         renderEmission();
         timers.end();
+        if (technique) {
+            glBindFramebuffer(GL_FRAMEBUFFER, indirectFbo.id());
+            glViewport(0, 0, width, height);
+            glDisable(GL_DEPTH_TEST);
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            glBindVertexArray(emptyVao.id());
+            technique->applyIndirect(input, view);
+        }
         glDisable(GL_BLEND);
         ++frames;
         timers.collect();
@@ -291,10 +325,16 @@ struct FrameRenderer::Impl {
                                             std::size_t(srcChannels) + std::size_t(c)];
         };
         float inv = frames > 0 ? 1.0f / float(frames) : 0.0f;
-        std::vector<float> hdr = gl::readTexture(accum.id(), width, height, 4);
-        copyFlipped(hdr, 4, image.layer("beauty"), inv);
-        copyFlipped(hdr, 4, image.layer("direct"), inv);
-        image.layer("indirect");
+        image.layer("beauty");  // first, so tools that read only RGB get the full image
+        copyFlipped(gl::readTexture(accum.id(), width, height, 4), 4, image.layer("direct"), inv);
+        copyFlipped(gl::readTexture(indirectAccum.id(), width, height, 4), 4, image.layer("indirect"), inv);
+        {
+            // Layers are all created above: the references below stay valid.
+            const ImageLayer& d = *image.find("direct");
+            const ImageLayer& i = *image.find("indirect");
+            ImageLayer& b = image.layer("beauty");
+            for (std::size_t k = 0; k < b.data.size(); ++k) b.data[k] = d.data[k] + i.data[k];
+        }
         copyFlipped(gl::readTexture(gAlbedo.id(), width, height, 4), 4, image.layer("albedo"), 1.0f);
         copyFlipped(gl::readTexture(gNormal.id(), width, height, 4), 4, image.layer("normal"), 1.0f);
         // Depth as distance from the eye along the ray (0 for background).
@@ -310,8 +350,8 @@ struct FrameRenderer::Impl {
     }
 };
 
-FrameRenderer::FrameRenderer(const Scene& scene, const FrameOptions& options)
-    : impl_(std::make_unique<Impl>(scene, options)) {}
+FrameRenderer::FrameRenderer(const Scene& scene, const FrameOptions& options, std::unique_ptr<GiTechnique> technique)
+    : impl_(std::make_unique<Impl>(scene, options, std::move(technique))) {}
 FrameRenderer::~FrameRenderer() = default;
 void FrameRenderer::renderFrame() { impl_->renderFrame(); }
 int FrameRenderer::framesAccumulated() const { return impl_->frames; }
@@ -319,5 +359,6 @@ int FrameRenderer::width() const { return impl_->width; }
 int FrameRenderer::height() const { return impl_->height; }
 Image FrameRenderer::resolve() { return impl_->resolve(); }
 gl::StageTimers& FrameRenderer::timers() { return impl_->timers; }
+GiTechnique* FrameRenderer::technique() { return impl_->technique.get(); }
 
 }  // namespace voxgi

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "gi/technique.h"
 #include "render/gl/timers.h"
 #include "scenes/image.h"
 #include "scenes/scene.h"
@@ -22,7 +23,8 @@ struct FrameOptions {
 class FrameRenderer {
 public:
     // Needs a current GL 4.5 context. Throws gl::GlError on shader or framebuffer failure.
-    FrameRenderer(const Scene& scene, const FrameOptions& options);
+    // Without a technique the frame is direct light only.
+    FrameRenderer(const Scene& scene, const FrameOptions& options, std::unique_ptr<GiTechnique> technique = nullptr);
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -36,6 +38,7 @@ public:
     // The average so far: layers beauty, direct, indirect (zero without GI), albedo, normal, depth.
     Image resolve();
     gl::StageTimers& timers();
+    GiTechnique* technique();
 
 private:
     struct Impl;

@@ -1,7 +1,7 @@
 #version 450 core
 // Writes the G-buffer: world position, camera-facing shading normal + roughness,
 // albedo + metallic, emission (front faces only) + specular.
-#include "frame/scene_data.glsl"
+#include "common/scene_data.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;

@@ -1,4 +1,4 @@
-// Scene buffers shared by the frame passes; layouts match render/frame/gpu_layout.h.
+// Scene buffers shared by the frame passes; layouts match render/gl/gpu_layout.h.
 #ifndef VOXGI_SCENE_DATA_GLSL
 #define VOXGI_SCENE_DATA_GLSL
 struct MaterialGpu {

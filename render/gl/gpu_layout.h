@@ -1,4 +1,4 @@
-// Structs shared with GLSL (std430); keep in sync with shaders/frame/scene_data.glsl.
+// Structs shared with GLSL (std430); keep in sync with shaders/common/scene_data.glsl.
 #pragma once
 
 #include <cstdint>

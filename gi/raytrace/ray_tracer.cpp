@@ -1,0 +1,140 @@
+#include "gi/raytrace/ray_tracer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+
+#include <embree3/rtcore.h>
+
+namespace voxgi {
+
+struct RayTracer::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+namespace {
+void errorHandler(void*, RTCError code, const char* message) {
+    if (code != RTC_ERROR_NONE) std::fprintf(stderr, "voxgi: embree error %d: %s\n", int(code), message ? message : "");
+}
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+}  // namespace
+
+RayTracer::RayTracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scene_(scene) {
+    impl_->device = rtcNewDevice(nullptr);
+    if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
+    rtcSetDeviceErrorFunction(impl_->device, errorHandler, nullptr);
+    impl_->scene = rtcNewScene(impl_->device);
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), mesh.positions.size()));
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+            // Embree skips triangles with non-finite vertices; make that explicit and counted.
+            glm::vec3 p = mesh.positions[i];
+            v[3 * i] = p.x;
+            v[3 * i + 1] = p.y;
+            v[3 * i + 2] = p.z;
+        }
+        auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                   3 * sizeof(unsigned), mesh.triangleCount()));
+        for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
+            const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+            const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+            bool valid = finite(a) && finite(b) && finite(c) && glm::length(glm::cross(b - a, c - a)) > 0.0f;
+            for (int k = 0; k < 3; ++k) idx[3 * t + std::size_t(k)] = mesh.indices[3 * t + std::size_t(k)];
+            if (!valid) {
+                // A degenerate triangle (all indices equal) is ignored by the BVH builder.
+                idx[3 * t + 1] = idx[3 * t + 2] = idx[3 * t];
+            } else {
+                ++triangles_;
+            }
+        }
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(impl_->scene, geom, unsigned(m));
+        rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(impl_->scene);
+}
+
+RayTracer::~RayTracer() = default;
+
+RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = o.x;
+    rh.ray.org_y = o.y;
+    rh.ray.org_z = o.z;
+    rh.ray.dir_x = d.x;
+    rh.ray.dir_y = d.y;
+    rh.ray.dir_z = d.z;
+    rh.ray.tnear = tMin;
+    rh.ray.tfar = tMax;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &context, &rh);
+    RayHit hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    hit.hit = true;
+    hit.t = rh.ray.tfar;
+    hit.mesh = rh.hit.geomID;
+    hit.triangle = rh.hit.primID;
+    const Mesh& mesh = scene_.meshes[hit.mesh];
+    const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hit.triangle)];
+    const glm::vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+    float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
+    hit.position = w * a + u * b + v * c;
+    hit.geometricNormal = glm::normalize(glm::cross(b - a, c - a));
+    hit.frontFace = glm::dot(hit.geometricNormal, d) < 0.0f;
+    hit.shadingNormal = hit.geometricNormal;
+    if (!mesh.normals.empty()) {
+        glm::vec3 n = w * mesh.normals[tri[0]] + u * mesh.normals[tri[1]] + v * mesh.normals[tri[2]];
+        float len = glm::length(n);
+        if (len > 0.0f && std::isfinite(len)) hit.shadingNormal = n / len;
+    }
+    if (!mesh.uvs.empty()) hit.uv = w * mesh.uvs[tri[0]] + u * mesh.uvs[tri[1]] + v * mesh.uvs[tri[2]];
+    hit.material = mesh.materialIds[hit.triangle];
+    return hit;
+}
+
+bool RayTracer::occluded(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray;
+    ray.org_x = o.x;
+    ray.org_y = o.y;
+    ray.org_z = o.z;
+    ray.dir_x = d.x;
+    ray.dir_y = d.y;
+    ray.dir_z = d.z;
+    ray.tnear = tMin;
+    ray.tfar = tMax;
+    ray.time = 0.0f;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(impl_->scene, &context, &ray);
+    return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+glm::vec3 RayTracer::albedoAt(const RayHit& hit) const {
+    const Material& m = scene_.materials[hit.material];
+    if (m.albedoTexture < 0) return m.albedo;
+    return m.albedo * scene_.textures[std::size_t(m.albedoTexture)].sampleLinear(hit.uv);
+}
+
+}  // namespace voxgi

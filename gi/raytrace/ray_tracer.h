@@ -1,0 +1,50 @@
+// Embree 3 over a voxgi Scene: the one place CPU rays are traced (path tracer, DDGI probe rays,
+// sky occlusion, hybrid reflections). Thread-safe for concurrent queries after construction.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "scenes/scene.h"
+
+namespace voxgi {
+
+struct RayHit {
+    bool hit = false;
+    float t = 0.0f;
+    glm::vec3 position{0.0f};
+    glm::vec3 geometricNormal{0.0f};  // unit, from the triangle's winding (front = counter-clockwise)
+    glm::vec3 shadingNormal{0.0f};    // unit, interpolated vertex normal (or the geometric one)
+    glm::vec2 uv{0.0f};
+    bool frontFace = true;            // the ray arrived against the geometric normal
+    std::uint32_t mesh = 0;           // index into Scene::meshes
+    std::uint32_t triangle = 0;       // triangle within that mesh
+    std::uint32_t material = 0;       // index into Scene::materials
+};
+
+class RayTracer {
+public:
+    explicit RayTracer(const Scene& scene);
+    ~RayTracer();
+    RayTracer(const RayTracer&) = delete;
+    RayTracer& operator=(const RayTracer&) = delete;
+
+    RayHit intersect(glm::vec3 origin, glm::vec3 direction, float tMin = 0.0f, float tMax = 1e30f) const;
+    bool occluded(glm::vec3 origin, glm::vec3 direction, float tMin, float tMax) const;
+
+    // Material albedo at a hit, times the diffuse texture when there is one.
+    glm::vec3 albedoAt(const RayHit& hit) const;
+    const Scene& scene() const { return scene_; }
+    // Triangles Embree accepted (NaN or degenerate ones are left out).
+    std::size_t triangleCount() const { return triangles_; }
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    const Scene& scene_;
+    std::size_t triangles_ = 0;
+};
+
+}  // namespace voxgi

@@ -1,0 +1,11 @@
+#include "gi/technique.h"
+
+#include "scenes/errors.h"
+
+namespace voxgi {
+
+void GiTechnique::dumpVdb(const std::string&) const {
+    throw NotImplementedError("method '" + name() + "' has no .vdb dump yet");
+}
+
+}  // namespace voxgi

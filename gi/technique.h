@@ -1,0 +1,51 @@
+// A GI method as the frame renderer sees it (Capsaicin's "render technique"): settings with
+// defaults read from the scene's gi block, an update per frame, an apply pass that adds the
+// indirect light it computed, timers, and a dump of its volumes to .vdb.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <epoxy/gl.h>
+#include <glm/glm.hpp>
+
+#include "render/gl/timers.h"
+#include "scenes/scene.h"
+
+namespace voxgi {
+
+class SceneGpu;
+
+// The G-buffer of the current frame (textures owned by the frame renderer).
+struct GBufferView {
+    GLuint position = 0;  // RGBA32F: world position, w = 1 where a surface was hit
+    GLuint normal = 0;    // RGBA16F: camera-facing shading normal, w = roughness
+    GLuint albedo = 0;    // RGBA16F: albedo (texture applied), w = metallic
+    GLuint emission = 0;  // RGBA32F: front-face emission, w = specular (F0 of the coat)
+    int width = 0;
+    int height = 0;
+    glm::vec3 eye{0.0f};
+    glm::mat4 viewProjection{1.0f};
+};
+
+struct FrameInput {
+    const Scene& scene;
+    const SceneGpu& sceneGpu;  // the scene's GL buffers (draw() rasterizes every triangle)
+    int frameIndex = 0;        // 0 for the first frame after init
+    gl::StageTimers& timers;   // bracket each stage: timers.begin("lpv.propagate") ... end()
+};
+
+class GiTechnique {
+public:
+    virtual ~GiTechnique() = default;
+    virtual std::string name() const = 0;
+    // Computes this frame's light (inject, propagate, trace probes...). The G-buffer is ready.
+    virtual void update(const FrameInput& input, const GBufferView& gbuffer) = 0;
+    // Draws the indirect outgoing radiance (W/(m^2 sr)) of every G-buffer pixel into the bound
+    // framebuffer; the renderer has set additive blending and the viewport.
+    virtual void applyIndirect(const FrameInput& input, const GBufferView& gbuffer) = 0;
+    // Writes the technique's volumes as OpenVDB grids.
+    virtual void dumpVdb(const std::string& path) const;
+};
+
+}  // namespace voxgi
