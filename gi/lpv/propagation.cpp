@@ -1,0 +1,269 @@
+#include "gi/lpv/propagation.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "gi/sh/sh.h"
+
+namespace voxgi {
+
+double polygonSolidAngle(glm::dvec3 eye, const std::vector<glm::dvec3>& corners) {
+    // Van Oosterom & Strackee: tan(Omega / 2) = |a.(b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|)
+    double total = 0.0;
+    for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
+        glm::dvec3 a = corners[0] - eye, b = corners[i] - eye, c = corners[i + 1] - eye;
+        double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+        double numerator = std::abs(glm::dot(a, glm::cross(b, c)));
+        double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+        total += 2.0 * std::atan2(numerator, denominator);
+    }
+    return total;
+}
+
+namespace {
+
+// A face of the unit cell centred at `center` with outward normal `normal`.
+std::vector<glm::dvec3> faceCorners(glm::dvec3 center, glm::dvec3 normal) {
+    glm::dvec3 u = std::abs(normal.x) > 0.5 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    glm::dvec3 v = glm::cross(normal, u);
+    glm::dvec3 c = center + 0.5 * normal;
+    return {c - 0.5 * u - 0.5 * v, c + 0.5 * u - 0.5 * v, c + 0.5 * u + 0.5 * v, c - 0.5 * u + 0.5 * v};
+}
+
+PropagationTables buildTables() {
+    PropagationTables t{};
+    t.axes = {glm::ivec3(1, 0, 0), glm::ivec3(-1, 0, 0), glm::ivec3(0, 1, 0),
+              glm::ivec3(0, -1, 0), glm::ivec3(0, 0, 1), glm::ivec3(0, 0, -1)};
+    for (int a = 0; a < 6; ++a) {
+        glm::dvec3 axis(t.axes[std::size_t(a)]);
+        glm::dvec3 dest = axis;  // destination centre; the source sits at the origin
+        int f = 0;
+        for (int n = 0; n < 6; ++n) {
+            glm::dvec3 normal(t.axes[std::size_t(n)]);
+            if (glm::dot(normal, axis) < -0.5) continue;  // the shared face
+            PropagationFace& face = t.faces[std::size_t(a)][std::size_t(glm::dot(normal, axis) > 0.5 ? 0 : ++f)];
+            glm::dvec3 faceCenter = dest + 0.5 * normal;
+            face.direction = glm::vec3(glm::normalize(faceCenter));
+            face.solidAngle = float(polygonSolidAngle(glm::dvec3(0.0), faceCorners(dest, normal)));
+            face.normal = glm::vec3(normal);
+        }
+    }
+    t.frontSolidAngle = t.faces[0][0].solidAngle;
+    t.sideSolidAngle = t.faces[0][1].solidAngle;
+    return t;
+}
+
+struct FaceCoefficients {
+    glm::vec4 sample;  // dOmega_f * Y(w_sf): dot with a source SH gives the face flux
+    glm::vec4 block;   // Y(-w_sf): dot with a blocker SH gives beta
+    glm::vec4 lobe;    // cosine lobe about the face normal / pi: unit-flux re-emission
+};
+
+struct Kernel {
+    std::array<std::array<FaceCoefficients, 5>, 6> faces;
+    std::array<glm::mat4, 6> unoccluded;  // sum over the 5 faces of lobe (x) sample
+
+    Kernel() {
+        const PropagationTables& t = propagationTables();
+        auto toVec4 = [](const sh::Sh4& s) { return glm::vec4(s.c[0], s.c[1], s.c[2], s.c[3]); };
+        for (std::size_t a = 0; a < 6; ++a) {
+            glm::mat4 m(0.0f);
+            for (std::size_t f = 0; f < 5; ++f) {
+                const PropagationFace& pf = t.faces[a][f];
+                FaceCoefficients& c = faces[a][f];
+                c.sample = toVec4(sh::basis(pf.direction)) * pf.solidAngle;
+                c.block = toVec4(sh::basis(-pf.direction));
+                c.lobe = toVec4(sh::cosineLobe(pf.normal)) / sh::kPi;
+                for (int col = 0; col < 4; ++col)
+                    for (int row = 0; row < 4; ++row) m[col][row] += c.lobe[row] * c.sample[col];
+            }
+            unoccluded[a] = m;
+        }
+    }
+};
+
+const Kernel& kernel() {
+    static const Kernel k;
+    return k;
+}
+
+// The geometry volume at the centre of the face between `cell` and `cell + axis`: the mean of
+// the face's 4 corner samples (one trilinear fetch on the GPU).
+bool sharedFace(const GeometryVolume& gv, glm::ivec3 cell, const glm::ivec3& axis, glm::vec4& blocker,
+                glm::vec3& albedo) {
+    glm::ivec3 base = cell + glm::max(axis, glm::ivec3(0));
+    int k = axis.x != 0 ? 0 : axis.y != 0 ? 1 : 2;
+    int u = (k + 1) % 3, v = (k + 2) % 3;
+    blocker = glm::vec4(0.0f);
+    albedo = glm::vec3(0.0f);
+    for (int du = 0; du < 2; ++du)
+        for (int dv = 0; dv < 2; ++dv) {
+            glm::ivec3 c = base;
+            c[u] += du;
+            c[v] += dv;
+            std::size_t i = gv.cornerIndex(c);
+            blocker += gv.blocker[i];
+            albedo += gv.albedo[i];
+        }
+    blocker *= 0.25f;
+    albedo *= 0.25f;
+    return blocker != glm::vec4(0.0f);
+}
+
+float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
+
+void gatherCell(const LightVolume& in, const GeometryVolume& gv, const PropagationOptions& opt, glm::ivec3 d,
+                glm::vec4 out[3]) {
+    const Kernel& k = kernel();
+    const PropagationTables& t = propagationTables();
+    const CascadeGrid& grid = in.grid;
+    out[0] = out[1] = out[2] = glm::vec4(0.0f);
+    const bool useGeometry = opt.occlusion && !gv.blocker.empty();
+    for (std::size_t a = 0; a < 6; ++a) {
+        glm::ivec3 s = d - t.axes[a];
+        if (!grid.contains(s)) continue;
+        std::size_t si = grid.index(s);
+        const glm::vec4 src[3] = {in.r[si], in.g[si], in.b[si]};
+        if (src[0] == glm::vec4(0.0f) && src[1] == glm::vec4(0.0f) && src[2] == glm::vec4(0.0f)) continue;
+        glm::vec4 blocker;
+        glm::vec3 albedo;
+        if (!useGeometry || !sharedFace(gv, s, t.axes[a], blocker, albedo)) {
+            for (int c = 0; c < 3; ++c) out[c] += k.unoccluded[a] * src[c];
+            continue;
+        }
+        for (const FaceCoefficients& f : k.faces[a]) {
+            float pass = 1.0f - clamp01(glm::dot(blocker, f.block));
+            for (int c = 0; c < 3; ++c) out[c] += (glm::dot(src[c], f.sample) * pass) * f.lobe;
+        }
+    }
+    if (!useGeometry || !opt.bounces) return;
+    // Light of this cell blocked at one of its own faces bounces back into it.
+    std::size_t di = grid.index(d);
+    const glm::vec4 self[3] = {in.r[di], in.g[di], in.b[di]};
+    if (self[0] == glm::vec4(0.0f) && self[1] == glm::vec4(0.0f) && self[2] == glm::vec4(0.0f)) return;
+    for (std::size_t a = 0; a < 6; ++a) {
+        glm::vec4 blocker;
+        glm::vec3 albedo;
+        if (!sharedFace(gv, d, t.axes[a], blocker, albedo)) continue;
+        float flux = blocker.x * (4.0f * sh::kPi * sh::kY00);
+        if (!(flux > 1e-12f) || albedo == glm::vec3(0.0f)) continue;
+        glm::vec4 shape = blocker / flux;  // the blocker's lobe with unit total flux
+        glm::vec3 reflected(0.0f);
+        for (const FaceCoefficients& f : k.faces[a]) {
+            float beta = clamp01(glm::dot(blocker, f.block));
+            for (int c = 0; c < 3; ++c) reflected[c] += glm::dot(self[c], f.sample) * beta;
+        }
+        for (int c = 0; c < 3; ++c) out[c] += (albedo[c] * reflected[c]) * shape;
+    }
+}
+
+int brickSizeFor(int resolution) { return resolution % 8 == 0 ? 8 : 4; }
+
+}  // namespace
+
+const PropagationTables& propagationTables() {
+    static const PropagationTables tables = buildTables();
+    return tables;
+}
+
+void CpuPropagator::step(const LightVolume& in, const GeometryVolume& geometry, const PropagationOptions& options,
+                         LightVolume& out) {
+    const CascadeGrid& grid = in.grid;
+    if (out.r.size() != in.r.size()) out.reset(grid);
+    out.grid = grid;
+    const int n = grid.resolution;
+    tbb::parallel_for(0, n, [&](int z) {
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                glm::vec4 o[3];
+                gatherCell(in, geometry, options, {x, y, z}, o);
+                std::size_t i = grid.index({x, y, z});
+                out.r[i] = o[0];
+                out.g[i] = o[1];
+                out.b[i] = o[2];
+            }
+    });
+}
+
+void CpuPropagator::propagate(const LightVolume& injected, const GeometryVolume& geometry, int steps,
+                              const PropagationOptions& options, LightVolume& accumulated, bool sparse) {
+    const CascadeGrid& grid = injected.grid;
+    accumulated = injected;
+    if (ping_.grid.resolution != grid.resolution || ping_.r.size() != grid.cellCount()) {
+        ping_.reset(grid);
+        pong_.reset(grid);
+    }
+    ping_ = injected;
+    pong_.grid = grid;
+    pong_.clear();
+    const int bs = brickSizeFor(grid.resolution);
+    const int nb = grid.resolution / bs;
+    const std::size_t brickCount = std::size_t(nb) * std::size_t(nb) * std::size_t(nb);
+    auto brickIndex = [nb](glm::ivec3 b) {
+        return (std::size_t(b.z) * std::size_t(nb) + std::size_t(b.y)) * std::size_t(nb) + std::size_t(b.x);
+    };
+    // Which bricks of the input hold light.
+    std::vector<std::uint8_t> lit(brickCount, 0), pongLit(brickCount, 0);
+    for (int z = 0; z < grid.resolution; ++z)
+        for (int y = 0; y < grid.resolution; ++y)
+            for (int x = 0; x < grid.resolution; ++x)
+                if (!injected.isZero(grid.index({x, y, z}))) lit[brickIndex(glm::ivec3(x, y, z) / bs)] = 1;
+    // Bounces make a cell's own light feed back, so a lit brick stays active.
+    stats_.totalBricks = brickCount;
+    std::vector<glm::ivec3> active;
+    std::vector<std::uint8_t> litOut(brickCount);
+    for (int iteration = 0; iteration < steps; ++iteration) {
+        active.clear();
+        for (int z = 0; z < nb; ++z)
+            for (int y = 0; y < nb; ++y)
+                for (int x = 0; x < nb; ++x) {
+                    glm::ivec3 b(x, y, z);
+                    bool on = !sparse || lit[brickIndex(b)];
+                    for (int a = 0; a < 6 && !on; ++a) {
+                        glm::ivec3 nbr = b + propagationTables().axes[std::size_t(a)];
+                        on = glm::all(glm::greaterThanEqual(nbr, glm::ivec3(0))) &&
+                             glm::all(glm::lessThan(nbr, glm::ivec3(nb))) && lit[brickIndex(nbr)];
+                    }
+                    if (on) active.push_back(b);
+                    else if (pongLit[brickIndex(b)]) {
+                        // Stale light from two steps ago: clear it.
+                        for (int k = 0; k < bs; ++k)
+                            for (int j = 0; j < bs; ++j)
+                                for (int i = 0; i < bs; ++i) {
+                                    std::size_t c = grid.index(b * bs + glm::ivec3(i, j, k));
+                                    pong_.r[c] = pong_.g[c] = pong_.b[c] = glm::vec4(0.0f);
+                                }
+                    }
+                }
+        std::fill(litOut.begin(), litOut.end(), 0);
+        tbb::parallel_for(std::size_t(0), active.size(), [&](std::size_t ai) {
+            glm::ivec3 b = active[ai];
+            bool any = false;
+            for (int k = 0; k < bs; ++k)
+                for (int j = 0; j < bs; ++j)
+                    for (int i = 0; i < bs; ++i) {
+                        glm::ivec3 d = b * bs + glm::ivec3(i, j, k);
+                        glm::vec4 o[3];
+                        gatherCell(ping_, geometry, options, d, o);
+                        std::size_t c = grid.index(d);
+                        pong_.r[c] = o[0];
+                        pong_.g[c] = o[1];
+                        pong_.b[c] = o[2];
+                        accumulated.r[c] += o[0];
+                        accumulated.g[c] += o[1];
+                        accumulated.b[c] += o[2];
+                        any = any || o[0] != glm::vec4(0.0f) || o[1] != glm::vec4(0.0f) || o[2] != glm::vec4(0.0f);
+                    }
+            litOut[brickIndex(b)] = any ? 1 : 0;
+        });
+        stats_.activeBricks = active.size();
+        std::swap(ping_, pong_);
+        pongLit = lit;
+        lit = litOut;
+    }
+}
+
+}  // namespace voxgi

@@ -1,0 +1,72 @@
+// Light propagation between the cells of one cascade (seed 000 section 3.10.3), CPU reference.
+//
+// Each step gathers, for every destination cell, from its 6 face neighbours: the flux a source
+// cell sends through each of the 5 destination faces other than the shared one is
+//     Phi_f = dOmega_f * I_s(w_sf) * (1 - beta_f),   beta_f = clamp(B(-w_sf), 0, 1),
+// with dOmega_f the solid angle of the face seen from the source centre and B the geometry
+// volume at the shared face centre; Phi_f is re-emitted from the destination centre as the
+// cosine lobe (Phi_f / pi) max(0, n_f . w) about the face normal. The 30 faces around a cell
+// tile the whole sphere (5 faces cover the shared face's 2 pi / 3), so in empty space the total
+// flux, 4 pi Y00 c0, is carried over exactly; no 4 pi normalization is needed.
+//
+// Extra bounces: the flux a cell's light loses to a blocker at one of its faces is reflected
+// back into the same cell with that blocker's albedo, shaped like the blocker's own SH lobe
+// normalized to unit flux. Each bounce therefore carries at most albedo x the incoming flux.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gi/lpv/light_volume.h"
+
+namespace voxgi {
+
+// The geometry of one (source -> destination) face: derived at start-up, see propagation.cpp.
+struct PropagationFace {
+    glm::vec3 direction;   // unit, source centre -> face centre
+    float solidAngle;      // steradians, seen from the source centre
+    glm::vec3 normal;      // the face's outward normal (axis) = lobe direction of the re-emission
+};
+
+struct PropagationTables {
+    std::array<glm::ivec3, 6> axes;                       // +x -x +y -y +z -z
+    std::array<std::array<PropagationFace, 5>, 6> faces;  // [axis][face]; face 0 is the far one
+    // The solid angle of the far (front) and side faces of the next cell, for unit cells.
+    float frontSolidAngle;
+    float sideSolidAngle;
+};
+
+const PropagationTables& propagationTables();
+
+// Solid angle of the planar convex polygon `corners` seen from `eye` (sum of triangles).
+double polygonSolidAngle(glm::dvec3 eye, const std::vector<glm::dvec3>& corners);
+
+struct PropagationOptions {
+    bool occlusion = true;
+    bool bounces = true;
+};
+
+struct PropagationStats {
+    std::size_t activeBricks = 0;  // bricks processed in the last step (sparse mode)
+    std::size_t totalBricks = 0;
+};
+
+// Runs `steps` iterations: accumulated = injected + sum of every iteration's output.
+// `sparse` processes only bricks holding light (dilated one brick per step).
+class CpuPropagator {
+public:
+    void propagate(const LightVolume& injected, const GeometryVolume& geometry, int steps,
+                   const PropagationOptions& options, LightVolume& accumulated, bool sparse = true);
+    // One iteration from `in` to `out` (dense), for tests.
+    static void step(const LightVolume& in, const GeometryVolume& geometry, const PropagationOptions& options,
+                     LightVolume& out);
+    const PropagationStats& stats() const { return stats_; }
+
+private:
+    LightVolume ping_, pong_;
+    PropagationStats stats_;
+};
+
+}  // namespace voxgi
