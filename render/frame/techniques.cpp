@@ -1,5 +1,7 @@
 #include "render/frame/techniques.h"
 
+#include "gi/lpv/lpv_technique.h"
+#include "gi/ddgi/ddgi_technique.h"
 #include "scenes/errors.h"
 
 namespace voxgi {
@@ -16,10 +18,10 @@ struct Entry {
 const Entry kMethods[] = {
     {"direct", [](const Scene&) -> std::unique_ptr<GiTechnique> { return nullptr; }},
     {"ambient", nullptr},
-    {"lpv", nullptr},
-    {"clpv", nullptr},
+    {"lpv", createLpv},
+    {"clpv", createClpv},
     {"ilpv", nullptr},
-    {"ddgi", nullptr},
+    {"ddgi", createDdgiTechnique},
     {"isr", nullptr},
     {"hybrid", nullptr},
 };

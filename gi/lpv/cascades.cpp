@@ -1,0 +1,44 @@
+#include "gi/lpv/cascades.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace voxgi {
+
+float finestCellSize(const LpvDesc& desc, const Bounds& b) {
+    if (desc.cellSize > 0.0f) return desc.cellSize;
+    glm::vec3 e = b.valid() ? b.extent() : glm::vec3(1.0f);
+    float longest = std::max({e.x, e.y, e.z, 1e-30f});
+    // lpv: the scene plus a one-cell margin on each side; clpv: the coarsest level spans it.
+    float cells = float(desc.resolution - 2) * float(1 << (desc.cascades - 1));
+    return longest / cells;
+}
+
+std::vector<CascadePlacement> placeCascades(const LpvDesc& desc, const Bounds& b, glm::vec3 eye,
+                                            glm::vec3 viewDirection) {
+    std::vector<CascadePlacement> out;
+    const float h0 = finestCellSize(desc, b);
+    const int n = desc.resolution;
+    for (int level = 0; level < desc.cascades; ++level) {
+        CascadePlacement p;
+        p.grid.resolution = n;
+        p.grid.cellSize = h0 * float(1 << level);
+        const float h = p.grid.cellSize;
+        glm::vec3 center;
+        if (desc.cascades == 1) {
+            center = b.valid() ? b.center() : glm::vec3(0.0f);
+        } else {
+            glm::vec3 dir = glm::length(viewDirection) > 0.0f ? glm::normalize(viewDirection) : glm::vec3(0.0f);
+            center = eye + dir * (desc.forwardOffset * float(n) * h);
+        }
+        glm::vec3 half(0.5f * float(n) * h);
+        p.grid.origin = glm::ivec3(glm::floor((center - half) / h + 0.5f));
+        // A single fitted volume does not fade: it covers the whole scene.
+        p.fadeMin = desc.cascades == 1 ? glm::vec3(-1e30f) : center - half;
+        p.fadeMax = desc.cascades == 1 ? glm::vec3(1e30f) : center + half;
+        out.push_back(p);
+    }
+    return out;
+}
+
+}  // namespace voxgi

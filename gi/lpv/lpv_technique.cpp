@@ -1,0 +1,215 @@
+#include "gi/lpv/lpv_technique.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "gi/lpv/cascades.h"
+#include "gi/lpv/injection.h"
+#include "gi/lpv/lpv_dump.h"
+#include "gi/lpv/propagation.h"
+#include "gi/lpv/rsm.h"
+#include "render/gl/program.h"
+#include "render/gl/resources.h"
+#include "render/gl/scene_gpu.h"
+#include "scenes/errors.h"
+
+namespace voxgi {
+
+namespace {
+
+constexpr int kMaxCascades = 6;
+
+double millisecondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Blocker surfels from the G-buffer, downsampled so the larger side has at most `target` samples.
+SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int target) {
+    SurfelSource source;
+    if (target <= 0) return source;
+    std::vector<float> pos = gl::readTexture(g.position, g.width, g.height, 4);
+    std::vector<float> nrm = gl::readTexture(g.normal, g.width, g.height, 4);
+    std::vector<float> alb = gl::readTexture(g.albedo, g.width, g.height, 4);
+    int stride = 1;
+    while (std::max(g.width, g.height) / stride > target) stride *= 2;
+    const float pixel = 2.0f * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / float(g.height);
+    const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+    for (int y = stride / 2; y < g.height; y += stride)
+        for (int x = stride / 2; x < g.width; x += stride) {
+            std::size_t i = (std::size_t(y) * std::size_t(g.width) + std::size_t(x)) * 4;
+            if (pos[i + 3] <= 0.0f) continue;
+            Surfel s;
+            s.position = {pos[i], pos[i + 1], pos[i + 2]};
+            s.normal = glm::normalize(glm::vec3(nrm[i], nrm[i + 1], nrm[i + 2]));
+            float metallic = alb[i + 3];
+            s.albedo = glm::vec3(alb[i], alb[i + 1], alb[i + 2]) * (1.0f - metallic);
+            glm::vec3 d = s.position - g.eye;
+            float dist = glm::length(d);
+            glm::vec3 w = d / dist;
+            float c = std::max(glm::dot(w, forward), 1e-3f);
+            float solidAngle = pixel * pixel * c * c * c * float(stride * stride);
+            s.area = solidAngle * dist * dist / std::max(std::abs(glm::dot(s.normal, w)), 0.05f);
+            source.surfels.push_back(s);
+        }
+    return source;
+}
+
+}  // namespace
+
+struct LpvTechnique::Impl {
+    const Scene& scene;
+    LpvDesc desc;
+    bool cascaded;
+    RsmRenderer rsm;
+    gl::Program apply;
+    std::vector<CascadePlacement> placements;
+    std::vector<LightVolume> injected, accumulated;
+    std::vector<GeometryVolume> geometry;
+    std::vector<CpuPropagator> propagators;
+    std::vector<gl::Handle> textures;  // 3 per cascade: r, g, b
+    std::vector<glm::ivec3> lastOrigins;
+    bool valid = false;
+
+    Impl(const Scene& s, const LpvDesc& d, bool c)
+        : scene(s), desc(d), cascaded(c), rsm(d.rsmSize),
+          apply(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply.frag")) {
+        if (desc.cascades > kMaxCascades) throw InputError("gi.lpv.cascades: at most 6");
+        if (desc.backend == "gl") throw NotImplementedError("lpv backend 'gl' is not implemented yet");
+        injected.resize(std::size_t(desc.cascades));
+        accumulated.resize(std::size_t(desc.cascades));
+        geometry.resize(std::size_t(desc.cascades));
+        propagators.resize(std::size_t(desc.cascades));
+        for (int i = 0; i < 3 * desc.cascades; ++i)
+            textures.push_back(gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, desc.resolution, desc.resolution,
+                                                 desc.resolution));
+    }
+
+    void place(const GBufferView& g) {
+        glm::vec3 view = scene.camera.target - scene.camera.eye;
+        placements = placeCascades(desc, scene.bounds(), g.eye, view);
+    }
+
+    bool placementChanged() const {
+        if (lastOrigins.size() != placements.size()) return true;
+        for (std::size_t i = 0; i < placements.size(); ++i)
+            if (placements[i].grid.origin != lastOrigins[i]) return true;
+        return false;
+    }
+
+    void update(const FrameInput& input, const GBufferView& g) {
+        place(g);
+        // Static scene, lights and placement: the propagated light is still valid.
+        if (valid && !placementChanged()) return;
+        lastOrigins.clear();
+        for (const auto& p : placements) lastOrigins.push_back(p.grid.origin);
+
+        auto t0 = std::chrono::steady_clock::now();
+        std::vector<SurfelSource> sources;
+        for (const Light& light : scene.lights) {
+            auto faces = rsm.render(scene, input.sceneGpu, light);
+            for (auto& f : faces) sources.push_back(std::move(f));
+        }
+        input.timers.addCpu("lpv.rsm", millisecondsSince(t0));
+
+        t0 = std::chrono::steady_clock::now();
+        SurfelSource camera = gbufferSurfels(g, scene.camera, desc.gbufferBlockerSize);
+        input.timers.addCpu("lpv.gbuffer_readback", millisecondsSince(t0));
+
+        t0 = std::chrono::steady_clock::now();
+        InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            injected[c].reset(placements[c].grid);
+            for (const SurfelSource& s : sources) injectLight(s, offsets, injected[c]);
+        }
+        input.timers.addCpu("lpv.inject", millisecondsSince(t0));
+
+        t0 = std::chrono::steady_clock::now();
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            GeometryVolume scratch;
+            scratch.reset(placements[c].grid);
+            geometry[c].reset(placements[c].grid);
+            for (const SurfelSource& s : sources) injectBlockers(s, scratch, geometry[c]);
+            injectBlockers(camera, scratch, geometry[c]);
+        }
+        input.timers.addCpu("lpv.blockers", millisecondsSince(t0));
+
+        t0 = std::chrono::steady_clock::now();
+        PropagationOptions options{desc.occlusion, desc.bounces};
+        for (std::size_t c = 0; c < placements.size(); ++c)
+            propagators[c].propagate(injected[c], geometry[c], desc.steps, options, accumulated[c]);
+        input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
+
+        t0 = std::chrono::steady_clock::now();
+        const int n = desc.resolution;
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            const std::vector<glm::vec4>* channels[3] = {&accumulated[c].r, &accumulated[c].g, &accumulated[c].b};
+            for (int k = 0; k < 3; ++k)
+                glTextureSubImage3D(textures[3 * c + std::size_t(k)].id(), 0, 0, 0, 0, n, n, n, GL_RGBA, GL_FLOAT,
+                                    channels[k]->data());
+        }
+        input.timers.addCpu("lpv.upload", millisecondsSince(t0));
+        valid = true;
+    }
+
+    void applyIndirect(const FrameInput& input, const GBufferView& g) {
+        input.timers.begin("lpv.apply");
+        apply.use();
+        const char* gbufferNames[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
+        const GLuint gbufferTextures[4] = {g.position, g.normal, g.albedo, g.emission};
+        for (int i = 0; i < 4; ++i) {
+            glBindTextureUnit(GLuint(i), gbufferTextures[i]);
+            apply.set(gbufferNames[i], i);
+        }
+        apply.set("uCascadeCount", int(placements.size()));
+        apply.set("uEye", g.eye);
+        apply.set("uApplyNormalOffset", desc.applyNormalOffset);
+        apply.set("uDampening", desc.dampening);
+        apply.set("uGlossy", desc.glossy ? 1 : 0);
+        // Every sampler of the arrays needs a 3D texture unit, including unused cascades.
+        for (std::size_t c = placements.size(); c < std::size_t(kMaxCascades); ++c) {
+            std::string idx = "[" + std::to_string(c) + "]";
+            for (const char* name : {"uLpvR", "uLpvG", "uLpvB"}) apply.set((std::string(name) + idx).c_str(), 4);
+        }
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            const CascadePlacement& p = placements[c];
+            std::string idx = "[" + std::to_string(c) + "]";
+            apply.set(("uLpvMin" + idx).c_str(), p.grid.worldMin());
+            apply.set(("uLpvExtent" + idx).c_str(), p.grid.worldMax() - p.grid.worldMin());
+            apply.set(("uCellSize" + idx).c_str(), p.grid.cellSize);
+            apply.set(("uFadeMin" + idx).c_str(), p.fadeMin);
+            apply.set(("uFadeMax" + idx).c_str(), p.fadeMax);
+            apply.set(("uFadeWidth" + idx).c_str(), desc.fadeCells * p.grid.cellSize);
+            const char* names[3] = {"uLpvR", "uLpvG", "uLpvB"};
+            for (int k = 0; k < 3; ++k) {
+                GLuint unit = GLuint(4 + 3 * c + std::size_t(k));
+                glBindTextureUnit(unit, textures[3 * c + std::size_t(k)].id());
+                apply.set((std::string(names[k]) + idx).c_str(), int(unit));
+            }
+        }
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        input.timers.end();
+    }
+};
+
+LpvTechnique::LpvTechnique(const Scene& scene, const LpvDesc& desc, bool cascaded)
+    : impl_(std::make_unique<Impl>(scene, desc, cascaded)) {}
+LpvTechnique::~LpvTechnique() = default;
+std::string LpvTechnique::name() const { return impl_->cascaded ? "clpv" : "lpv"; }
+const LpvDesc& LpvTechnique::desc() const { return impl_->desc; }
+void LpvTechnique::update(const FrameInput& input, const GBufferView& g) { impl_->update(input, g); }
+void LpvTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) { impl_->applyIndirect(input, g); }
+
+void LpvTechnique::dumpVdb(const std::string& path) const {
+    if (!impl_->valid) throw NotImplementedError("lpv: nothing to dump before the first frame");
+    writeLpvVdb(path, impl_->accumulated, impl_->geometry);
+}
+
+std::unique_ptr<GiTechnique> createLpv(const Scene& scene) {
+    return std::make_unique<LpvTechnique>(scene, LpvDesc::fromSettings(scene.gi, false), false);
+}
+
+std::unique_ptr<GiTechnique> createClpv(const Scene& scene) {
+    return std::make_unique<LpvTechnique>(scene, LpvDesc::fromSettings(scene.gi, true), true);
+}
+
+}  // namespace voxgi
