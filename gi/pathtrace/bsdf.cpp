@@ -1,0 +1,243 @@
+#include "gi/pathtrace/bsdf.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace voxgi::pt {
+
+namespace {
+
+float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+float ggxD(float nh, float a2) {
+    float d = nh * nh * (a2 - 1.0f) + 1.0f;
+    return a2 / std::max(kPi * d * d, 1e-12f);
+}
+
+// Height-correlated Smith visibility G2 / (4 nl nv), as in brdf.glsl.
+float smithVisibility(float nl, float nv, float a2) {
+    float gv = nl * std::sqrt(nv * nv * (1.0f - a2) + a2);
+    float gl = nv * std::sqrt(nl * nl * (1.0f - a2) + a2);
+    return 0.5f / std::max(gv + gl, 1e-12f);
+}
+
+float smithLambda(float cosTheta, float a2) {
+    float c2 = std::max(cosTheta * cosTheta, 1e-12f);
+    return 0.5f * (-1.0f + std::sqrt(1.0f + a2 * (1.0f - c2) / c2));
+}
+
+glm::vec3 fresnelSchlick(glm::vec3 f0, float vh) {
+    float m = 1.0f - std::clamp(vh, 0.0f, 1.0f);
+    float m5 = m * m * m * m * m;
+    return f0 + (glm::vec3(1.0f) - f0) * m5;
+}
+
+}  // namespace
+
+float fresnelDielectric(float cosIncident, float eta) {
+    cosIncident = std::clamp(cosIncident, 0.0f, 1.0f);
+    float sin2t = eta * eta * (1.0f - cosIncident * cosIncident);
+    if (sin2t >= 1.0f) return 1.0f;
+    float cosT = std::sqrt(1.0f - sin2t);
+    float rs = (eta * cosIncident - cosT) / (eta * cosIncident + cosT);
+    float rp = (cosIncident - eta * cosT) / (cosIncident + eta * cosT);
+    return 0.5f * (rs * rs + rp * rp);
+}
+
+Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometric, glm::vec3 shading, bool frontFace)
+    : wo_(wo), albedo_(albedo) {
+    ng_ = glm::dot(geometric, wo) < 0.0f ? -geometric : geometric;
+    // Two-sided shading like the rasterizer's G-buffer: the shading normal follows the side seen.
+    n_ = glm::dot(shading, ng_) < 0.0f ? -shading : shading;
+    // Orthonormal basis without branches on the normal's sign (Duff et al. 2017).
+    float sign = std::copysign(1.0f, n_.z);
+    float a = -1.0f / (sign + n_.z);
+    float b = n_.x * n_.y * a;
+    t_ = glm::vec3(1.0f + sign * n_.x * n_.x * a, sign * b, -sign * n_.x);
+    b_ = glm::vec3(b, sign + n_.y * n_.y * a, -n_.y);
+
+    transmission_ = std::clamp(m.transmission, 0.0f, 1.0f);
+    opaqueWeight_ = 1.0f - transmission_;
+    diffuse_ = (1.0f - m.metallic) * (1.0f - m.specular) * albedo;
+    f0_ = glm::mix(glm::vec3(m.specular), albedo, m.metallic);
+    float r2 = m.roughness * m.roughness;
+    alpha_ = std::max(r2, kSmoothAlpha);
+    smoothDielectric_ = r2 < kSmoothAlpha;
+    eta_ = frontFace ? 1.0f / m.ior : m.ior;
+
+    float nv = std::max(glm::dot(n_, wo_), 0.0f);
+    float ws = std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f ? luminance(fresnelSchlick(f0_, nv)) : 0.0f;
+    float wd = luminance(diffuse_);
+    specularProbability_ = ws + wd > 0.0f ? ws / (ws + wd) : 0.0f;
+}
+
+glm::vec3 Bsdf::evalOpaque(glm::vec3 wi) const {
+    float nl = glm::dot(n_, wi), nv = glm::dot(n_, wo_);
+    if (nl <= 0.0f || nv <= 0.0f || glm::dot(ng_, wi) <= 0.0f) return glm::vec3(0.0f);
+    glm::vec3 f = diffuse_ * (1.0f / kPi);
+    if (std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f) {
+        glm::vec3 h = glm::normalize(wo_ + wi);
+        float a2 = alpha_ * alpha_;
+        f += fresnelSchlick(f0_, glm::dot(wo_, h)) * ggxD(std::max(glm::dot(n_, h), 0.0f), a2) *
+             smithVisibility(nl, nv, a2);
+    }
+    return f * nl;
+}
+
+float Bsdf::pdfOpaque(glm::vec3 wi) const {
+    float nl = glm::dot(n_, wi);
+    if (nl <= 0.0f || glm::dot(ng_, wi) <= 0.0f || glm::dot(n_, wo_) <= 0.0f) return 0.0f;
+    float pdf = (1.0f - specularProbability_) * nl / kPi;
+    if (specularProbability_ > 0.0f) {
+        glm::vec3 h = glm::normalize(wo_ + wi);
+        float vh = glm::dot(wo_, h);
+        if (vh > 0.0f)
+            pdf += specularProbability_ * ggxD(std::max(glm::dot(n_, h), 0.0f), alpha_ * alpha_) *
+                   std::max(glm::dot(n_, h), 0.0f) / (4.0f * vh);
+    }
+    return pdf;
+}
+
+glm::vec3 Bsdf::evalRoughDielectric(glm::vec3 wi, float* pdf) const {
+    *pdf = 0.0f;
+    float cosO = glm::dot(n_, wo_), cosI = glm::dot(n_, wi);
+    if (cosO <= 0.0f || cosI == 0.0f) return glm::vec3(0.0f);
+    float a2 = alpha_ * alpha_;
+    if (cosI > 0.0f) {
+        if (glm::dot(ng_, wi) <= 0.0f) return glm::vec3(0.0f);
+        glm::vec3 h = glm::normalize(wo_ + wi);
+        float woh = glm::dot(wo_, h), nh = glm::dot(n_, h);
+        if (woh <= 0.0f || nh <= 0.0f) return glm::vec3(0.0f);
+        float F = fresnelDielectric(woh, eta_);
+        float D = ggxD(nh, a2);
+        float G = 1.0f / (1.0f + smithLambda(cosO, a2) + smithLambda(cosI, a2));
+        *pdf = F * D * nh / (4.0f * woh);
+        return glm::vec3(F * D * G / (4.0f * cosO));
+    }
+    if (glm::dot(ng_, wi) >= 0.0f) return glm::vec3(0.0f);
+    // Indices relative to the far side: n(wo side) = eta_, n(wi side) = 1.
+    glm::vec3 h = -(eta_ * wo_ + wi);
+    float len = glm::length(h);
+    if (len <= 0.0f) return glm::vec3(0.0f);
+    h /= len;
+    if (glm::dot(n_, h) < 0.0f) h = -h;
+    float woh = glm::dot(wo_, h), wih = glm::dot(wi, h), nh = glm::dot(n_, h);
+    if (woh <= 0.0f || wih >= 0.0f) return glm::vec3(0.0f);
+    float denom = eta_ * woh + wih;
+    denom *= denom;
+    if (denom <= 0.0f) return glm::vec3(0.0f);
+    float F = fresnelDielectric(woh, eta_);
+    float D = ggxD(nh, a2);
+    float G = 1.0f / (1.0f + smithLambda(cosO, a2) + smithLambda(cosI, a2));
+    *pdf = (1.0f - F) * D * nh * std::abs(wih) / denom;
+    // Walter et al.'s BTDF in radiance form (includes the eta^2 scaling) times |cos(n, wi)|.
+    return albedo_ * (woh * std::abs(wih) * (1.0f - F) * D * G * eta_ * eta_ / (cosO * denom));
+}
+
+glm::vec3 Bsdf::eval(glm::vec3 wi) const {
+    glm::vec3 f(0.0f);
+    if (opaqueWeight_ > 0.0f) f += opaqueWeight_ * evalOpaque(wi);
+    if (transmission_ > 0.0f && !smoothDielectric_) {
+        float p;
+        f += transmission_ * evalRoughDielectric(wi, &p);
+    }
+    return f;
+}
+
+float Bsdf::pdf(glm::vec3 wi) const {
+    float p = 0.0f;
+    if (opaqueWeight_ > 0.0f) p += opaqueWeight_ * pdfOpaque(wi);
+    if (transmission_ > 0.0f && !smoothDielectric_) {
+        float pd;
+        evalRoughDielectric(wi, &pd);
+        p += transmission_ * pd;
+    }
+    return p;
+}
+
+namespace {
+// GGX normal distribution sampling proportional to D(h) (n.h), in the local frame.
+glm::vec3 sampleGgxLocal(float u1, float u2, float a2) {
+    float phi = 2.0f * kPi * u1;
+    float cos2 = (1.0f - u2) / (1.0f + (a2 - 1.0f) * u2);
+    float cosT = std::sqrt(std::max(cos2, 0.0f));
+    float sinT = std::sqrt(std::max(1.0f - cos2, 0.0f));
+    return {sinT * std::cos(phi), sinT * std::sin(phi), cosT};
+}
+}  // namespace
+
+bool Bsdf::sampleOpaque(glm::vec3 u, BsdfSample& out) const {
+    if (glm::dot(n_, wo_) <= 0.0f) return false;
+    glm::vec3 wi;
+    if (u.z < specularProbability_) {
+        glm::vec3 hl = sampleGgxLocal(u.x, u.y, alpha_ * alpha_);
+        glm::vec3 h = hl.x * t_ + hl.y * b_ + hl.z * n_;
+        wi = 2.0f * glm::dot(wo_, h) * h - wo_;
+    } else {
+        // Cosine-weighted hemisphere.
+        float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
+        float z = std::sqrt(std::max(0.0f, 1.0f - u.x));
+        wi = r * std::cos(phi) * t_ + r * std::sin(phi) * b_ + z * n_;
+    }
+    out.direction = wi;
+    return true;
+}
+
+bool Bsdf::sampleDielectric(glm::vec3 u, BsdfSample& out) const {
+    float a2 = alpha_ * alpha_;
+    glm::vec3 h = n_;
+    if (!smoothDielectric_) {
+        glm::vec3 hl = sampleGgxLocal(u.x, u.y, a2);
+        h = hl.x * t_ + hl.y * b_ + hl.z * n_;
+    }
+    float woh = glm::dot(wo_, h);
+    if (woh <= 0.0f) return false;
+    float F = fresnelDielectric(woh, eta_);
+    float choose = smoothDielectric_ ? u.x : u.z;
+    if (choose < F) {
+        out.direction = 2.0f * woh * h - wo_;
+        if (smoothDielectric_) {
+            out.weight = glm::vec3(1.0f);
+            out.pdf = transmission_ * F;
+        }
+    } else {
+        float sin2t = eta_ * eta_ * (1.0f - woh * woh);
+        if (sin2t >= 1.0f) return false;
+        float cosT = std::sqrt(1.0f - sin2t);
+        out.direction = glm::normalize(-eta_ * wo_ + (eta_ * woh - cosT) * h);
+        out.radianceScale = eta_ * eta_;
+        if (smoothDielectric_) {
+            // Radiance grows by (n_wo / n_wi)^2 = eta^2 when squeezed into the denser medium.
+            out.weight = albedo_ * (eta_ * eta_);
+            out.pdf = transmission_ * (1.0f - F);
+        }
+    }
+    // With interpolated normals a direction can land on the wrong geometric side; following it
+    // would cross the surface without paying the interface (a refraction weight without its
+    // inverse), so such samples end the path: energy can be lost there, never gained.
+    bool reflected = choose < F;
+    if ((glm::dot(ng_, out.direction) > 0.0f) != reflected) return false;
+    out.delta = smoothDielectric_;
+    return true;
+}
+
+bool Bsdf::sample(glm::vec3 u, BsdfSample& out) const {
+    out = BsdfSample{};
+    bool ok;
+    if (u.z < transmission_) {
+        u.z /= transmission_;
+        ok = sampleDielectric(u, out);
+        if (ok && out.delta) return true;
+    } else {
+        u.z = opaqueWeight_ > 0.0f ? (u.z - transmission_) / opaqueWeight_ : 0.0f;
+        ok = sampleOpaque(u, out);
+    }
+    if (!ok) return false;
+    // Non-delta lobes: one-sample MIS over every lobe that could have produced this direction.
+    out.pdf = pdf(out.direction);
+    if (!(out.pdf > 0.0f)) return false;
+    out.weight = eval(out.direction) / out.pdf;
+    return out.weight.r > 0.0f || out.weight.g > 0.0f || out.weight.b > 0.0f;
+}
+
+}  // namespace voxgi::pt

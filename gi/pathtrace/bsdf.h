@@ -1,0 +1,65 @@
+// The path tracer's material model at one surface point. The opaque part is the BRDF every
+// voxgi renderer uses (shaders/common/brdf.glsl):
+//   f = (1 - metallic)(1 - specular) albedo / pi + GGX(alpha = roughness^2, F0 = mix(specular, albedo, metallic))
+// with Schlick Fresnel and the height-correlated Smith term, shaded two-sided. A material with
+// transmission t mixes in (weight t) a dielectric of index `ior`: smooth (a delta pair of
+// mirror reflection and refraction) when roughness^2 < kSmoothAlpha, otherwise the rough GGX
+// dielectric of Walter et al. 2007. Transmitted light is tinted by the albedo.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "scenes/scene.h"
+
+namespace voxgi::pt {
+
+constexpr float kPi = 3.14159265358979323846f;
+constexpr float kSmoothAlpha = 1e-3f;  // the GLSL BRDF clamps alpha here too
+
+struct BsdfSample {
+    glm::vec3 direction{0.0f};
+    glm::vec3 weight{0.0f};  // f |cos| / pdf, including the radiance scaling across an interface
+    float pdf = 0.0f;        // solid angle; for a delta lobe the discrete probability
+    float radianceScale = 1.0f;  // (n_wo / n_wi)^2 folded into weight by a refraction, else 1
+    bool delta = false;
+};
+
+class Bsdf {
+public:
+    // `wo` points away from the surface (towards the previous vertex). `geometric` and
+    // `shading` are the hit's unit normals as stored; `frontFace` says which side `wo` is on.
+    Bsdf(const Material& material, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometric, glm::vec3 shading,
+         bool frontFace);
+
+    // f |cos(n, wi)|, for next-event estimation; delta lobes give zero.
+    glm::vec3 eval(glm::vec3 wi) const;
+    float pdf(glm::vec3 wi) const;
+    // u in [0,1)^3. False when the sample carries no energy (below the horizon...).
+    bool sample(glm::vec3 u, BsdfSample& out) const;
+    // True when eval can be non-zero somewhere (a light sample is worth tracing).
+    bool hasSmoothPart() const { return opaqueWeight_ > 0.0f || (transmission_ > 0.0f && !smoothDielectric_); }
+    // Normals oriented to the side of wo (two-sided shading).
+    glm::vec3 shadingNormal() const { return n_; }
+    glm::vec3 geometricNormal() const { return ng_; }
+
+private:
+    glm::vec3 evalOpaque(glm::vec3 wi) const;
+    float pdfOpaque(glm::vec3 wi) const;
+    glm::vec3 evalRoughDielectric(glm::vec3 wi, float* pdf) const;
+    bool sampleOpaque(glm::vec3 u, BsdfSample& out) const;
+    bool sampleDielectric(glm::vec3 u, BsdfSample& out) const;
+
+    glm::vec3 wo_, n_, ng_, t_, b_;
+    glm::vec3 diffuse_, f0_, albedo_;
+    float alpha_ = 1.0f;
+    float specularProbability_ = 0.0f;
+    float opaqueWeight_ = 1.0f;   // 1 - transmission
+    float transmission_ = 0.0f;
+    float eta_ = 1.0f;            // index on the wo side over the index on the other side
+    bool smoothDielectric_ = false;
+};
+
+// Fresnel reflectance of a dielectric interface for unpolarised light; eta = n_incident / n_transmitted.
+float fresnelDielectric(float cosIncident, float eta);
+
+}  // namespace voxgi::pt

@@ -1,0 +1,132 @@
+#include "gi/pathtrace/integrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gi/pathtrace/bsdf.h"
+
+namespace voxgi::pt {
+
+namespace {
+float powerHeuristic(float a, float b) {
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+float maxComponent(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+}  // namespace
+
+glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction) {
+    float scale = 1.0f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+    float side = glm::dot(geometric, direction) >= 0.0f ? 1.0f : -1.0f;
+    return p + geometric * (side * 2e-5f * scale);
+}
+
+Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces)
+    : scene_(scene), tracer_(tracer), lights_(scene), maxBounces_(maxBounces > 0 ? maxBounces : kBounceGuard),
+      sky_(scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f)) {
+    Bounds b = scene.bounds();
+    sceneScale_ = b.valid() ? std::max(glm::length(b.extent()), 1e-6f) : 1.0f;
+}
+
+glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, Rng& rng, std::uint32_t& rays) const {
+    glm::vec3 sum(0.0f);
+    for (std::size_t i = 0; i < lights_.deltaCount(); ++i) {
+        LightSample ls = lights_.sampleDelta(i, p);
+        if (maxComponent(ls.radiance) <= 0.0f) continue;
+        glm::vec3 f = bsdf.eval(ls.direction);
+        if (maxComponent(f) <= 0.0f) continue;
+        glm::vec3 o = offsetOrigin(p, ng, ls.direction);
+        float tMax = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
+                                             : ls.distance * (1.0f - 1e-5f);
+        ++rays;
+        if (!tracer_.occluded(o, ls.direction, 0.0f, tMax)) sum += f * ls.radiance;
+    }
+    if (lights_.hasEmissiveTriangles()) {
+        float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        LightSample ls = lights_.sampleEmissive(p, u0, u1, u2);
+        if (ls.pdf > 0.0f) {
+            glm::vec3 f = bsdf.eval(ls.direction);
+            if (maxComponent(f) > 0.0f) {
+                glm::vec3 o = offsetOrigin(p, ng, ls.direction);
+                // Stop short of the emitter so its own triangle does not count as a blocker.
+                float tMax = ls.distance - 2e-5f * (1.0f + sceneScale_);
+                ++rays;
+                if (tMax > 0.0f && !tracer_.occluded(o, ls.direction, 0.0f, tMax))
+                    sum += f * ls.radiance * powerHeuristic(ls.pdf, bsdf.pdf(ls.direction));
+            }
+        }
+    }
+    return sum;
+}
+
+PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) const {
+    PathSample out;
+    glm::vec3 throughput(1.0f);
+    float radianceScale = 1.0f;
+    float previousPdf = 0.0f;
+    bool previousDelta = true;  // the camera: what it sees directly gets full weight
+    glm::vec3 previousPosition = origin;
+    auto deposit = [&](int scatterings, glm::vec3 radiance) {
+        (scatterings <= 1 ? out.direct : out.indirect) += radiance;
+    };
+
+    for (int depth = 0;; ++depth) {
+        RayHit hit = tracer_.intersect(origin, direction);
+        ++out.rays;
+        if (!hit.hit) {
+            // The constant sky is reached only by BSDF sampling: it takes full weight.
+            deposit(depth, throughput * sky_);
+            break;
+        }
+        const Material& material = scene_.materials[hit.material];
+        glm::vec3 albedo = tracer_.albedoAt(hit);
+        if (depth == 0) {
+            out.albedo = albedo;
+            out.depth = hit.t;
+            glm::vec3 ng = hit.frontFace ? hit.geometricNormal : -hit.geometricNormal;
+            out.normal = glm::dot(hit.shadingNormal, ng) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
+        }
+        if (hit.frontFace && material.isEmissive()) {
+            float weight = 1.0f;
+            if (!previousDelta) {
+                float d2 = glm::dot(hit.position - previousPosition, hit.position - previousPosition);
+                float lightPdf = lights_.emissivePdf(hit.mesh, hit.triangle, d2, -glm::dot(hit.geometricNormal, direction));
+                weight = powerHeuristic(previousPdf, lightPdf);
+            }
+            deposit(depth, throughput * material.emission * weight);
+        }
+        if (depth >= maxBounces_) break;
+
+        glm::vec3 wo = -direction;
+        Bsdf bsdf(material, albedo, wo, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
+        if (bsdf.hasSmoothPart()) deposit(depth + 1, throughput * sampleLights(bsdf, hit.position, hit.geometricNormal, rng, out.rays));
+
+        glm::vec3 u(rng.uniform(), rng.uniform(), rng.uniform());
+        BsdfSample s;
+        if (!bsdf.sample(u, s)) break;
+        throughput *= s.weight;
+        out.scatterings = depth + 1;
+        previousPdf = s.pdf;
+        previousDelta = s.delta;
+        previousPosition = hit.position;
+        radianceScale *= s.radianceScale;
+        if (depth >= 3) {
+            // Russian roulette keeps the estimate unbiased: survivors carry 1 / q. Survival
+            // follows the throughput (without the radiance scaling of refractions, which undoes
+            // itself on the way out), so weights stay at 1 even for albedo 0.99 and paths that
+            // lose no energy are never cut; kBounceGuard ends those.
+            float q = maxComponent(throughput) / radianceScale;
+            if (q < 1.0f) {
+                if (!(rng.uniform() < q)) break;
+                throughput /= q;
+            }
+        }
+        if (maxComponent(throughput) <= 0.0f) break;
+        origin = offsetOrigin(hit.position, hit.geometricNormal, s.direction);
+        direction = s.direction;
+    }
+    return out;
+}
+
+}  // namespace voxgi::pt

@@ -1,0 +1,39 @@
+// One path from a camera ray: the light transport part of the path tracer, separate from
+// pixels, tiles and accumulation (gi/pathtrace/path_tracer.cpp).
+#pragma once
+
+#include "gi/pathtrace/lights.h"
+#include "gi/pathtrace/path_tracer.h"
+#include "gi/pathtrace/random.h"
+#include "gi/raytrace/ray_tracer.h"
+
+namespace voxgi::pt {
+
+// A hard stop for paths that lose no energy (roulette never ends those: a mirror maze, light
+// trapped in glass). Any surface with albedo below 0.998 has ended its path by then with
+// probability above 1 - 1e-8, so the bias this costs is far below any test's resolution.
+constexpr int kBounceGuard = 10000;
+
+class Integrator {
+public:
+    Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces);
+    PathSample trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) const;
+
+private:
+    // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
+    glm::vec3 sampleLights(const class Bsdf& bsdf, glm::vec3 position, glm::vec3 geometric, Rng& rng,
+                           std::uint32_t& rays) const;
+
+    const Scene& scene_;
+    const RayTracer& tracer_;
+    LightSampler lights_;
+    int maxBounces_;
+    glm::vec3 sky_;
+    float sceneScale_;
+};
+
+// Origin offset so a ray leaving a surface does not hit it again: along the geometric normal,
+// on the side the ray leaves to, relative to the coordinates' magnitude.
+glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction);
+
+}  // namespace voxgi::pt

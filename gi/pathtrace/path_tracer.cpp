@@ -1,0 +1,173 @@
+#include "gi/pathtrace/path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <optional>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "gi/pathtrace/integrator.h"
+
+namespace voxgi {
+
+namespace {
+
+constexpr int kTile = 16;
+
+bool hasQuadGeometry(const Scene& scene) {
+    Scene probe;
+    probe.lights = scene.lights;
+    probe.meshes.reserve(scene.meshes.size());
+    for (const Mesh& m : scene.meshes) {
+        Mesh named;
+        named.name = m.name;
+        probe.meshes.push_back(std::move(named));
+    }
+    std::size_t before = probe.meshes.size();
+    probe.addQuadLightGeometry();
+    return probe.meshes.size() == before;
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+struct PixelSum {
+    glm::dvec3 direct{0.0}, indirect{0.0};
+    glm::dvec3 albedo{0.0}, normal{0.0};
+    double depth = 0.0;
+    std::uint32_t count = 0;
+};
+
+}  // namespace
+
+struct PathTracer::Impl {
+    std::optional<Scene> owned;
+    const Scene& scene;
+    PathTracerOptions options;
+    int width, height;
+    RayTracer tracer;
+    pt::Integrator integrator;
+    // Camera frame: a pinhole with glm::lookAt / glm::perspective's conventions.
+    glm::vec3 eye, forward, right, up;
+    float tanHalfY, aspect;
+    std::vector<PixelSum> sums;
+    int samples = 0;
+    std::atomic<std::uint64_t> rays{0}, dropped{0};
+
+    static const Scene& pick(const Scene& given, std::optional<Scene>& owned) {
+        if (hasQuadGeometry(given)) return given;
+        owned.emplace(given);
+        owned->addQuadLightGeometry();
+        return *owned;
+    }
+
+    Impl(const Scene& s, const PathTracerOptions& o)
+        : scene(pick(s, owned)), options(o), width(o.width > 0 ? o.width : s.camera.width),
+          height(o.height > 0 ? o.height : s.camera.height), tracer(scene),
+          integrator(scene, tracer, o.maxBounces) {
+        const Camera& c = scene.camera;
+        eye = c.eye;
+        forward = glm::normalize(c.target - c.eye);
+        right = glm::normalize(glm::cross(forward, c.up));
+        up = glm::cross(right, forward);
+        tanHalfY = std::tan(glm::radians(c.fovYDegrees) * 0.5f);
+        aspect = float(width) / float(height);
+        sums.resize(std::size_t(width) * std::size_t(height));
+    }
+
+    PathSample samplePixel(int x, int y, std::uint64_t index) const {
+        std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
+        pt::Rng rng(options.seed, pixel, index);
+        // Box filter: a uniform point in the pixel, as the rasterizer's jittered accumulation.
+        float sx = (float(x) + rng.uniform()) / float(width);
+        float sy = (float(y) + rng.uniform()) / float(height);
+        glm::vec3 d = forward + (2.0f * sx - 1.0f) * tanHalfY * aspect * right + (1.0f - 2.0f * sy) * tanHalfY * up;
+        return integrator.trace(eye, glm::normalize(d), rng);
+    }
+
+    void renderTile(int tile, int count) {
+        int tilesX = (width + kTile - 1) / kTile;
+        int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+        int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
+        std::uint64_t tileRays = 0, tileDropped = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                PixelSum& sum = sums[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+                for (int s = 0; s < count; ++s) {
+                    PathSample p = samplePixel(x, y, std::uint64_t(samples + s));
+                    tileRays += p.rays;
+                    if (!finite(p.direct) || !finite(p.indirect) || !finite(p.albedo) || !finite(p.normal) ||
+                        !std::isfinite(p.depth)) {
+                        ++tileDropped;
+                        continue;
+                    }
+                    sum.direct += glm::dvec3(p.direct);
+                    sum.indirect += glm::dvec3(p.indirect);
+                    sum.albedo += glm::dvec3(p.albedo);
+                    sum.normal += glm::dvec3(p.normal);
+                    sum.depth += double(p.depth);
+                    ++sum.count;
+                }
+            }
+        rays += tileRays;
+        dropped += tileDropped;
+    }
+};
+
+PathTracer::PathTracer(const Scene& scene, const PathTracerOptions& options)
+    : impl_(std::make_unique<Impl>(scene, options)) {}
+PathTracer::~PathTracer() = default;
+
+void PathTracer::render(int samples) {
+    if (samples <= 0) return;
+    Impl& m = *impl_;
+    int tiles = ((m.width + kTile - 1) / kTile) * ((m.height + kTile - 1) / kTile);
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
+        for (int t = r.begin(); t != r.end(); ++t) m.renderTile(t, samples);
+    });
+    m.samples += samples;
+}
+
+Image PathTracer::image() const {
+    const Impl& m = *impl_;
+    Image img(m.width, m.height);
+    // Create every layer first: later layer() calls would move the ones already referenced.
+    for (const char* name : {"beauty", "direct", "indirect", "albedo", "normal"}) img.layer(name);
+    img.layer("depth", 1);
+    ImageLayer& beauty = img.layer("beauty");
+    ImageLayer& direct = img.layer("direct");
+    ImageLayer& indirect = img.layer("indirect");
+    ImageLayer& albedo = img.layer("albedo");
+    ImageLayer& normal = img.layer("normal");
+    ImageLayer& depth = img.layer("depth", 1);
+    for (std::size_t i = 0; i < m.sums.size(); ++i) {
+        const PixelSum& s = m.sums[i];
+        double inv = s.count > 0 ? 1.0 / double(s.count) : 0.0;
+        for (int c = 0; c < 3; ++c) {
+            std::size_t k = 3 * i + std::size_t(c);
+            direct.data[k] = float(s.direct[c] * inv);
+            indirect.data[k] = float(s.indirect[c] * inv);
+            beauty.data[k] = float((s.direct[c] + s.indirect[c]) * inv);
+            albedo.data[k] = float(s.albedo[c] * inv);
+            normal.data[k] = float(s.normal[c] * inv);
+        }
+        depth.data[i] = float(s.depth * inv);
+    }
+    return img;
+}
+
+int PathTracer::width() const { return impl_->width; }
+int PathTracer::height() const { return impl_->height; }
+int PathTracer::samplesPerPixel() const { return impl_->samples; }
+std::uint64_t PathTracer::raysTraced() const { return impl_->rays.load(); }
+std::uint64_t PathTracer::droppedSamples() const { return impl_->dropped.load(); }
+
+PathSample PathTracer::samplePixel(int x, int y, std::uint64_t index) const { return impl_->samplePixel(x, y, index); }
+
+PathSample PathTracer::trace(glm::vec3 origin, glm::vec3 direction, std::uint64_t stream) const {
+    pt::Rng rng(impl_->options.seed, ~std::uint64_t(0), stream);
+    return impl_->integrator.trace(origin, glm::normalize(direction), rng);
+}
+
+}  // namespace voxgi

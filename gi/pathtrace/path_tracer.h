@@ -1,0 +1,67 @@
+// The reference renderer: an unbiased path tracer on Embree (gi/raytrace) with next-event
+// estimation and multiple importance sampling, Russian roulette, progressive accumulation and
+// AOVs. Deterministic: pixel (x, y), sample s always draws the same random numbers, so the
+// image depends on the seed and the sample count only, not on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "scenes/image.h"
+#include "scenes/scene.h"
+
+namespace voxgi {
+
+struct PathTracerOptions {
+    int maxBounces = 0;         // scattering events per path; 0 = unlimited (roulette ends paths)
+    std::uint64_t seed = 0;
+    int width = 0;              // 0 = the scene camera's resolution
+    int height = 0;
+};
+
+// What one camera path brought back, split the way the AOVs are.
+struct PathSample {
+    glm::vec3 direct{0.0f};     // emitters and sky seen directly, plus light after one scattering
+    glm::vec3 indirect{0.0f};   // light after two or more scatterings
+    glm::vec3 albedo{0.0f};     // first hit (zero for background)
+    glm::vec3 normal{0.0f};     // first hit's shading normal, turned towards the camera
+    float depth = 0.0f;         // distance along the camera ray to the first hit (0 = none)
+    int scatterings = 0;        // scattering events the path made before it ended
+    std::uint32_t rays = 0;     // rays traced for this sample (camera, extension, shadow)
+    glm::vec3 beauty() const { return direct + indirect; }
+};
+
+class PathTracer {
+public:
+    // Quad lights are traced through their emitting geometry; a scene built in code without
+    // Scene::addQuadLightGeometry gets it added to a private copy.
+    PathTracer(const Scene& scene, const PathTracerOptions& options);
+    ~PathTracer();
+    PathTracer(const PathTracer&) = delete;
+    PathTracer& operator=(const PathTracer&) = delete;
+
+    // Adds `samples` more samples per pixel (TBB over tiles).
+    void render(int samples);
+    // The average so far: beauty, direct, indirect, albedo, normal, depth (1 channel).
+    Image image() const;
+
+    int width() const;
+    int height() const;
+    int samplesPerPixel() const;
+    std::uint64_t raysTraced() const;
+    // Samples that came out NaN or infinite, dropped before they reached the image.
+    std::uint64_t droppedSamples() const;
+
+    // The path render() traces for pixel (x, y), sample `index` (box filter over the pixel).
+    PathSample samplePixel(int x, int y, std::uint64_t index) const;
+    // A path along any ray; `stream` keys its random numbers.
+    PathSample trace(glm::vec3 origin, glm::vec3 direction, std::uint64_t stream) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace voxgi

@@ -1,0 +1,321 @@
+// The path tracer against answers known in closed form: the white furnace (L = Le / (1 - rho),
+// also truncated after B bounces), a point light and a sun over a plane, the form factor of a
+// square light, glass that must not create energy, determinism across thread counts, and the
+// NaN/Inf guard.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <tbb/global_control.h>
+
+#include "gi/pathtrace/path_tracer.h"
+#include "scenes/primitives.h"
+#include "scenes/scene_loader.h"
+#include "support/test_support.h"
+
+using namespace voxgi;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Estimate {
+    double mean = 0.0;
+    double standardError = 0.0;
+    double meanScatterings = 0.0;
+};
+
+// Mean and standard error (from the per-sample variance) of the green beauty channel over
+// `count` paths sent from `origin` in directions spread over the sphere.
+Estimate estimate(const PathTracer& tracer, glm::vec3 origin, int count, bool directOnly = false) {
+    double sum = 0.0, sumSq = 0.0, scatterings = 0.0;
+    for (int i = 0; i < count; ++i) {
+        // Fibonacci-sphere directions: every wall is seen, no sampling bias.
+        float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(count);
+        float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        float phi = float(i) * 2.39996323f;
+        PathSample s = tracer.trace(origin, {r * std::cos(phi), r * std::sin(phi), z}, std::uint64_t(i));
+        double v = directOnly ? s.direct.g : s.beauty().g;
+        sum += v;
+        sumSq += v * v;
+        scatterings += s.scatterings;
+    }
+    Estimate e;
+    e.mean = sum / count;
+    double variance = std::max(sumSq / count - e.mean * e.mean, 0.0) * count / (count - 1);
+    e.standardError = std::sqrt(variance / count);
+    e.meanScatterings = scatterings / count;
+    return e;
+}
+
+Scene furnace(float albedo, float emission) {
+    Scene s;
+    Material m;
+    m.albedo = glm::vec3(albedo);
+    m.emission = glm::vec3(emission);
+    s.materials.push_back(m);
+    s.meshes.push_back(makeBox(glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)), 0, /*inwardNormals=*/true));
+    s.camera.eye = glm::vec3(0.0f);
+    s.camera.target = glm::vec3(0.0f, 0.0f, 1.0f);
+    s.camera.width = s.camera.height = 8;
+    return s;
+}
+
+}  // namespace
+
+class WhiteFurnace : public ::testing::TestWithParam<float> {};
+
+TEST_P(WhiteFurnace, ConvergesToEmissionOverOneMinusAlbedo) {
+    const float rho = GetParam();
+    Scene s = furnace(rho, 1.0f);
+    PathTracer tracer(s, PathTracerOptions{});
+    Estimate e = estimate(tracer, glm::vec3(0.1f, -0.2f, 0.3f), 40000);
+    double expected = 1.0 / (1.0 - double(rho));
+    // Truncating after B bounces loses rho^(B+1) / (1 - rho): the bounces a fixed-depth tracer
+    // would need for a 1% bias. Roulette instead ends paths at random and stays unbiased.
+    int bouncesFor1Percent = int(std::ceil(std::log(0.01) / std::log(double(rho)) - 1.0));
+    std::printf("furnace rho=%.2f: L = %.4f +- %.4f (expected %.4f, %.2f SE), mean scatterings per path %.1f, "
+                "a fixed depth needs %d bounces for 1%% bias\n",
+                rho, e.mean, e.standardError, expected, std::abs(e.mean - expected) / e.standardError,
+                e.meanScatterings, bouncesFor1Percent);
+    EXPECT_LT(std::abs(e.mean - expected), 3.0 * e.standardError);
+    EXPECT_LT(e.standardError, 0.02 * expected);  // the test has the power to see a 6% bias
+}
+
+INSTANTIATE_TEST_SUITE_P(Albedos, WhiteFurnace, ::testing::Values(0.5f, 0.9f, 0.99f));
+
+TEST(PathTracer, FurnaceTruncatedAtMaxBounces) {
+    // With at most B scattering events, L = Le (1 - rho^(B+1)) / (1 - rho).
+    for (int bounces : {1, 2, 5}) {
+        PathTracerOptions o;
+        o.maxBounces = bounces;
+        Scene s = furnace(0.8f, 1.0f);
+        PathTracer tracer(s, o);
+        Estimate e = estimate(tracer, glm::vec3(0.0f), 20000);
+        double expected = (1.0 - std::pow(0.8, bounces + 1)) / (1.0 - 0.8);
+        EXPECT_LT(std::abs(e.mean - expected), 3.0 * e.standardError + 1e-6) << "B=" << bounces << " got " << e.mean;
+        if (bounces == 1) {
+            // Direct AOV = emission seen + one scattering: everything when B = 1.
+            Estimate d = estimate(tracer, glm::vec3(0.0f), 20000, true);
+            EXPECT_NEAR(d.mean, e.mean, 1e-9);
+        }
+    }
+}
+
+TEST(PathTracer, PointLightOverPlaneIsIntensityCosineOverDistanceSquared) {
+    Scene s = parseSceneJson(R"({
+      "camera": {"eye": [0, 3, 0.001], "target": [0, 0, 0], "fov": 60, "resolution": [16, 16]},
+      "materials": {"m": {"albedo": 0.5}},
+      "lights": [{"type": "point", "position": [0, 1, 0], "intensity": 10}],
+      "meshes": [{"type": "quad", "material": "m", "corners": [[-5,0,5],[5,0,5],[5,0,-5],[-5,0,-5]]}]})",
+                             "plane.json");
+    PathTracerOptions o;
+    o.maxBounces = 1;
+    PathTracer tracer(s, o);
+    glm::vec3 eye(0.3f, 3.0f, 0.2f);
+    for (glm::vec3 p : {glm::vec3(0, 0, 0), glm::vec3(0.5f, 0, 0.3f), glm::vec3(-0.8f, 0, -0.6f), glm::vec3(2, 0, 1)}) {
+        float r2 = 1.0f + p.x * p.x + p.z * p.z;
+        float expected = 0.5f / float(kPi) * 10.0f * (1.0f / std::sqrt(r2)) / r2;  // rho/pi * I cos / r^2
+        PathSample sample = tracer.trace(eye, p - eye, 7);
+        EXPECT_NEAR(sample.beauty().g, expected, 1e-4f * expected) << p.x << "," << p.z;
+        EXPECT_NEAR(sample.depth, glm::length(p - eye), 1e-4f);
+    }
+}
+
+TEST(PathTracer, SpotConeFalloffAndSun) {
+    // Spot: 20 W/sr, inner 20, outer 40 degrees, pointing down from height 1 (smoothstep falloff
+    // between the cone cosines, as shaders/frame/direct_light.frag). Sun: 2 W/m^2 at 60 degrees.
+    Scene s = parseSceneJson(R"({
+      "camera": {"eye": [0, 3, 0.001], "target": [0, 0, 0], "fov": 60, "resolution": [16, 16]},
+      "materials": {"m": {"albedo": 1.0}},
+      "lights": [{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "intensity": 20,
+                  "inner_angle": 20, "outer_angle": 40}],
+      "meshes": [{"type": "quad", "material": "m", "corners": [[-5,0,5],[5,0,5],[5,0,-5],[-5,0,-5]]}]})",
+                             "spot.json");
+    PathTracerOptions o;
+    o.maxBounces = 1;
+    PathTracer tracer(s, o);
+    for (float angle : {10.0f, 30.0f, 35.0f, 45.0f}) {
+        float x = std::tan(glm::radians(angle));
+        float cosA = std::cos(glm::radians(angle));
+        float c0 = std::cos(glm::radians(40.0f)), c1 = std::cos(glm::radians(20.0f));
+        float t = std::clamp((cosA - c0) / (c1 - c0), 0.0f, 1.0f);
+        float falloff = t * t * (3.0f - 2.0f * t);
+        float r2 = 1.0f + x * x;
+        float expected = float(1.0 / kPi) * 20.0f * falloff * cosA / r2;
+        PathSample sample = tracer.trace({0.0f, 2.0f, 0.5f}, glm::vec3(x, 0, 0) - glm::vec3(0.0f, 2.0f, 0.5f), 3);
+        EXPECT_NEAR(sample.beauty().r, expected, 1e-4f * expected + 1e-7f) << angle;
+    }
+    Scene sun = parseSceneJson(R"({
+      "camera": {"eye": [0, 3, 0.001], "target": [0, 0, 0], "fov": 60, "resolution": [16, 16]},
+      "materials": {"m": {"albedo": 1.0}},
+      "lights": [{"type": "directional", "direction": [0.8660254, -0.5, 0], "irradiance": 2}],
+      "meshes": [{"type": "quad", "material": "m", "corners": [[-5,0,5],[5,0,5],[5,0,-5],[-5,0,-5]]},
+                 {"type": "box", "material": "m", "transform": {"translate": [0, 0.5, 0], "scale": 0.2}}]})",
+                               "sun.json");
+    PathTracer sunTracer(sun, o);
+    glm::vec3 eye(0.0f, 4.0f, 0.001f);
+    EXPECT_NEAR(sunTracer.trace(eye, glm::vec3(1.2f, 0, 1.2f) - eye, 1).beauty().r, 2.0f * 0.5f / float(kPi), 1e-4f);
+    glm::vec3 shadow(0.5f / std::tan(0.5235988f), 0.0f, 0.0f);
+    EXPECT_EQ(sunTracer.trace(eye, shadow - eye, 1).beauty().r, 0.0f);
+}
+
+TEST(PathTracer, SquareLightFormFactor) {
+    // A 1 x 1 m light of radiance 3 facing down from height h = 0.5 over a white Lambertian
+    // point: L = rho * Le * F with F the differential form factor of a parallel rectangle.
+    const double h = 0.5, half = 0.5, Le = 3.0, rho = 0.8;
+    auto corner = [](double a, double b) {
+        double x = a, y = b;
+        return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
+                y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2.0 * kPi);
+    };
+    double F = 4.0 * corner(half / h, half / h);
+    Scene s = parseSceneJson(R"({
+      "camera": {"eye": [3, 0.2, 0], "target": [0, 0, 0], "fov": 60, "resolution": [16, 16]},
+      "materials": {"m": {"albedo": 0.8}},
+      "lights": [{"type": "quad", "corner": [-0.5, 0.5, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "radiance": 3}],
+      "meshes": [{"type": "quad", "material": "m", "corners": [[-9,0,9],[9,0,9],[9,0,-9],[-9,0,-9]]}]})",
+                             "quad.json");
+    PathTracerOptions o;
+    o.maxBounces = 1;
+    PathTracer tracer(s, o);
+    double sum = 0.0, sumSq = 0.0;
+    const int n = 20000;
+    glm::vec3 eye(3.0f, 0.2f, 0.0f);
+    for (int i = 0; i < n; ++i) {
+        double v = tracer.trace(eye, -eye, std::uint64_t(i)).beauty().g;
+        sum += v;
+        sumSq += v * v;
+    }
+    double mean = sum / n, se = std::sqrt(std::max(sumSq / n - mean * mean, 0.0) / (n - 1));
+    double expected = rho * Le * F;
+    std::printf("square light: L = %.5f +- %.5f, analytic rho Le F = %.5f (F = %.5f)\n", mean, se, expected, F);
+    EXPECT_LT(std::abs(mean - expected), 3.0 * se + 1e-6);
+    EXPECT_LT(se, 0.01 * expected);
+}
+
+TEST(PathTracer, GlassDoesNotCreateEnergy) {
+    // Walls that emit 1 and absorb everything; a clear or rough glass sphere in the middle can
+    // only redirect light, so every direction sees at most 1 (exactly 1 for smooth glass).
+    for (float roughness : {0.0f, 0.3f}) {
+        Scene s = furnace(0.0f, 1.0f);
+        Material glass;
+        glass.albedo = glm::vec3(1.0f);
+        glass.transmission = 1.0f;
+        glass.ior = 1.5f;
+        glass.roughness = roughness;
+        s.materials.push_back(glass);
+        s.meshes.push_back(makeSphere(glm::scale(glm::mat4(1.0f), glm::vec3(0.6f)), 1, 48));
+        PathTracer tracer(s, PathTracerOptions{});
+        // Look at the sphere from a corner of the box so most paths go through the glass.
+        glm::vec3 eye(0.0f, 0.0f, -0.9f);
+        double sum = 0.0, sumSq = 0.0;
+        const int n = 20000;
+        for (int i = 0; i < n; ++i) {
+            float a = 0.5f * float(i % 100) / 100.0f - 0.25f, b = 0.5f * float(i / 100) / 200.0f - 0.25f;
+            double v = tracer.trace(eye, {a, b, 1.0f}, std::uint64_t(i)).beauty().g;
+            sum += v;
+            sumSq += v * v;
+        }
+        double mean = sum / n, se = std::sqrt(std::max(sumSq / n - mean * mean, 0.0) / (n - 1));
+        std::printf("glass roughness %.1f: L = %.4f +- %.4f (at most 1)\n", roughness, mean, se);
+        if (roughness == 0.0f) {
+            // Reflection and refraction weights are exact (roulette leaves lossless paths alone),
+            // so the answer is 1 up to float rounding of the eta^2 factors.
+            EXPECT_NEAR(mean, 1.0, 1e-5);
+        } else {
+            // Single-scattering microfacets lose a little energy, and must not gain any.
+            EXPECT_LT(mean, 1.0 + 3.0 * se);
+            EXPECT_GT(mean, 0.9);
+        }
+    }
+}
+
+TEST(PathTracer, SameImageWhateverTheThreadCount) {
+    Scene s = test::cornellBox();
+    PathTracerOptions o;
+    o.width = o.height = 40;
+    o.seed = 11;
+    Image one, two;
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        PathTracer t(s, o);
+        t.render(3);
+        one = t.image();
+    }
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+        PathTracer t(s, o);
+        t.render(1);
+        t.render(2);  // progressive passes give the same samples as one pass
+        two = t.image();
+    }
+    for (const char* layer : {"beauty", "direct", "indirect", "albedo", "normal", "depth"}) {
+        ASSERT_NE(one.find(layer), nullptr) << layer;
+        EXPECT_EQ(one.find(layer)->data, two.find(layer)->data) << layer;
+    }
+    // And another seed gives another image.
+    o.seed = 12;
+    PathTracer other(s, o);
+    other.render(3);
+    EXPECT_NE(other.image().find("beauty")->data, one.find("beauty")->data);
+}
+
+TEST(PathTracer, AovsAddUpAndBackgroundIsEmpty) {
+    Scene s = test::cornellBox();
+    PathTracerOptions o;
+    o.width = o.height = 24;
+    PathTracer t(s, o);
+    t.render(4);
+    Image img = t.image();
+    const auto& b = img.find("beauty")->data;
+    const auto& d = img.find("direct")->data;
+    const auto& i = img.find("indirect")->data;
+    for (std::size_t k = 0; k < b.size(); ++k) {
+        ASSERT_NEAR(b[k], d[k] + i[k], 1e-5f * (1.0f + b[k]));
+        ASSERT_GE(i[k], 0.0f);
+    }
+    // The open front of the box shows the empty background in the corners? The Cornell box
+    // camera sees walls everywhere, so depth is positive in the centre pixel.
+    EXPECT_GT(img.find("depth")->data[12 * 24 + 12], 0.5f);
+    EXPECT_EQ(t.droppedSamples(), 0u);
+}
+
+TEST(PathTracer, NanAndInfSamplesAreDroppedAndCounted) {
+    // An intensity near the float maximum overflows to infinity over 1/r^2 at r < 1.
+    Scene s = parseSceneJson(R"({
+      "camera": {"eye": [0, 3, 0.001], "target": [0, 0, 0], "fov": 60, "resolution": [8, 8]},
+      "materials": {"m": {"albedo": 0.5}},
+      "lights": [{"type": "point", "position": [0, 0.5, 0], "intensity": 3e38}],
+      "meshes": [{"type": "quad", "material": "m", "corners": [[-5,0,5],[5,0,5],[5,0,-5],[-5,0,-5]]}]})",
+                             "inf.json");
+    PathTracer t(s, PathTracerOptions{});
+    t.render(2);
+    EXPECT_GT(t.droppedSamples(), 0u);
+    for (const ImageLayer& layer : t.image().layers())
+        for (float v : layer.data) ASSERT_TRUE(std::isfinite(v)) << layer.name;
+}
+
+TEST(PathTracer, ReferenceCommandWritesLayers) {
+    std::string dir = test::makeTempDir("pt_cli");
+    auto r = test::runVoxgi("reference cornell-box --spp 2 --width 16 --height 16 --seed 3 -o " + dir + "/ref.exr --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("rays/s"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("2 spp"), std::string::npos) << r.output;
+    Image img = readExr(dir + "/ref.exr");
+    EXPECT_EQ(img.width(), 16);
+    for (const char* layer : {"beauty", "direct", "indirect", "albedo", "normal", "depth"})
+        EXPECT_NE(img.find(layer), nullptr) << layer;
+    EXPECT_EQ(img.find("depth")->channels, 1);
+    // Bad input: one-line error, exit 2, nothing written.
+    auto bad = test::runVoxgi("reference cornell-box --spp 0 -o " + dir + "/bad.exr");
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    auto both = test::runVoxgi("reference cornell-box --spp 2 --time 1 -o " + dir + "/bad.exr");
+    EXPECT_EQ(both.exitCode, 2) << both.output;
+    EXPECT_FALSE(test::fileExists(dir + "/bad.exr"));
+    auto timed = test::runVoxgi("reference cornell-box --time 0.2 --width 16 --height 16 -o " + dir + "/t.exr --quiet");
+    EXPECT_EQ(timed.exitCode, 0) << timed.output;
+}

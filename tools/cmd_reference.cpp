@@ -1,0 +1,98 @@
+// voxgi reference: the unbiased path-traced image every method is measured against. Writes one
+// EXR with the AOV layers (beauty, direct, indirect, albedo, normal, depth).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "gi/pathtrace/path_tracer.h"
+#include "scenes/errors.h"
+#include "scenes/image.h"
+#include "tools/commands.h"
+#include "tools/scene_arg.h"
+
+namespace voxgi::cli {
+
+namespace {
+
+const char* kUsage =
+    "voxgi reference SCENE (--spp N | --time SECONDS) -o OUT.exr [--max-bounces B] [--seed S]\n"
+    "       [--width W --height H] [--png OUT.png] [--exposure STOPS] [--set section.key=value]...\n"
+    "  --max-bounces: scattering events per path (1 = direct light only; default unlimited, Russian roulette)";
+
+using Clock = std::chrono::steady_clock;
+
+void printProgress(double fraction, double elapsed, int spp) {
+    const int width = 30;
+    int filled = int(std::clamp(fraction, 0.0, 1.0) * width);
+    double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  %d spp  %.1f s, ETA %.1f s ", filled,
+                 "##############################", width - filled, "", 100.0 * fraction, spp, elapsed, eta);
+    std::fflush(stderr);
+}
+
+int runReference(const std::vector<std::string>& argv) {
+    Args args(argv, {"--spp", "--time", "-o", "--max-bounces", "--seed", "--width", "--height", "--png", "--exposure", "--set"},
+              {"--quiet"}, {"--set"});
+    args.requirePositional(1, kUsage);
+    if (args.has("--spp") == args.has("--time")) throw InputError("give exactly one of --spp N or --time SECONDS");
+    auto out = args.value("-o");
+    if (!out) throw InputError("-o OUT.exr is required; usage: " + std::string(kUsage));
+    requireWritable(*out, "-o");
+    if (auto png = args.value("--png")) requireWritable(*png, "--png");
+    const int spp = args.integer("--spp", 0, 1, 1 << 24);
+    const double seconds = args.number("--time", 0.0, 1e-3, 1e7);
+    const float exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
+    PathTracerOptions options;
+    options.maxBounces = args.integer("--max-bounces", 0, 0, 1 << 20);
+    options.seed = std::uint64_t(args.number("--seed", 0.0, 0.0, 9007199254740992.0));
+
+    Scene scene = loadSceneArgument(args.positional()[0]);
+    applySceneOverrides(args, scene);
+    const bool quiet = args.flag("--quiet");
+
+    auto start = Clock::now();
+    PathTracer tracer(scene, options);
+    double setup = std::chrono::duration<double>(Clock::now() - start).count();
+    auto renderStart = Clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - renderStart).count(); };
+    // One sample per pixel per pass keeps the progress bar and --time responsive; a pass over a
+    // tiny image is cheap, so passes grow until each takes about 0.1 s.
+    int pass = 1;
+    while (true) {
+        int done = tracer.samplesPerPixel();
+        if (spp > 0 && done >= spp) break;
+        if (spp == 0 && done > 0 && elapsed() >= seconds) break;
+        int n = spp > 0 ? std::min(pass, spp - done) : pass;
+        auto passStart = Clock::now();
+        tracer.render(n);
+        double passTime = std::chrono::duration<double>(Clock::now() - passStart).count();
+        if (passTime < 0.05 && pass < 1024) pass *= 2;
+        if (spp == 0 && elapsed() + passTime * (double(pass) / double(n)) > seconds && pass > 1) pass = 1;
+        if (!quiet) {
+            double fraction = spp > 0 ? double(tracer.samplesPerPixel()) / spp : std::min(elapsed() / seconds, 1.0);
+            printProgress(fraction, elapsed(), tracer.samplesPerPixel());
+        }
+    }
+    double renderTime = elapsed();
+    if (!quiet) std::fprintf(stderr, "\n");
+
+    Image image = tracer.image();
+    writeExr(*out, image);
+    if (auto png = args.value("--png")) writePng(*png, image, "beauty", exposure);
+    double raysPerSecond = renderTime > 0.0 ? double(tracer.raysTraced()) / renderTime : 0.0;
+    std::printf("path traced %s: %dx%d, %d spp, max bounces %s, seed %llu\n", args.positional()[0].c_str(),
+                tracer.width(), tracer.height(), tracer.samplesPerPixel(),
+                options.maxBounces > 0 ? std::to_string(options.maxBounces).c_str() : "unlimited",
+                static_cast<unsigned long long>(options.seed));
+    std::printf("time %.2f s (+ %.2f s BVH build), %llu rays, %.2f M rays/s, dropped NaN/Inf samples: %llu\n",
+                renderTime, setup, static_cast<unsigned long long>(tracer.raysTraced()), raysPerSecond * 1e-6,
+                static_cast<unsigned long long>(tracer.droppedSamples()));
+    std::printf("wrote %s%s\n", out->c_str(), args.has("--png") ? (" and " + *args.value("--png")).c_str() : "");
+    return kOk;
+}
+
+}  // namespace
+
+VOXGI_REGISTER_COMMAND("reference", kUsage, runReference);
+
+}  // namespace voxgi::cli
