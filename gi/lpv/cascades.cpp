@@ -5,19 +5,26 @@
 
 namespace voxgi {
 
-float finestCellSize(const LpvDesc& desc, const Bounds& b) {
+float finestCellSize(const LpvDesc& desc, const Bounds& b, glm::vec3 eye) {
     if (desc.cellSize > 0.0f) return desc.cellSize;
     glm::vec3 e = b.valid() ? b.extent() : glm::vec3(1.0f);
-    float longest = std::max({e.x, e.y, e.z, 1e-30f});
-    // lpv: the scene plus a one-cell margin on each side; clpv: the coarsest level spans it.
-    float cells = float(desc.resolution - 2) * float(1 << (desc.cascades - 1));
-    return longest / cells;
+    if (desc.cascades == 1) {
+        // The scene plus a one-cell margin on each side.
+        return std::max({e.x, e.y, e.z, 1e-30f}) / float(desc.resolution - 2);
+    }
+    // Cascades: the coarsest level reaches the farthest corner of the scene from the camera.
+    float farthest = 1e-30f;
+    for (int i = 0; i < 8; ++i) {
+        glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+        farthest = std::max(farthest, glm::length(corner - eye));
+    }
+    return 2.0f * farthest / float(desc.resolution * (1 << (desc.cascades - 1)));
 }
 
 std::vector<CascadePlacement> placeCascades(const LpvDesc& desc, const Bounds& b, glm::vec3 eye,
                                             glm::vec3 viewDirection) {
     std::vector<CascadePlacement> out;
-    const float h0 = finestCellSize(desc, b);
+    const float h0 = finestCellSize(desc, b, eye);
     const int n = desc.resolution;
     for (int level = 0; level < desc.cascades; ++level) {
         CascadePlacement p;

@@ -17,7 +17,8 @@ struct CascadePlacement {
     glm::vec3 fadeMax{0.0f};
 };
 
-float finestCellSize(const LpvDesc& desc, const Bounds& sceneBounds);
+// The finest cell edge: desc.cellSize, or fitted to the scene (lpv) / the view (clpv).
+float finestCellSize(const LpvDesc& desc, const Bounds& sceneBounds, glm::vec3 eye);
 
 std::vector<CascadePlacement> placeCascades(const LpvDesc& desc, const Bounds& sceneBounds, glm::vec3 eye,
                                             glm::vec3 viewDirection);

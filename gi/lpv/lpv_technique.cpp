@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gi/lpv/cascades.h"
+#include "gi/lpv/gl_propagation.h"
 #include "gi/lpv/injection.h"
 #include "gi/lpv/lpv_dump.h"
 #include "gi/lpv/propagation.h"
@@ -66,6 +67,7 @@ struct LpvTechnique::Impl {
     std::vector<LightVolume> injected, accumulated;
     std::vector<GeometryVolume> geometry;
     std::vector<CpuPropagator> propagators;
+    std::vector<std::unique_ptr<GlPropagator>> glPropagators;
     std::vector<gl::Handle> textures;  // 3 per cascade: r, g, b
     std::vector<glm::ivec3> lastOrigins;
     bool valid = false;
@@ -74,11 +76,12 @@ struct LpvTechnique::Impl {
         : scene(s), desc(d), cascaded(c), rsm(d.rsmSize),
           apply(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply.frag")) {
         if (desc.cascades > kMaxCascades) throw InputError("gi.lpv.cascades: at most 6");
-        if (desc.backend == "gl") throw NotImplementedError("lpv backend 'gl' is not implemented yet");
         injected.resize(std::size_t(desc.cascades));
         accumulated.resize(std::size_t(desc.cascades));
         geometry.resize(std::size_t(desc.cascades));
         propagators.resize(std::size_t(desc.cascades));
+        if (desc.backend == "gl")
+            for (int c = 0; c < desc.cascades; ++c) glPropagators.push_back(std::make_unique<GlPropagator>(desc.resolution));
         for (int i = 0; i < 3 * desc.cascades; ++i)
             textures.push_back(gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, desc.resolution, desc.resolution,
                                                  desc.resolution));
@@ -133,8 +136,18 @@ struct LpvTechnique::Impl {
         }
         input.timers.addCpu("lpv.blockers", millisecondsSince(t0));
 
-        t0 = std::chrono::steady_clock::now();
         PropagationOptions options{desc.occlusion, desc.bounces};
+        if (!glPropagators.empty()) {
+            input.timers.begin("lpv.propagate");
+            for (std::size_t c = 0; c < placements.size(); ++c) {
+                glPropagators[c]->propagate(injected[c], geometry[c], desc.steps, options);
+                accumulated[c].grid = placements[c].grid;
+            }
+            input.timers.end();
+            valid = true;
+            return;
+        }
+        t0 = std::chrono::steady_clock::now();
         for (std::size_t c = 0; c < placements.size(); ++c)
             propagators[c].propagate(injected[c], geometry[c], desc.steps, options, accumulated[c]);
         input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
@@ -182,7 +195,8 @@ struct LpvTechnique::Impl {
             const char* names[3] = {"uLpvR", "uLpvG", "uLpvB"};
             for (int k = 0; k < 3; ++k) {
                 GLuint unit = GLuint(4 + 3 * c + std::size_t(k));
-                glBindTextureUnit(unit, textures[3 * c + std::size_t(k)].id());
+                glBindTextureUnit(unit, glPropagators.empty() ? textures[3 * c + std::size_t(k)].id()
+                                                              : glPropagators[c]->accumulated(k));
                 apply.set((std::string(names[k]) + idx).c_str(), int(unit));
             }
         }
@@ -201,7 +215,9 @@ void LpvTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) 
 
 void LpvTechnique::dumpVdb(const std::string& path) const {
     if (!impl_->valid) throw NotImplementedError("lpv: nothing to dump before the first frame");
-    writeLpvVdb(path, impl_->accumulated, impl_->geometry);
+    std::vector<LightVolume> light = impl_->accumulated;
+    for (std::size_t c = 0; c < impl_->glPropagators.size(); ++c) impl_->glPropagators[c]->readBack(light[c]);
+    writeLpvVdb(path, light, impl_->geometry);
 }
 
 std::unique_ptr<GiTechnique> createLpv(const Scene& scene) {

@@ -56,37 +56,25 @@ PropagationTables buildTables() {
     return t;
 }
 
-struct FaceCoefficients {
-    glm::vec4 sample;  // dOmega_f * Y(w_sf): dot with a source SH gives the face flux
-    glm::vec4 block;   // Y(-w_sf): dot with a blocker SH gives beta
-    glm::vec4 lobe;    // cosine lobe about the face normal / pi: unit-flux re-emission
-};
-
-struct Kernel {
-    std::array<std::array<FaceCoefficients, 5>, 6> faces;
-    std::array<glm::mat4, 6> unoccluded;  // sum over the 5 faces of lobe (x) sample
-
-    Kernel() {
-        const PropagationTables& t = propagationTables();
-        auto toVec4 = [](const sh::Sh4& s) { return glm::vec4(s.c[0], s.c[1], s.c[2], s.c[3]); };
-        for (std::size_t a = 0; a < 6; ++a) {
-            glm::mat4 m(0.0f);
-            for (std::size_t f = 0; f < 5; ++f) {
-                const PropagationFace& pf = t.faces[a][f];
-                FaceCoefficients& c = faces[a][f];
-                c.sample = toVec4(sh::basis(pf.direction)) * pf.solidAngle;
-                c.block = toVec4(sh::basis(-pf.direction));
-                c.lobe = toVec4(sh::cosineLobe(pf.normal)) / sh::kPi;
-                for (int col = 0; col < 4; ++col)
-                    for (int row = 0; row < 4; ++row) m[col][row] += c.lobe[row] * c.sample[col];
-            }
-            unoccluded[a] = m;
+PropagationKernel buildKernel() {
+    PropagationKernel k;
+    auto& faces = k.faces;
+    auto& unoccluded = k.unoccluded;
+    const PropagationTables& t = propagationTables();
+    auto toVec4 = [](const sh::Sh4& s) { return glm::vec4(s.c[0], s.c[1], s.c[2], s.c[3]); };
+    for (std::size_t a = 0; a < 6; ++a) {
+        glm::mat4 m(0.0f);
+        for (std::size_t f = 0; f < 5; ++f) {
+            const PropagationFace& pf = t.faces[a][f];
+            FaceCoefficients& c = faces[a][f];
+            c.sample = toVec4(sh::basis(pf.direction)) * pf.solidAngle;
+            c.block = toVec4(sh::basis(-pf.direction));
+            c.lobe = toVec4(sh::cosineLobe(pf.normal)) / sh::kPi;
+            for (int col = 0; col < 4; ++col)
+                for (int row = 0; row < 4; ++row) m[col][row] += c.lobe[row] * c.sample[col];
         }
+        unoccluded[a] = m;
     }
-};
-
-const Kernel& kernel() {
-    static const Kernel k;
     return k;
 }
 
@@ -117,7 +105,7 @@ float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
 void gatherCell(const LightVolume& in, const GeometryVolume& gv, const PropagationOptions& opt, glm::ivec3 d,
                 glm::vec4 out[3]) {
-    const Kernel& k = kernel();
+    const PropagationKernel& k = propagationKernel();
     const PropagationTables& t = propagationTables();
     const CascadeGrid& grid = in.grid;
     out[0] = out[1] = out[2] = glm::vec4(0.0f);
@@ -167,6 +155,11 @@ int brickSizeFor(int resolution) { return resolution % 8 == 0 ? 8 : 4; }
 const PropagationTables& propagationTables() {
     static const PropagationTables tables = buildTables();
     return tables;
+}
+
+const PropagationKernel& propagationKernel() {
+    static const PropagationKernel kernel = buildKernel();
+    return kernel;
 }
 
 void CpuPropagator::step(const LightVolume& in, const GeometryVolume& geometry, const PropagationOptions& options,

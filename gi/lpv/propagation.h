@@ -40,6 +40,18 @@ struct PropagationTables {
 
 const PropagationTables& propagationTables();
 
+// The per-face coefficients both back ends use (2-band SH as vec4, see gi/sh/sh.h).
+struct FaceCoefficients {
+    glm::vec4 sample;  // dOmega_f * Y(w_sf): dot with a source SH gives the face flux
+    glm::vec4 block;   // Y(-w_sf): dot with a blocker SH gives beta
+    glm::vec4 lobe;    // cosine lobe about the face normal / pi: unit-flux re-emission
+};
+struct PropagationKernel {
+    std::array<std::array<FaceCoefficients, 5>, 6> faces;
+    std::array<glm::mat4, 6> unoccluded;  // sum over the 5 faces of lobe (x) sample
+};
+const PropagationKernel& propagationKernel();
+
 // Solid angle of the planar convex polygon `corners` seen from `eye` (sum of triangles).
 double polygonSolidAngle(glm::dvec3 eye, const std::vector<glm::dvec3>& corners);
 
