@@ -1,0 +1,55 @@
+// DDGI settings (the counterpart of RTXGI's DDGIVolumeDesc), with the defaults documented in
+// docs/ddgi.md and read from the scene's gi block as `ddgi.*` keys (unknown keys are errors).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scenes/scene.h"
+
+namespace voxgi {
+
+enum class DdgiDirectLight {
+    ShadowRays,       // one shadow ray per light per probe-ray hit
+    OcclusionProbes,  // visibility reconstructed from an occlusion-probe field (seed 004 ch. 5)
+};
+
+struct DdgiDesc {
+    // Grid: zero counts/spacing = fit the scene bounds (about 8 cells on the longest axis);
+    // probes sit at cell centres so none lies on the bounding walls.
+    glm::ivec3 probeCounts{0};
+    glm::vec3 spacing{0.0f};
+    int rays = 256;               // rotated rays per probe per update, used for blending
+    int fixedRays = 32;           // unrotated rays used only for classification and relocation
+    int irradianceTexels = 8;     // interior texels per side (tile = texels + 2 with the border)
+    int distanceTexels = 16;
+    float hysteresis = 0.97f;     // weight of the previous value in the blend
+    float distanceExponent = 50.0f;
+    float normalBias = 0.1f;      // in cells (fraction of the smallest spacing)
+    float viewBias = 0.1f;        // in cells
+    float irradianceGamma = 5.0f; // irradiance is blended and stored as E^(1/gamma)
+    float energyPreservation = 1.0f;  // scales the probe irradiance re-used at ray hits
+    float irradianceThreshold = 0.25f;  // encoded change that drops hysteresis (fast response)
+    float brightnessThreshold = 0.10f;  // encoded change above which a step is damped to 25 %
+    float backfaceThreshold = 0.25f;    // fixed-ray backface ratio that turns a probe off
+    float relocationBackfaceThreshold = 0.1f;  // all-ray backface ratio that moves a probe
+    float minFrontfaceDistance = 0.3f;  // in cells: relocation pushes probes this far from walls
+    bool classify = true;
+    bool relocate = true;
+    int sleepInterval = 10;       // a sleeping probe updates every this many frames
+    int cascades = 1;             // > 1: camera-centred cascades, spacing doubling outward
+    bool scroll = false;          // camera-centred volume(s) scrolling in whole cells
+    DdgiDirectLight directLight = DdgiDirectLight::ShadowRays;
+    std::uint32_t seed = 1;       // random ray rotations; same seed, same frames, same result
+    bool gpuBlend = true;         // blend on the GPU (GL compute) or with the CPU reference
+
+    int fixedRayCount() const { return (classify || relocate) ? fixedRays : 0; }
+    int raysPerProbe() const { return rays + fixedRayCount(); }
+};
+
+// Reads `ddgi.*` from scene.gi over the defaults; InputError names the key on a bad value.
+DdgiDesc readDdgiDesc(const GiSettings& gi);
+
+}  // namespace voxgi

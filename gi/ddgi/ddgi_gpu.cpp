@@ -1,0 +1,160 @@
+#include "gi/ddgi/ddgi_gpu.h"
+
+#include <string>
+
+#include "render/gl/context.h"
+
+namespace voxgi {
+
+namespace {
+gl::Handle makeAtlasTexture(const Atlas& atlas) {
+    gl::Handle t = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, atlas.width, atlas.height);
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+void uploadAtlas(GLuint texture, const Atlas& atlas) {
+    glTextureSubImage2D(texture, 0, 0, 0, atlas.width, atlas.height, GL_RGBA, GL_FLOAT, atlas.texels.data());
+}
+
+void downloadAtlas(GLuint texture, Atlas& atlas) {
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(atlas.texels.size() * sizeof(glm::vec4)),
+                      atlas.texels.data());
+}
+
+std::string indexed(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
+}  // namespace
+
+DdgiGpu::DdgiGpu(const ProbeField& field) {
+    if (field.volumes().size() > 8) throw gl::GlError("DDGI: at most 8 cascades on the GPU");
+    blendIrradiance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "0"}});
+    blendDistance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "1"}});
+    border_ = gl::Program::compute("ddgi/border.comp");
+    apply_ = gl::Program::graphics("frame/fullscreen.vert", "ddgi/apply.frag");
+    irradiance_ = makeAtlasTexture(field.irradiance);
+    distance_ = makeAtlasTexture(field.distance);
+    emptyVao_ = gl::createVertexArray();
+    upload(field);
+}
+
+void DdgiGpu::ensureBuffer(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes) {
+    bytes = std::max<std::size_t>(bytes, 16);
+    if (buffer && capacity >= bytes) return;
+    capacity = bytes * 2;
+    buffer = gl::createBuffer(capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
+}
+
+void DdgiGpu::upload(const ProbeField& field) {
+    uploadAtlas(irradiance_.id(), field.irradiance);
+    uploadAtlas(distance_.id(), field.distance);
+    uploadProbeData(field);
+}
+
+void DdgiGpu::uploadProbeData(const ProbeField& field) {
+    std::vector<glm::vec4> data;
+    data.reserve(field.probes.size());
+    for (const ProbeRecord& r : field.probes) data.emplace_back(r.offset, float(int(r.state)));
+    ensureBuffer(probeData_, probeDataBytes_, data.size() * sizeof(glm::vec4));
+    glNamedBufferSubData(probeData_.id(), 0, GLsizeiptr(data.size() * sizeof(glm::vec4)), data.data());
+}
+
+void DdgiGpu::readBack(ProbeField& field) {
+    downloadAtlas(irradiance_.id(), field.irradiance);
+    downloadAtlas(distance_.id(), field.distance);
+}
+
+void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& shaded,
+                    const std::vector<BlendJob>& jobs) {
+    // The CPU may have reset probes (scrolling) since the last frame.
+    uploadAtlas(irradiance_.id(), field.irradiance);
+    uploadAtlas(distance_.id(), field.distance);
+    if (jobs.empty()) return;
+    std::vector<glm::vec4> dirs;
+    dirs.reserve(std::size_t(rays.blendRays));
+    for (int i = 0; i < rays.blendRays; ++i) dirs.emplace_back(rays.blendDirection(i), 0.0f);
+    ensureBuffer(jobs_, jobsBytes_, jobs.size() * sizeof(BlendJob));
+    ensureBuffer(directions_, directionsBytes_, dirs.size() * sizeof(glm::vec4));
+    ensureBuffer(rays_, raysBytes_, shaded.values.size() * sizeof(glm::vec4));
+    glNamedBufferSubData(jobs_.id(), 0, GLsizeiptr(jobs.size() * sizeof(BlendJob)), jobs.data());
+    glNamedBufferSubData(directions_.id(), 0, GLsizeiptr(dirs.size() * sizeof(glm::vec4)), dirs.data());
+    glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(shaded.values.size() * sizeof(glm::vec4)), shaded.values.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
+
+    const BlendParams bp = BlendParams::from(field.desc());
+    auto run = [&](gl::Program& program, GLuint atlas, int texels) {
+        program.use();
+        program.set("uTexels", texels);
+        program.set("uRays", rays.blendRays);
+        program.set("uExponent", bp.distanceExponent);
+        program.set("uGamma", bp.irradianceGamma);
+        program.set("uIrradianceThreshold", bp.irradianceThreshold);
+        program.set("uBrightnessThreshold", bp.brightnessThreshold);
+        program.set("uBackfaceScale", kBackfaceDistanceScale);
+        glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        GLuint groups = GLuint((texels + 7) / 8);
+        glDispatchCompute(groups, groups, GLuint(jobs.size()));
+    };
+    run(blendIrradiance_, irradiance_.id(), bp.irradianceTexels);
+    run(blendDistance_, distance_.id(), bp.distanceTexels);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glFinish();
+}
+
+void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
+    if (!jobs.empty()) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
+        border_.use();
+        auto run = [&](GLuint atlas, int texels, int isDistance) {
+            border_.set("uTexels", texels);
+            border_.set("uDistance", isDistance);
+            glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+            GLuint groups = GLuint((texels + 2 + 7) / 8);
+            glDispatchCompute(groups, groups, GLuint(jobs.size()));
+        };
+        run(irradiance_.id(), field.desc().irradianceTexels, 0);
+        run(distance_.id(), field.desc().distanceTexels, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
+    readBack(field);
+}
+
+void DdgiGpu::apply(const ProbeField& field, const GBufferView& g) {
+    const DdgiDesc& desc = field.desc();
+    apply_.use();
+    glBindTextureUnit(0, g.position);
+    glBindTextureUnit(1, g.normal);
+    glBindTextureUnit(2, g.albedo);
+    glBindTextureUnit(3, g.emission);
+    glBindTextureUnit(4, irradiance_.id());
+    glBindTextureUnit(5, distance_.id());
+    apply_.set("uPosition", 0);
+    apply_.set("uNormal", 1);
+    apply_.set("uAlbedo", 2);
+    apply_.set("uEmission", 3);
+    apply_.set("uIrradianceAtlas", 4);
+    apply_.set("uDistanceAtlas", 5);
+    apply_.set("uEye", g.eye);
+    apply_.set("uVolumeCount", int(field.volumes().size()));
+    for (int v = 0; v < int(field.volumes().size()); ++v) {
+        const ProbeVolume& vol = field.volumes()[std::size_t(v)];
+        apply_.set(indexed("uCounts", v).c_str(), vol.counts);
+        apply_.set(indexed("uSpacing", v).c_str(), vol.spacing);
+        apply_.set(indexed("uOrigin", v).c_str(), vol.origin);
+        apply_.set(indexed("uScroll", v).c_str(), vol.scroll);
+        apply_.set(indexed("uProbeBase", v).c_str(), vol.probeBase);
+        apply_.set(indexed("uTileRow", v).c_str(), vol.tileRow);
+    }
+    apply_.set("uIrradianceTexels", desc.irradianceTexels);
+    apply_.set("uDistanceTexels", desc.distanceTexels);
+    apply_.set("uNormalBias", desc.normalBias);
+    apply_.set("uViewBias", desc.viewBias);
+    apply_.set("uGamma", desc.irradianceGamma);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, probeData_.id());
+    glBindVertexArray(emptyVao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace voxgi

@@ -1,0 +1,69 @@
+#include "gi/ddgi/ddgi_system.h"
+
+#include <chrono>
+
+#include "gi/raytrace/ray_tracer.h"
+
+namespace voxgi {
+
+namespace {
+double msSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+}  // namespace
+
+DdgiSystem::DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQuery query)
+    : tracer_(tracer), query_(std::move(query)) {
+    const Scene& scene = tracer.scene();
+    field_ = std::make_unique<ProbeField>(desc, layoutVolumes(desc, scene.bounds(), scene.camera.eye));
+    Bounds b = scene.bounds();
+    float radius = b.valid() ? 0.5f * glm::length(b.extent()) : 1.0f;
+    visibility_ = std::make_unique<ShadowRayVisibility>(tracer, 1e-4f * std::max(radius, 1e-3f));
+}
+
+DdgiSystem::~DdgiSystem() = default;
+
+DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
+    DdgiFrameStats stats;
+    ProbeField& field = *field_;
+    const DdgiDesc& desc = field.desc();
+    if (desc.scroll)
+        for (int v = 0; v < int(field.volumes().size()); ++v) field.scrollTo(v, eye);
+
+    auto t0 = std::chrono::steady_clock::now();
+    rays_ = makeRaySet(desc, desc.seed, frame_);
+    trace_.work = scheduleProbes(field, frame_);
+    traceProbes(tracer_, field, rays_, trace_);
+    stats.traceMs = msSince(t0);
+    stats.raysTraced = trace_.raysTraced;
+
+    std::vector<int> blendProbes;
+    for (int p = 0; p < field.probeCount(); ++p)
+        if (trace_.work[std::size_t(p)] == ProbeWork::Full) blendProbes.push_back(p);
+    stats.probesBlended = int(blendProbes.size());
+
+    t0 = std::chrono::steady_clock::now();
+    ShadeStats shade = shadeProbeRays(tracer_.scene(), *visibility_, field, rays_, trace_, blendProbes, frame_, shaded_);
+    stats.shadeMs = msSince(t0);
+    stats.shadowQueries = shade.shadowQueries;
+
+    std::vector<BlendJob> jobs = makeBlendJobs(field, blendProbes, rays_.blendRays);
+    BlendBackend& blender = backend ? *backend : cpuBlend_;
+    t0 = std::chrono::steady_clock::now();
+    blender.blend(field, rays_, shaded_, jobs);
+    stats.blendMs = msSince(t0);
+    t0 = std::chrono::steady_clock::now();
+    blender.border(field, jobs);
+    stats.borderMs = msSince(t0);
+    for (int p : blendProbes) field.probes[std::size_t(p)].fresh = false;
+
+    t0 = std::chrono::steady_clock::now();
+    if (desc.relocate) relocateProbes(field, rays_, trace_);
+    classifyProbes(field, rays_, trace_, query_);
+    stats.classifyMs = msSince(t0);
+    stats.states = countStates(field);
+    ++frame_;
+    return stats;
+}
+
+}  // namespace voxgi

@@ -1,0 +1,60 @@
+// One DDGI field updated frame by frame on the CPU side: scroll, trace, shade, blend (through a
+// BlendBackend: the CPU reference or GL compute), border, relocate and classify. No GL needed
+// with the CPU backend, so tests and benchmarks can drive it directly.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "gi/ddgi/ddgi_desc.h"
+#include "gi/ddgi/hit_shading.h"
+#include "gi/ddgi/probe_blend.h"
+#include "gi/ddgi/probe_field.h"
+#include "gi/ddgi/probe_rays.h"
+#include "gi/ddgi/probe_states.h"
+
+namespace voxgi {
+
+class RayTracer;
+
+struct DdgiFrameStats {
+    double traceMs = 0, shadeMs = 0, blendMs = 0, borderMs = 0, classifyMs = 0;
+    std::int64_t raysTraced = 0;      // probe rays (fixed + blend)
+    std::int64_t shadowQueries = 0;   // shadow rays at hits
+    int probesBlended = 0;
+    ProbeStateCounts states;
+};
+
+class DdgiSystem {
+public:
+    // Borrows `tracer` (and its scene), which must outlive the system.
+    DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQuery query = {});
+    ~DdgiSystem();
+
+    // One frame. `eye` centres scrolling volumes. The CPU reference blends when backend is null.
+    DdgiFrameStats update(glm::vec3 eye, BlendBackend* backend = nullptr);
+
+    ProbeField& field() { return *field_; }
+    const ProbeField& field() const { return *field_; }
+    const DdgiDesc& desc() const { return field_->desc(); }
+    const RayTracer& tracer() const { return tracer_; }
+    std::uint32_t frame() const { return frame_; }
+    // The rays and surfels of the last update (for benchmarks and tests).
+    const RaySet& lastRays() const { return rays_; }
+    const ProbeTrace& lastTrace() const { return trace_; }
+
+private:
+    const RayTracer& tracer_;
+    GeometryQuery query_;
+    std::unique_ptr<ProbeField> field_;
+    std::unique_ptr<LightVisibility> visibility_;
+    CpuBlend cpuBlend_;
+    RaySet rays_;
+    ProbeTrace trace_;
+    ShadedRays shaded_;
+    std::uint32_t frame_ = 0;
+};
+
+}  // namespace voxgi

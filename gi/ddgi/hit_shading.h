@@ -1,0 +1,55 @@
+// Radiance leaving each probe-ray hit toward its probe: emission, direct light (all light types,
+// physical units like the rasterizer) and the previous frame's probe irradiance (infinite
+// bounces) times the energy-preservation factor, all over a diffuse (Lambert) lobe.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gi/ddgi/probe_rays.h"
+
+namespace voxgi {
+
+class RayTracer;
+
+// Visibility of the lights seen from surface points; shadow rays by default. The occlusion-probe
+// mode plugs in here.
+struct LightVisibility {
+    virtual ~LightVisibility() = default;
+    // 1 when `light` reaches p along unit l over distance `range` (infinite for the sun).
+    virtual float visible(int light, glm::vec3 p, glm::vec3 n, glm::vec3 l, float range) const = 0;
+};
+
+class ShadowRayVisibility : public LightVisibility {
+public:
+    explicit ShadowRayVisibility(const RayTracer& tracer, float offset) : tracer_(tracer), offset_(offset) {}
+    float visible(int light, glm::vec3 p, glm::vec3 n, glm::vec3 l, float range) const override;
+
+private:
+    const RayTracer& tracer_;
+    float offset_;
+};
+
+// Irradiance (W/m^2) at p with normal n from the scene's analytic lights; `quadSample` in
+// [0,1)^2 picks the point on quad lights.
+glm::vec3 directIrradiance(const Scene& scene, const LightVisibility& visibility, glm::vec3 p, glm::vec3 n,
+                           glm::vec2 quadSample);
+
+// Per blend job ray: rgb = radiance toward the probe (W/(m^2 sr)), a = signed hit distance.
+struct ShadedRays {
+    int raysPerJob = 0;
+    std::vector<glm::vec4> values;  // job * raysPerJob + ray
+};
+
+struct ShadeStats {
+    std::int64_t shadowQueries = 0;
+};
+
+// Shades the blend rays of `probes` (the probes that blend this frame) against `previous`.
+ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeField& previous,
+                          const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
+                          std::uint32_t frame, ShadedRays& out);
+
+}  // namespace voxgi

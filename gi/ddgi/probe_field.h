@@ -1,0 +1,96 @@
+// The probe field: one or more probe volumes (cascades) and the atlases they share.
+// A volume is a grid of counts.x * counts.y * counts.z probes. Probes are stored toroidally:
+// storage = (logical + scroll) mod counts, so a volume that scrolls by whole cells keeps every
+// probe's data where it is in the atlas and only the planes that enter are reset.
+// Atlas layout: one tile row per horizontal probe plane (y), tiles x + counts.x * z along it;
+// cascades are stacked row-wise. Irradiance texels hold E^(1/gamma) (W/m^2 before encoding),
+// distance texels (mean distance, mean squared distance) in metres.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gi/ddgi/ddgi_desc.h"
+
+namespace voxgi {
+
+enum class ProbeState : std::int32_t {
+    Active = 0,    // updated every frame
+    Sleeping = 1,  // no geometry near: updated every sleepInterval frames
+    Off = 2,       // inside geometry: never updated, never sampled
+};
+
+struct ProbeVolume {
+    glm::ivec3 counts{1};
+    glm::vec3 spacing{1.0f};
+    glm::vec3 origin{0.0f};  // world position of logical probe (0, 0, 0), before relocation
+    glm::ivec3 scroll{0};    // storage = (logical + scroll) mod counts
+    int probeBase = 0;       // first probe of this volume in the field's per-probe arrays
+    int tileRow = 0;         // first tile row of this volume in the atlases
+
+    int probeCount() const { return counts.x * counts.y * counts.z; }
+    glm::ivec3 storageOf(glm::ivec3 logical) const;
+    glm::ivec3 logicalOf(glm::ivec3 storage) const;
+    int localIndex(glm::ivec3 storage) const { return storage.x + counts.x * (storage.z + counts.z * storage.y); }
+    glm::ivec3 storageFromLocal(int local) const;
+    glm::ivec2 tile(int local) const;
+    glm::vec3 basePosition(glm::ivec3 logical) const { return origin + glm::vec3(logical) * spacing; }
+    float cellDiagonal() const { return glm::length(spacing); }
+    float minSpacing() const { return glm::min(spacing.x, glm::min(spacing.y, spacing.z)); }
+    // Distances stored in the distance atlas are clamped here (just beyond the cage diagonal).
+    float maxDistance() const { return 1.5f * cellDiagonal(); }
+};
+
+struct Atlas {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> texels;
+
+    void resize(int w, int h, glm::vec4 fill);
+    glm::vec4& at(int x, int y) { return texels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    const glm::vec4& at(int x, int y) const { return texels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    // Bilinear lookup at a texel coordinate (texel centres at .5), like GL_LINEAR.
+    glm::vec4 bilinear(glm::vec2 coordinate) const;
+};
+
+struct ProbeRecord {
+    glm::vec3 offset{0.0f};  // relocation, world units, at most 0.45 cells per axis
+    ProbeState state = ProbeState::Active;
+    bool fresh = true;       // no data yet: the next blend uses hysteresis 0
+};
+
+// Volumes for a desc: a fixed grid fitted to the scene bounds, or camera-centred cascades.
+std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye);
+
+class ProbeField {
+public:
+    ProbeField(const DdgiDesc& desc, std::vector<ProbeVolume> volumes);
+
+    const DdgiDesc& desc() const { return desc_; }
+    const std::vector<ProbeVolume>& volumes() const { return volumes_; }
+    int probeCount() const { return int(probes.size()); }
+    // Volume index of a global probe index.
+    int volumeOf(int probe) const;
+    glm::vec3 probePosition(int probe) const;
+    glm::ivec2 irradianceTile(int probe) const;  // texel origin of the probe's tile (border included)
+    glm::ivec2 distanceTile(int probe) const;
+    void resetProbe(int probe);
+    // Mean of the decoded irradiance over the probe's interior texels (W/m^2).
+    glm::vec3 meanIrradiance(int probe) const;
+
+    // Moves a scrolling volume by whole cells so its centre follows `eye`; resets the probe
+    // planes that enter. Returns the shift in cells.
+    glm::ivec3 scrollTo(int volume, glm::vec3 eye);
+
+    Atlas irradiance;
+    Atlas distance;
+    std::vector<ProbeRecord> probes;
+
+private:
+    DdgiDesc desc_;
+    std::vector<ProbeVolume> volumes_;
+};
+
+}  // namespace voxgi

@@ -1,0 +1,97 @@
+#include "gi/ddgi/probe_rays.h"
+
+#include <cmath>
+#include <random>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "gi/raytrace/ray_tracer.h"
+#include "gi/sampling/sequences.h"
+
+namespace voxgi {
+
+namespace {
+
+// Quad-light geometry is drawn by the direct pass; its emission must not enter the probes too.
+bool countsAsIndirectEmitter(const Mesh& mesh) { return mesh.name.rfind("quad_light_", 0) != 0; }
+
+}  // namespace
+
+glm::mat3 randomRotation(std::uint32_t seed, std::uint32_t frame) {
+    // Shoemake's uniform random unit quaternion from three uniform numbers.
+    std::mt19937 rng(seed * 0x9E3779B9u ^ (frame + 0x7F4A7C15u) * 0x85EBCA6Bu);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    double u1 = u(rng), u2 = u(rng), u3 = u(rng);
+    const double twoPi = 6.283185307179586;
+    double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+    double x = a * std::sin(twoPi * u2), y = a * std::cos(twoPi * u2);
+    double z = b * std::sin(twoPi * u3), w = b * std::cos(twoPi * u3);
+    glm::dmat3 m;
+    m[0] = glm::dvec3(1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y));
+    m[1] = glm::dvec3(2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x));
+    m[2] = glm::dvec3(2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y));
+    return glm::mat3(m);
+}
+
+RaySet makeRaySet(const DdgiDesc& desc, std::uint32_t seed, std::uint32_t frame) {
+    RaySet set;
+    set.fixedRays = desc.fixedRayCount();
+    set.blendRays = desc.rays;
+    set.rotation = randomRotation(seed, frame);
+    set.directions.reserve(std::size_t(set.stride()));
+    for (int i = 0; i < set.fixedRays; ++i) set.directions.push_back(sphericalFibonacci(i, set.fixedRays));
+    for (int i = 0; i < set.blendRays; ++i)
+        set.directions.push_back(glm::normalize(set.rotation * sphericalFibonacci(i, set.blendRays)));
+    return set;
+}
+
+void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace) {
+    const Scene& scene = tracer.scene();
+    std::vector<char> emitterCounts(scene.meshes.size());
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) emitterCounts[m] = countsAsIndirectEmitter(scene.meshes[m]);
+
+    const int probes = field.probeCount();
+    trace.stride = rays.stride();
+    trace.surfels.assign(std::size_t(probes) * std::size_t(trace.stride), Surfel{});
+    std::int64_t traced = 0;
+    for (int p = 0; p < probes; ++p) {
+        ProbeWork w = trace.work[std::size_t(p)];
+        traced += w == ProbeWork::Full ? trace.stride : w == ProbeWork::FixedOnly ? rays.fixedRays : 0;
+    }
+    trace.raysTraced = traced;
+
+    // One task per (probe, ray chunk) keeps both cores busy on small grids too.
+    const int chunk = 64;
+    const int chunksPerProbe = (trace.stride + chunk - 1) / chunk;
+    tbb::parallel_for(tbb::blocked_range<int>(0, probes * chunksPerProbe), [&](const tbb::blocked_range<int>& r) {
+        for (int task = r.begin(); task != r.end(); ++task) {
+            int p = task / chunksPerProbe;
+            ProbeWork w = trace.work[std::size_t(p)];
+            if (w == ProbeWork::None) continue;
+            int end = w == ProbeWork::Full ? trace.stride : rays.fixedRays;
+            int first = (task % chunksPerProbe) * chunk;
+            int last = std::min(end, first + chunk);
+            glm::vec3 origin = field.probePosition(p);
+            for (int i = first; i < last; ++i) {
+                glm::vec3 d = rays.directions[std::size_t(i)];
+                RayHit hit = tracer.intersect(origin, d);
+                Surfel& s = trace.surfels[std::size_t(p) * std::size_t(trace.stride) + std::size_t(i)];
+                if (!hit.hit) continue;
+                s.position = hit.position;
+                if (!hit.frontFace) {
+                    s.distance = -hit.t;
+                    continue;
+                }
+                s.distance = hit.t;
+                glm::vec3 n = hit.shadingNormal;
+                s.normal = glm::dot(n, d) > 0.0f ? -n : n;
+                const Material& m = scene.materials[hit.material];
+                s.diffuseAlbedo = (1.0f - m.metallic) * (1.0f - m.specular) * tracer.albedoAt(hit);
+                if (emitterCounts[hit.mesh]) s.emission = m.emission;
+            }
+        }
+    });
+}
+
+}  // namespace voxgi

@@ -1,0 +1,101 @@
+#include "gi/ddgi/probe_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gi/octahedral/octahedral.h"
+
+namespace voxgi {
+
+float chebyshevVisibility(float r, float mean, float meanSquare) {
+    if (r <= mean) return 1.0f;
+    float variance = std::max(meanSquare - mean * mean, 0.0f);
+    if (variance <= 0.0f) return 0.0f;
+    float d = r - mean;
+    float p = variance / (variance + d * d);
+    // Cubed to sharpen the bound (as RTXGI does); it is loose by construction.
+    return p * p * p;
+}
+
+float volumeBlendWeight(const ProbeVolume& v, glm::vec3 p) {
+    glm::vec3 x = (p - v.origin) / v.spacing;
+    float w = 1.0f;
+    for (int a = 0; a < 3; ++a) {
+        if (v.counts[a] < 2) continue;
+        float last = float(v.counts[a] - 1);
+        w *= std::clamp(x[a], 0.0f, 1.0f) * std::clamp(last - x[a], 0.0f, 1.0f);
+    }
+    return w;
+}
+
+glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer,
+                                 float* weightSum) {
+    const DdgiDesc& desc = field.desc();
+    const ProbeVolume& v = field.volumes()[std::size_t(vi)];
+    glm::vec3 q = p + (n * desc.normalBias + toViewer * desc.viewBias) * v.minSpacing();
+    glm::vec3 rel = (q - v.origin) / v.spacing;
+    glm::ivec3 base = glm::clamp(glm::ivec3(glm::floor(rel)), glm::ivec3(0), glm::max(v.counts - 2, glm::ivec3(0)));
+    glm::vec3 alpha = glm::clamp(rel - glm::vec3(base), 0.0f, 1.0f);
+    for (int a = 0; a < 3; ++a)
+        if (v.counts[a] < 2) alpha[a] = 0.0f;
+
+    const int ni = desc.irradianceTexels, nd = desc.distanceTexels;
+    glm::vec3 sum(0.0f);
+    float wsum = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        glm::ivec3 step(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        glm::ivec3 logical = base + step;
+        if (glm::any(glm::greaterThanEqual(logical, v.counts))) continue;
+        int probe = v.probeBase + v.localIndex(v.storageOf(logical));
+        const ProbeRecord& rec = field.probes[std::size_t(probe)];
+        if (rec.state == ProbeState::Off) continue;
+        glm::vec3 probePos = v.basePosition(logical) + rec.offset;
+
+        glm::vec3 toProbe = probePos - p;
+        float toProbeLength = glm::length(toProbe);
+        glm::vec3 dirToProbe = toProbeLength > 0.0f ? toProbe / toProbeLength : n;
+        float wrap = 0.5f * (glm::dot(dirToProbe, n) + 1.0f);
+        float w = wrap * wrap + 0.2f;
+
+        glm::vec3 fromProbe = q - probePos;
+        float r = glm::length(fromProbe);
+        glm::vec3 dirFromProbe = r > 0.0f ? fromProbe / r : -n;
+        glm::vec2 dc = glm::vec2(field.distanceTile(probe)) + oct::tileCoordinate(dirFromProbe, nd);
+        glm::vec4 moments = field.distance.bilinear(dc);
+        w *= chebyshevVisibility(r, moments.x, moments.y);
+        w = std::max(w, 1e-6f);
+        // Crush tiny weights: the eye reads light leaking through a 1 % weight as full light.
+        const float crush = 0.2f;
+        if (w < crush) w *= w * w / (crush * crush);
+
+        glm::vec3 tri = glm::mix(glm::vec3(1.0f) - alpha, alpha, glm::vec3(step));
+        w *= tri.x * tri.y * tri.z;
+
+        glm::vec2 ic = glm::vec2(field.irradianceTile(probe)) + oct::tileCoordinate(n, ni);
+        glm::vec3 encoded = glm::max(glm::vec3(field.irradiance.bilinear(ic)), glm::vec3(0.0f));
+        // Interpolate in a sqrt-like space (gamma/2), as RTXGI does, then square.
+        sum += w * glm::pow(encoded, glm::vec3(0.5f * desc.irradianceGamma));
+        wsum += w;
+    }
+    if (weightSum) *weightSum = wsum;
+    if (!(wsum > 0.0f)) return glm::vec3(0.0f);
+    glm::vec3 e = sum / wsum;
+    return e * e;
+}
+
+glm::vec3 sampleIrradiance(const ProbeField& field, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer) {
+    const auto& volumes = field.volumes();
+    if (volumes.size() == 1) return sampleVolumeIrradiance(field, 0, p, n, toViewer);
+    glm::vec3 sum(0.0f);
+    float wsum = 0.0f;
+    for (std::size_t v = 0; v < volumes.size() && wsum < 1.0f; ++v) {
+        float w = v + 1 == volumes.size() ? 1.0f : volumeBlendWeight(volumes[v], p);
+        w *= std::clamp(1.0f - wsum, 0.0f, 1.0f);
+        if (w <= 0.0f) continue;
+        sum += w * sampleVolumeIrradiance(field, int(v), p, n, toViewer);
+        wsum += w;
+    }
+    return wsum > 0.0f ? sum / wsum : glm::vec3(0.0f);
+}
+
+}  // namespace voxgi

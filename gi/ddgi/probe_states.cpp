@@ -1,0 +1,102 @@
+#include "gi/ddgi/probe_states.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace voxgi {
+
+std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t frame) {
+    const DdgiDesc& desc = field.desc();
+    std::vector<ProbeWork> work(std::size_t(field.probeCount()), ProbeWork::Full);
+    if (!desc.classify) return work;
+    for (int p = 0; p < field.probeCount(); ++p) {
+        const ProbeRecord& rec = field.probes[std::size_t(p)];
+        if (rec.fresh && rec.state != ProbeState::Off) continue;  // first data as soon as possible
+        if (rec.state == ProbeState::Off) work[std::size_t(p)] = ProbeWork::FixedOnly;
+        if (rec.state == ProbeState::Sleeping)
+            work[std::size_t(p)] = (frame + std::uint32_t(p)) % std::uint32_t(desc.sleepInterval) == 0
+                                       ? ProbeWork::Full
+                                       : ProbeWork::FixedOnly;
+    }
+    return work;
+}
+
+void relocateProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& trace) {
+    const DdgiDesc& desc = field.desc();
+    tbb::parallel_for(tbb::blocked_range<int>(0, field.probeCount()), [&](const tbb::blocked_range<int>& r) {
+        for (int p = r.begin(); p != r.end(); ++p) {
+            if (trace.work[std::size_t(p)] != ProbeWork::Full) continue;
+            const ProbeVolume& v = field.volumes()[std::size_t(field.volumeOf(p))];
+            const float minFront = desc.minFrontfaceDistance * v.minSpacing();
+            int backfaces = 0;
+            float closestBack = INFINITY, closestFront = INFINITY;
+            glm::vec3 closestBackDir(0.0f), closestFrontDir(0.0f);
+            for (int i = 0; i < trace.stride; ++i) {
+                float d = trace.at(p, i).distance;
+                const glm::vec3& dir = rays.directions[std::size_t(i)];
+                if (d < 0.0f) {
+                    ++backfaces;
+                    if (-d < closestBack) closestBack = -d, closestBackDir = dir;
+                } else if (d < closestFront) {
+                    closestFront = d, closestFrontDir = dir;
+                }
+            }
+            ProbeRecord& rec = field.probes[std::size_t(p)];
+            glm::vec3 offset = rec.offset;
+            if (float(backfaces) / float(trace.stride) > desc.relocationBackfaceThreshold) {
+                // Inside: step through the nearest backface to the open side.
+                offset += closestBackDir * (closestBack + 0.5f * minFront);
+            } else if (closestFront < minFront) {
+                offset -= closestFrontDir * (minFront - closestFront);
+            } else {
+                continue;
+            }
+            glm::vec3 limit = 0.45f * v.spacing;
+            rec.offset = glm::clamp(offset, -limit, limit);
+        }
+    });
+}
+
+void classifyProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& trace, const GeometryQuery& query) {
+    const DdgiDesc& desc = field.desc();
+    if (!desc.classify || rays.fixedRays == 0) return;
+    tbb::parallel_for(tbb::blocked_range<int>(0, field.probeCount()), [&](const tbb::blocked_range<int>& r) {
+        for (int p = r.begin(); p != r.end(); ++p) {
+            if (trace.work[std::size_t(p)] == ProbeWork::None) continue;
+            const ProbeVolume& v = field.volumes()[std::size_t(field.volumeOf(p))];
+            glm::vec3 position = field.probePosition(p);
+            int backfaces = 0;
+            bool near = false;
+            for (int i = 0; i < rays.fixedRays; ++i) {
+                const Surfel& s = trace.at(p, i);
+                if (s.distance < 0.0f) {
+                    ++backfaces;
+                } else if (s.distance < kMissDistance) {
+                    near |= glm::all(glm::lessThanEqual(glm::abs(s.position - position), v.spacing));
+                }
+            }
+            bool inside = float(backfaces) / float(rays.fixedRays) > desc.backfaceThreshold;
+            if (query.insideSolid && query.insideSolid(position)) inside = true;
+            if (query.distanceToGeometry && query.distanceToGeometry(position) <= v.cellDiagonal()) near = true;
+            ProbeRecord& rec = field.probes[std::size_t(p)];
+            ProbeState next = inside ? ProbeState::Off : near ? ProbeState::Active : ProbeState::Sleeping;
+            if (rec.state == ProbeState::Off && next != ProbeState::Off) rec.fresh = true;
+            rec.state = next;
+        }
+    });
+}
+
+ProbeStateCounts countStates(const ProbeField& field) {
+    ProbeStateCounts c;
+    for (const ProbeRecord& r : field.probes) {
+        if (r.state == ProbeState::Active) ++c.active;
+        else if (r.state == ProbeState::Sleeping) ++c.sleeping;
+        else ++c.off;
+    }
+    return c;
+}
+
+}  // namespace voxgi

@@ -1,0 +1,269 @@
+// DDGI on the CPU: furnace convergence, leaks through a thin wall, extreme settings, scrolling
+// against a freshly built volume, determinism, and the settings reader.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "gi/ddgi/ddgi_system.h"
+#include "gi/ddgi/probe_sampling.h"
+#include "gi/raytrace/ray_tracer.h"
+#include "scenes/errors.h"
+#include "test_ddgi_scenes.h"
+
+using namespace voxgi;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+
+DdgiDesc descFrom(const std::map<std::string, std::string>& keys) {
+    GiSettings gi;
+    for (const auto& [k, v] : keys) gi.set("ddgi." + k, v);
+    return readDdgiDesc(gi);
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool atlasFinite(const ProbeField& f) {
+    for (const glm::vec4& t : f.irradiance.texels)
+        if (!finite(glm::vec3(t))) return false;
+    for (const glm::vec4& t : f.distance.texels)
+        if (!std::isfinite(t.x) || !std::isfinite(t.y)) return false;
+    return true;
+}
+
+void runFrames(DdgiSystem& s, int frames, glm::vec3 eye = glm::vec3(0.0f)) {
+    for (int i = 0; i < frames; ++i) s.update(eye);
+}
+
+// Irradiance on the six inner walls of a furnace box (points a quarter in from the centre).
+void checkFurnace(float rho, const std::string& probes) {
+    const float le = 1.0f;
+    Scene scene = test::furnaceBox(rho, le);
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", probes}, {"rays", "64"}, {"hysteresis", "0"}}));
+    runFrames(ddgi, 60);
+    const float expected = kPi * le / (1.0f - rho);
+    const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (const glm::vec3& n : normals) {
+        glm::vec3 p = -n * 0.999f + glm::vec3(0.13f, -0.21f, 0.17f) * (glm::vec3(1.0f) - glm::abs(n));
+        glm::vec3 e = sampleIrradiance(ddgi.field(), p, n, n);
+        EXPECT_NEAR(e.x, expected, 0.05f * expected) << "rho " << rho << " normal " << n.x << n.y << n.z;
+        EXPECT_NEAR(e.y, e.x, 1e-3f * expected);
+    }
+    for (int p = 0; p < ddgi.field().probeCount(); ++p)
+        EXPECT_NEAR(ddgi.field().meanIrradiance(p).x, expected, 0.05f * expected);
+}
+
+}  // namespace
+
+TEST(Ddgi, FurnaceConvergesToAnalyticIrradiance) {
+    checkFurnace(0.5f, "2");
+    checkFurnace(0.9f, "2");
+}
+
+TEST(Ddgi, SingleProbeFurnace) { checkFurnace(0.5f, "1"); }
+
+// Mean irradiance over floor points of each room (normal up).
+struct RoomLight {
+    float lit = 0, dark = 0;
+};
+
+RoomLight measureRooms(bool classify, bool relocate) {
+    Scene scene = test::twoRooms();
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "8,3,3"},
+                                      {"rays", "128"},
+                                      {"hysteresis", "0.5"},
+                                      {"classify", classify ? "true" : "false"},
+                                      {"relocate", relocate ? "true" : "false"}}));
+    runFrames(ddgi, 24);
+    RoomLight r;
+    int n = 0;
+    for (float x = 0.05f; x < 1.95f; x += 0.1f)
+        for (float z = -0.45f; z < 0.46f; z += 0.15f) {
+            r.lit += sampleIrradiance(ddgi.field(), glm::vec3(-x, -0.5f, z), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)).x;
+            r.dark += sampleIrradiance(ddgi.field(), glm::vec3(x, -0.5f, z), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)).x;
+            ++n;
+        }
+    r.lit /= float(n);
+    r.dark /= float(n);
+    return r;
+}
+
+TEST(Ddgi, ThinWallLeakStaysUnderTwoPercent) {
+    RoomLight on = measureRooms(true, true);
+    RoomLight off = measureRooms(false, false);
+    std::printf("leak with classification+relocation: dark/lit = %.3e (lit %.4g W/m^2)\n", on.dark / on.lit, on.lit);
+    std::printf("leak without: dark/lit = %.3e (lit %.4g W/m^2)\n", off.dark / off.lit, off.lit);
+    ASSERT_GT(on.lit, 0.0f);
+    EXPECT_LT(on.dark, 0.02f * on.lit);
+}
+
+TEST(Ddgi, ChebyshevHandlesZeroVarianceAndNearPoints) {
+    EXPECT_EQ(chebyshevVisibility(1.0f, 2.0f, 4.0f), 1.0f);   // r < mean
+    EXPECT_EQ(chebyshevVisibility(2.0f, 2.0f, 4.0f), 1.0f);   // r == mean, zero variance
+    EXPECT_EQ(chebyshevVisibility(2.5f, 2.0f, 4.0f), 0.0f);   // r > mean, zero variance
+    EXPECT_EQ(chebyshevVisibility(2.5f, 2.0f, 3.9f), 0.0f);   // negative variance from filtering
+    float p = chebyshevVisibility(3.0f, 2.0f, 5.0f);          // variance 1, distance 1: (1/2)^3
+    EXPECT_NEAR(p, 0.125f, 1e-6f);
+}
+
+TEST(Ddgi, HysteresisOneFreezesAfterTheFirstBlend) {
+    Scene scene = test::furnaceBox(0.5f, 1.0f);
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "2"}, {"rays", "32"}, {"hysteresis", "1"}}));
+    runFrames(ddgi, 1);
+    std::vector<glm::vec4> first = ddgi.field().irradiance.texels;
+    runFrames(ddgi, 4);
+    EXPECT_TRUE(atlasFinite(ddgi.field()));
+    EXPECT_EQ(first, ddgi.field().irradiance.texels);
+    // One frame from an empty field: just the emission, E = pi * le.
+    EXPECT_NEAR(ddgi.field().meanIrradiance(0).x, kPi, 1e-3f);
+}
+
+TEST(Ddgi, HysteresisZeroIsFiniteAndFollowsTheNewValue) {
+    Scene scene = test::openYard();
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "4,2,4"}, {"rays", "32"}, {"hysteresis", "0"}}));
+    runFrames(ddgi, 6);
+    EXPECT_TRUE(atlasFinite(ddgi.field()));
+    glm::vec3 e = sampleIrradiance(ddgi.field(), glm::vec3(2.0f, 0.0f, 2.0f), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0));
+    EXPECT_TRUE(finite(e));
+    EXPECT_GT(e.x, 0.0f);  // the sky and the lit blocks
+}
+
+TEST(Ddgi, ProbeExactlyOnASurface) {
+    // A flat floor: the bounds are flat, so the single probe sits exactly on the surface.
+    Scene scene;
+    scene.materials.push_back(Material{});
+    scene.meshes.push_back(makeQuad({glm::vec3(-1, 0, 1), glm::vec3(1, 0, 1), glm::vec3(1, 0, -1), glm::vec3(-1, 0, -1)}, 0));
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.color = glm::vec3(3.0f);
+    scene.lights.push_back(sun);
+    scene.sky.enabled = true;
+    scene.sky.radiance = glm::vec3(0.5f);
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "1"}, {"spacing", "0.5"}, {"rays", "64"}}));
+    ASSERT_FLOAT_EQ(ddgi.field().probePosition(0).y, 0.0f);
+    runFrames(ddgi, 8);
+    EXPECT_TRUE(atlasFinite(ddgi.field()));
+    glm::vec3 e = sampleIrradiance(ddgi.field(), glm::vec3(0.3f, 0.0f, 0.2f), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0));
+    EXPECT_TRUE(finite(e));
+    // Upward: the sky's pi * L at most (the floor hides nothing above it).
+    EXPECT_GE(e.x, 0.0f);
+    EXPECT_LE(e.x, kPi * 0.5f * 1.05f);
+}
+
+TEST(Ddgi, AllProbesInsideGeometryAreOffAndGiveZero) {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    scene.meshes.push_back(makeBox(glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)), 0, false));  // solid
+    Light l;
+    l.position = glm::vec3(0.0f, 3.0f, 0.0f);
+    scene.lights.push_back(l);
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "3"}, {"rays", "32"}, {"relocate", "false"}}));
+    runFrames(ddgi, 3);
+    ProbeStateCounts c = countStates(ddgi.field());
+    EXPECT_EQ(c.off, ddgi.field().probeCount());
+    EXPECT_TRUE(atlasFinite(ddgi.field()));
+    glm::vec3 e = sampleIrradiance(ddgi.field(), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0));
+    EXPECT_EQ(e, glm::vec3(0.0f));
+}
+
+TEST(Ddgi, GeometryQueryTurnsProbesOffAndToSleep) {
+    Scene scene = test::furnaceBox(0.5f, 1.0f, 4.0f);
+    RayTracer tracer(scene);
+    GeometryQuery q;
+    q.insideSolid = [](glm::vec3 p) { return p.x > 0.0f; };
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "4"}, {"rays", "32"}, {"relocate", "false"}}), q);
+    runFrames(ddgi, 2);
+    ProbeStateCounts c = countStates(ddgi.field());
+    EXPECT_EQ(c.off, 32);
+    // The box is 4 m with 1 m cells: the 8 inner probes see no wall within a cell and sleep.
+    EXPECT_EQ(c.sleeping, 4);
+    EXPECT_EQ(c.active, 28);
+}
+
+TEST(Ddgi, RelocationMovesProbesOutOfAThinWall) {
+    Scene scene = test::twoRooms(0.1f);
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "7,3,3"}, {"rays", "64"}}));
+    runFrames(ddgi, 3);
+    for (int p = 0; p < ddgi.field().probeCount(); ++p) {
+        glm::vec3 offset = ddgi.field().probes[std::size_t(p)].offset;
+        const ProbeVolume& v = ddgi.field().volumes()[0];
+        EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::abs(offset), 0.45f * v.spacing + 1e-6f)));
+        glm::vec3 pos = ddgi.field().probePosition(p);
+        if (ddgi.field().probes[std::size_t(p)].state != ProbeState::Off) EXPECT_GT(std::abs(pos.x), 0.05f) << p;
+    }
+}
+
+namespace {
+// Per-probe mean irradiance keyed by rounded world position.
+std::map<std::tuple<int, int, int>, glm::vec3> probeValues(const ProbeField& f) {
+    std::map<std::tuple<int, int, int>, glm::vec3> out;
+    for (int p = 0; p < f.probeCount(); ++p) {
+        glm::vec3 w = f.probePosition(p) * 1000.0f;
+        out[{int(std::lround(w.x)), int(std::lround(w.y)), int(std::lround(w.z))}] = f.meanIrradiance(p);
+    }
+    return out;
+}
+}  // namespace
+
+TEST(Ddgi, ScrollingMatchesAFreshVolume) {
+    Scene scene = test::openYard();
+    RayTracer tracer(scene);
+    const std::map<std::string, std::string> keys = {{"probes", "4,3,4"}, {"spacing", "0.5"}, {"rays", "64"},
+                                                     {"hysteresis", "0.5"}, {"scroll", "true"}, {"energy", "0"},
+                                                     {"irradiance_threshold", "1e20"}, {"brightness_threshold", "1e20"},
+                                                     {"classify", "false"}, {"relocate", "false"}};
+    const glm::vec3 start(0.1f, 1.0f, -0.2f);
+    const glm::vec3 moves[3] = {{0.5f, 0, 0}, {0, -0.5f, 0}, {0, 0, 0.5f}};
+    for (const glm::vec3& move : moves) {
+        DdgiSystem moving(tracer, descFrom(keys));
+        runFrames(moving, 10, start);
+        runFrames(moving, 30, start + move);
+        Scene moved = scene;
+        moved.camera.eye = start + move;
+        RayTracer movedTracer(moved);
+        DdgiSystem fresh(movedTracer, descFrom(keys));
+        runFrames(fresh, 40, start + move);
+        auto a = probeValues(moving.field()), b = probeValues(fresh.field());
+        ASSERT_EQ(a.size(), b.size());
+        for (const auto& [key, value] : a) {
+            auto it = b.find(key);
+            ASSERT_NE(it, b.end()) << "probe position differs after scrolling";
+            EXPECT_NEAR(value.x, it->second.x, 1e-3f * (1.0f + it->second.x));
+            EXPECT_NEAR(value.z, it->second.z, 1e-3f * (1.0f + it->second.z));
+        }
+    }
+}
+
+TEST(Ddgi, DeterministicForAFixedSeed) {
+    Scene scene = test::openYard();
+    RayTracer tracer(scene);
+    auto run = [&](const std::string& seed) {
+        DdgiSystem ddgi(tracer, descFrom({{"probes", "4,2,4"}, {"rays", "32"}, {"seed", seed}}));
+        runFrames(ddgi, 3);
+        return ddgi.field().irradiance.texels;
+    };
+    EXPECT_EQ(run("7"), run("7"));
+    EXPECT_NE(run("7"), run("8"));
+}
+
+TEST(Ddgi, SettingsReaderRejectsTyposAndBadValues) {
+    EXPECT_THROW(descFrom({{"ray", "64"}}), InputError);
+    EXPECT_THROW(descFrom({{"rays", "0"}}), InputError);
+    EXPECT_THROW(descFrom({{"hysteresis", "1.5"}}), InputError);
+    EXPECT_THROW(descFrom({{"probes", "4,4"}}), InputError);
+    EXPECT_THROW(descFrom({{"direct", "maps"}}), InputError);
+    DdgiDesc d = descFrom({{"probes", "16,8,12"}, {"spacing", "1"}});
+    EXPECT_EQ(d.probeCounts, glm::ivec3(16, 8, 12));
+    EXPECT_EQ(d.rays, 256);
+    EXPECT_EQ(d.raysPerProbe(), 288);
+    EXPECT_FLOAT_EQ(d.hysteresis, 0.97f);
+}
