@@ -1,0 +1,90 @@
+// voxgi compare: error metrics of a test image against a reference (gi/metrics), printed,
+// optionally as JSON, with an optional error-map PNG (HDR-FLIP for colour layers).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "gi/metrics/flip.h"
+#include "gi/metrics/image_metrics.h"
+#include "scenes/errors.h"
+#include "scenes/image.h"
+#include "tools/commands.h"
+#include "tools/scene_arg.h"
+
+namespace voxgi::cli {
+
+namespace {
+
+const char* kUsage =
+    "voxgi compare TEST.exr REFERENCE.exr [--aov NAME] [--diff DIFF.png] [--json OUT.json]\n"
+    "  --aov: the layer to compare (default beauty); --diff: HDR-FLIP error map (colour layers)\n"
+    "  or |difference| scaled to its maximum (1-channel layers)";
+
+// Black -> red -> yellow -> white: error 0 stays black, 1 is white.
+glm::vec3 heat(float e) {
+    e = std::clamp(e, 0.0f, 1.0f);
+    return glm::clamp(glm::vec3(3.0f * e, 3.0f * e - 1.0f, 3.0f * e - 2.0f), 0.0f, 1.0f);
+}
+
+void writeDiff(const std::string& path, const Image& test, const Image& reference, const std::string& layer) {
+    const ImageLayer& t = *test.find(layer);
+    const ImageLayer& r = *reference.find(layer);
+    std::vector<float> error;
+    if (r.channels == 3) {
+        error = flip::hdrFlip(t.data, r.data, reference.width(), reference.height()).error;
+    } else {
+        error.resize(reference.pixelCount());
+        float largest = 0.0f;
+        for (std::size_t i = 0; i < error.size(); ++i) largest = std::max(largest, error[i] = std::abs(t.data[i] - r.data[i]));
+        if (largest > 0.0f)
+            for (float& e : error) e /= largest;
+    }
+    std::vector<std::uint8_t> rgb(3 * error.size());
+    for (std::size_t i = 0; i < error.size(); ++i) {
+        glm::vec3 c = heat(error[i]);
+        for (int k = 0; k < 3; ++k) rgb[3 * i + std::size_t(k)] = std::uint8_t(std::lround(255.0f * c[k]));
+    }
+    writePngRgb8(path, reference.width(), reference.height(), rgb);
+}
+
+int runCompare(const std::vector<std::string>& argv) {
+    Args args(argv, {"--aov", "--diff", "--json"}, {});
+    args.requirePositional(2, kUsage);
+    const std::string layer = args.value("--aov", "beauty");
+    if (auto d = args.value("--diff")) requireWritable(*d, "--diff");
+    if (auto j = args.value("--json")) requireWritable(*j, "--json");
+    Image test = readExr(args.positional()[0]);
+    Image reference = readExr(args.positional()[1]);
+    ImageMetrics m = computeMetrics(test, reference, layer);
+
+    std::printf("%s against %s, layer %s (%dx%d, %d channel%s)\n", args.positional()[0].c_str(),
+                args.positional()[1].c_str(), layer.c_str(), reference.width(), reference.height(), m.channels,
+                m.channels == 1 ? "" : "s");
+    std::printf("  MSE        %.6g\n  RMSE       %.6g\n  relMSE     %.6g   (eps %.0e)\n  MAE        %.6g\n",
+                m.mse, m.rmse, m.relMse, kRelMseEpsilon, m.mae);
+    std::printf("  PSNR       %.3f dB\n  SSIM       %.5f\n  mean error %.4f   (seed 003 Eq. 19)\n", m.psnr, m.ssim,
+                m.meanError);
+    std::printf("  Pearson    %.5f   (seed 003 Eq. 20)\n  HDR-FLIP   %.5f\n", m.pearson, m.flip);
+    if (auto d = args.value("--diff")) {
+        writeDiff(*d, test, reference, layer);
+        std::printf("wrote %s\n", d->c_str());
+    }
+    if (auto j = args.value("--json")) {
+        std::string tmp = temporaryPathFor(*j);
+        {
+            std::ofstream out(tmp);
+            out << toJson(m) << "\n";
+            if (!out) throw InputError(*j + ": cannot write");
+        }
+        renameInto(tmp, *j);
+        std::printf("wrote %s\n", j->c_str());
+    }
+    return kOk;
+}
+
+}  // namespace
+
+VOXGI_REGISTER_COMMAND("compare", kUsage, runCompare);
+
+}  // namespace voxgi::cli
