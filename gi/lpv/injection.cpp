@@ -48,7 +48,7 @@ void injectBlockers(const SurfelSource& source, GeometryVolume& scratch, Geometr
         scratch.albedo[i] = glm::max(scratch.albedo[i], s.albedo);
     }
     for (std::size_t i : touched) {
-        if (scratch.blocker[i].x > volume.blocker[i].x) volume.blocker[i] = scratch.blocker[i];
+        volume.blocker[i] = mergeBlockers(volume.blocker[i], scratch.blocker[i]);
         volume.albedo[i] = glm::max(volume.albedo[i], scratch.albedo[i]);
         scratch.blocker[i] = glm::vec4(0.0f);
         scratch.albedo[i] = glm::vec3(0.0f);

@@ -28,11 +28,18 @@ void GeometryVolume::reset(const CascadeGrid& placement) {
     albedo.assign(n * n * n, glm::vec3(0.0f));
 }
 
+glm::vec4 mergeBlockers(glm::vec4 a, glm::vec4 b) {
+    // Two sources facing the same way most likely saw the same surface: keep the stronger
+    // (max, seed 000) so it is not counted twice. Facing opposite ways (band-1 vectors
+    // disagree) they saw the two sides of a wall: both block, so add them.
+    glm::vec3 da(a.y, a.z, a.w), db(b.y, b.z, b.w);
+    if (glm::dot(da, db) < 0.0f) return a + b;
+    return b.x > a.x ? b : a;
+}
+
 void GeometryVolume::mergeMax(const GeometryVolume& other) {
-    // The max is taken on the blocker's mean (the Y00 coefficient) and the winner's whole SH
-    // vector is kept: a per-coefficient max of signed band-1 terms would invent directions.
     for (std::size_t i = 0; i < blocker.size(); ++i) {
-        if (other.blocker[i].x > blocker[i].x) blocker[i] = other.blocker[i];
+        blocker[i] = mergeBlockers(blocker[i], other.blocker[i]);
         albedo[i] = glm::max(albedo[i], other.albedo[i]);
     }
 }

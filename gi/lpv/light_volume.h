@@ -57,8 +57,12 @@ struct GeometryVolume {
         std::size_t n = std::size_t(cornerCount());
         return (std::size_t(c.z) * n + std::size_t(c.y)) * n + std::size_t(c.x);
     }
-    // Merges another source by the max operator (on the blocker's mean; albedo per channel).
+    // Merges another source (mergeBlockers per sample; albedo by max per channel).
     void mergeMax(const GeometryVolume& other);
 };
+
+// The merge of two sources' blockers at one sample: max when they face the same way, sum
+// when they face opposite ways (the two sides of one wall).
+glm::vec4 mergeBlockers(glm::vec4 a, glm::vec4 b);
 
 }  // namespace voxgi

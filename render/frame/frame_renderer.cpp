@@ -169,7 +169,9 @@ struct FrameRenderer::Impl {
         glDisable(GL_CULL_FACE);
         shadowDistanceProgram.use();
         shadowDistanceProgram.set("uLightPosition", eye);
-        glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-4f * sceneRadius, 4.0f * sceneRadius + 1e-3f);
+        // Every length is relative to the scene so the same scene at any scale renders the same.
+        float farPlane = glm::length(eye - sceneCenter) + 2.0f * sceneRadius;
+        glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, 1e-4f * sceneRadius, farPlane);
         const float far[4] = {1e30f, 0, 0, 0};
         for (int face = 0; face < 6; ++face) {
             glNamedFramebufferTextureLayer(cubeFbo.id(), GL_COLOR_ATTACHMENT0, cubeDistance.id(), 0, face);

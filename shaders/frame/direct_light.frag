@@ -28,7 +28,7 @@ float cubeVisibility(vec3 p, vec3 n) {
     vec3 offset = p + n * (2.0 * uShadowTexel * dist);
     vec3 dir = offset - uLightPosition;
     float stored = texture(uShadowCube, dir).r;
-    return length(dir) <= stored * 1.002 + 1e-4 ? 1.0 : 0.0;
+    return length(dir) <= stored * 1.002 ? 1.0 : 0.0;
 }
 
 float mapVisibility(vec3 p, vec3 n, float dist) {
