@@ -1,0 +1,102 @@
+// voxgi bench voxelize: the full geometry grid set (occupancy, albedo, normal, blocker) against
+// OpenVDB's meshToVolume (unsigned distance, half width 1) on the same mesh and voxel size.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "scenes/errors.h"
+#include "scenes/scene_loader.h"
+#include "tools/args.h"
+#include "tools/bench_registry.h"
+#include "tools/scene_arg.h"
+#include "volumes/geometry_volume.h"
+#include "volumes/openvdb_reference.h"
+
+namespace voxgi::cli {
+
+namespace {
+
+const char* kUsage =
+    "voxgi bench voxelize [SCENE] [--resolutions 128,256,512] [--repeats N]\n"
+    "  SCENE defaults to ../shared/scenes/crytek-sponza/sponza.obj; resolutions are voxels across\n"
+    "  the longest side; each timing is the best of N runs (default 3)";
+
+std::vector<int> parseResolutions(const std::string& text) {
+    std::vector<int> out;
+    std::size_t pos = 0;
+    while (pos <= text.size()) {
+        std::size_t comma = text.find(',', pos);
+        std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+        char* end = nullptr;
+        long v = std::strtol(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || v < 1 || v > 8192)
+            throw InputError("--resolutions: expected comma-separated integers in [1, 8192], got '" + text + "'");
+        out.push_back(int(v));
+        if (comma == std::string::npos) break;
+        pos = comma + 1;
+    }
+    return out;
+}
+
+// $VOXGI_SCENES, else the shared scene folder beside the source tree.
+std::string defaultScene() {
+    std::filesystem::path dir;
+    if (const char* env = std::getenv("VOXGI_SCENES")) dir = env;
+    else dir = std::filesystem::path(builtinScenePath("cornell-box")).parent_path().parent_path().parent_path() / "shared" / "scenes";
+    return (dir / "crytek-sponza" / "sponza.obj").string();
+}
+
+double mib(std::uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+
+int benchVoxelize(const std::vector<std::string>& argv) {
+    Args args(argv, {"--resolutions", "--repeats"}, {});
+    std::string scenePath = args.positional().empty() ? defaultScene() : args.positional()[0];
+    std::vector<int> resolutions = parseResolutions(args.value("--resolutions", "128,256,512"));
+    int repeats = args.integer("--repeats", 3, 1, 100);
+
+    auto loadStart = std::chrono::steady_clock::now();
+    Scene scene = loadSceneArgument(scenePath);
+    double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+    Bounds bounds = scene.bounds();
+    glm::vec3 ext = bounds.extent();
+    float longest = std::max(ext.x, std::max(ext.y, ext.z));
+    std::printf("scene %s: %zu triangles, longest side %g, loaded in %.2f s\n", scenePath.c_str(),
+                scene.triangleCount(), double(longest), loadSeconds);
+    std::printf("%6s %10s | %9s %10s %12s %10s | %9s %12s %10s | %6s %6s\n", "res", "voxel", "voxgi s",
+                "Mtri/s", "active", "MiB", "m2v s", "active", "MiB", "time", "mem");
+    for (int res : resolutions) {
+        VoxelizeSettings settings;
+        settings.voxelSize = longest / float(res);
+        settings.maxVoxels = std::uint64_t(1) << 34;
+        double best = 1e30;
+        std::uint64_t active = 0, bytes = 0;
+        for (int r = 0; r < repeats; ++r) {
+            GeometryVolume v = voxelizeScene(scene, settings);
+            best = std::min(best, v.stats().seconds);
+            active = v.activeVoxelCount();
+            bytes = v.memoryBytes();
+        }
+        MeshToVolumeRun baseline;
+        baseline.seconds = 1e30;
+        for (int r = 0; r < repeats; ++r) {
+            MeshToVolumeRun run = runMeshToUnsignedDistance(scene, settings.voxelSize, 1.0f);
+            if (run.seconds < baseline.seconds) baseline = run;
+        }
+        std::printf("%6d %10.4g | %9.3f %10.2f %12llu %10.1f | %9.3f %12llu %10.1f | %6.2f %6.2f\n", res,
+                    double(settings.voxelSize), best, double(scene.triangleCount()) / best / 1e6,
+                    static_cast<unsigned long long>(active), mib(bytes), baseline.seconds,
+                    static_cast<unsigned long long>(baseline.activeVoxels), mib(baseline.memoryBytes),
+                    best / baseline.seconds, double(bytes) / double(baseline.memoryBytes));
+        std::fflush(stdout);
+    }
+    std::printf("time and mem: voxgi / meshToVolume (goal at 256: time < 0.5, mem <= 1.2)\n");
+    return kOk;
+}
+
+}  // namespace
+
+VOXGI_REGISTER_BENCHMARK("voxelize", kUsage, benchVoxelize);
+
+}  // namespace voxgi::cli

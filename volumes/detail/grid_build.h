@@ -1,0 +1,11 @@
+// Internal: voxel sums -> OpenVDB grids (volumes/grid_build.cpp).
+#pragma once
+
+#include "volumes/detail/accumulation.h"
+#include "volumes/detail/geometry_grids.h"
+
+namespace voxgi::detail {
+
+LevelGrids buildLevelGrids(const AccumLevel& level, double voxelSize, BlockerFit fit);
+
+}  // namespace voxgi::detail

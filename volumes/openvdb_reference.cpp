@@ -1,0 +1,59 @@
+#include "volumes/openvdb_reference.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <openvdb/tools/MeshToVolume.h>
+
+#include "volumes/detail/geometry_grids.h"
+#include "volumes/detail/sdf_fill.h"
+#include "volumes/openvdb_setup.h"
+
+namespace voxgi {
+
+MeshToVolumeRun runMeshToUnsignedDistance(const Scene& scene, float voxelSize, float halfWidth) {
+    initializeOpenVdb();
+    detail::MeshArrays arrays = detail::collectMeshArrays(scene);
+    std::vector<openvdb::Vec4I> quads;
+    auto xform = detail::voxelTransform(voxelSize);
+    auto start = std::chrono::steady_clock::now();
+    auto grid = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(*xform, arrays.points,
+                                                                                arrays.triangles, quads, halfWidth);
+    MeshToVolumeRun run;
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.activeVoxels = grid->activeVoxelCount();
+    run.memoryBytes = grid->memUsage();
+    return run;
+}
+
+std::vector<glm::ivec3> meshToVolumeSurfaceVoxels(const Scene& scene, float voxelSize) {
+    initializeOpenVdb();
+    detail::MeshArrays arrays = detail::collectMeshArrays(scene);
+    std::vector<openvdb::Vec4I> quads;
+    auto xform = detail::voxelTransform(voxelSize);
+    openvdb::Int32Grid closest(0);
+    openvdb::util::NullInterrupter interrupter;
+    // The adapter form of meshToVolume takes index-space points.
+    std::vector<openvdb::Vec3s> indexPoints(arrays.points.size());
+    for (std::size_t i = 0; i < arrays.points.size(); ++i) indexPoints[i] = xform->worldToIndex(arrays.points[i]);
+    openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> mesh(indexPoints, arrays.triangles);
+    // A band of 2 voxels holds every centre within sqrt(3)/2 voxel of the surface.
+    auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(interrupter, mesh, *xform, 2.0f, 2.0f,
+                                                                 openvdb::tools::UNSIGNED_DISTANCE_FIELD, &closest);
+    auto index = closest.getConstAccessor();
+    std::vector<glm::ivec3> voxels;
+    for (auto it = grid->cbeginValueOn(); it; ++it) {
+        int tri = index.getValue(it.getCoord());
+        if (tri < 0 || std::size_t(tri) >= arrays.triangles.size()) continue;
+        const openvdb::Vec3I& t = arrays.triangles[std::size_t(tri)];
+        openvdb::Vec3s n = (arrays.points[t[1]] - arrays.points[t[0]]).cross(arrays.points[t[2]] - arrays.points[t[0]]);
+        float len = n.length();
+        if (!(len > 0.0f)) continue;
+        n /= len;
+        float reach = 0.5f * voxelSize * (std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z()));
+        if (*it <= reach) voxels.emplace_back(it.getCoord().x(), it.getCoord().y(), it.getCoord().z());
+    }
+    return voxels;
+}
+
+}  // namespace voxgi
