@@ -70,10 +70,10 @@ struct RoomLight {
     float lit = 0, dark = 0;
 };
 
-RoomLight measureRooms(bool classify, bool relocate) {
+RoomLight measureRooms(bool classify, bool relocate, const std::string& probes) {
     Scene scene = test::twoRooms();
     RayTracer tracer(scene);
-    DdgiSystem ddgi(tracer, descFrom({{"probes", "8,3,3"},
+    DdgiSystem ddgi(tracer, descFrom({{"probes", probes},
                                       {"rays", "128"},
                                       {"hysteresis", "0.5"},
                                       {"classify", classify ? "true" : "false"},
@@ -93,12 +93,15 @@ RoomLight measureRooms(bool classify, bool relocate) {
 }
 
 TEST(Ddgi, ThinWallLeakStaysUnderTwoPercent) {
-    RoomLight on = measureRooms(true, true);
-    RoomLight off = measureRooms(false, false);
-    std::printf("leak with classification+relocation: dark/lit = %.3e (lit %.4g W/m^2)\n", on.dark / on.lit, on.lit);
-    std::printf("leak without: dark/lit = %.3e (lit %.4g W/m^2)\n", off.dark / off.lit, off.lit);
-    ASSERT_GT(on.lit, 0.0f);
-    EXPECT_LT(on.dark, 0.02f * on.lit);
+    // 8 probes along x: the wall lies between two probe planes; 7: a probe plane inside the wall.
+    for (const char* probes : {"8,3,3", "7,3,3"}) {
+        RoomLight on = measureRooms(true, true, probes);
+        RoomLight off = measureRooms(false, false, probes);
+        std::printf("probes %s: leak with classification+relocation dark/lit = %.3e (lit %.4g W/m^2), without %.3e\n",
+                    probes, on.dark / on.lit, on.lit, off.dark / off.lit);
+        ASSERT_GT(on.lit, 0.0f);
+        EXPECT_LT(on.dark, 0.02f * on.lit) << probes;
+    }
 }
 
 TEST(Ddgi, ChebyshevHandlesZeroVarianceAndNearPoints) {
@@ -266,4 +269,49 @@ TEST(Ddgi, SettingsReaderRejectsTyposAndBadValues) {
     EXPECT_EQ(d.rays, 256);
     EXPECT_EQ(d.raysPerProbe(), 288);
     EXPECT_FLOAT_EQ(d.hysteresis, 0.97f);
+}
+
+TEST(Ddgi, OcclusionProbesReconstructShadowsLikeShadowRays) {
+    // The yard: the blocks cast shadows on the floor. With light visibility reconstructed from
+    // occlusion probes, the probes' irradiance stays close to the shadow-ray result.
+    Scene scene = test::openYard();
+    RayTracer tracer(scene);
+    const std::map<std::string, std::string> base = {{"probes", "6,3,6"}, {"spacing", "0.6"}, {"rays", "128"},
+                                                     {"hysteresis", "0.8"}, {"relocate", "false"}};
+    auto withMode = [&](const std::string& mode) {
+        auto keys = base;
+        keys["direct"] = mode;
+        return descFrom(keys);
+    };
+    DdgiSystem rays(tracer, withMode("rays")), occlusion(tracer, withMode("occlusion"));
+    std::int64_t rayShadows = 0, occlusionShadows = 0;
+    for (int f = 0; f < 40; ++f) {
+        rayShadows += rays.update(glm::vec3(0.0f)).shadowQueries;
+        occlusionShadows += occlusion.update(glm::vec3(0.0f)).shadowQueries;
+    }
+    ASSERT_FALSE(occlusion.field().occlusion.texels.empty());
+    EXPECT_TRUE(rays.field().occlusion.texels.empty());
+    // Visibility in [0, 1], some of it shadowed (the blocks), most of it lit.
+    int shadowed = 0, total = 0;
+    for (const glm::vec4& t : occlusion.field().occlusion.texels) {
+        ASSERT_GE(t.x, 0.0f);
+        ASSERT_LE(t.x, 1.0f);
+        shadowed += t.x < 0.5f;
+        ++total;
+    }
+    EXPECT_GT(shadowed, 0);
+    EXPECT_LT(shadowed, total);
+    EXPECT_LT(occlusionShadows * 3, rayShadows);  // a quarter of the hits (stride 4)
+    double sumRays = 0.0, sumOcclusion = 0.0, sumDiff = 0.0;
+    for (int p = 0; p < rays.field().probeCount(); ++p) {
+        float a = rays.field().meanIrradiance(p).x, b = occlusion.field().meanIrradiance(p).x;
+        sumRays += a;
+        sumOcclusion += b;
+        sumDiff += std::abs(a - b);
+    }
+    std::printf("occlusion probes vs shadow rays: mean probe irradiance %.4g vs %.4g, mean |difference| %.1f %%, "
+                "shadow rays %lld vs %lld\n",
+                sumOcclusion, sumRays, 100.0 * sumDiff / sumRays, (long long)occlusionShadows, (long long)rayShadows);
+    EXPECT_NEAR(sumOcclusion, sumRays, 0.1 * sumRays);
+    EXPECT_LT(sumDiff, 0.2 * sumRays);
 }

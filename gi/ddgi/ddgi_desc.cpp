@@ -47,7 +47,7 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
                              "hysteresis", "distance_exponent", "normal_bias", "view_bias", "irradiance_gamma",
                              "energy", "irradiance_threshold", "brightness_threshold", "backface_threshold",
                              "relocation_backface_threshold", "min_frontface_distance", "classify", "relocate",
-                             "sleep_interval", "cascades", "scroll", "direct", "seed", "backend"});
+                             "sleep_interval", "cascades", "scroll", "direct", "occlusion_stride", "seed", "backend"});
     DdgiDesc d;
     glm::vec3 counts = parseTriple(gi, "ddgi.probes", glm::vec3(0.0f));
     for (int a = 0; a < 3; ++a) {
@@ -105,6 +105,8 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
     if (direct == "rays") d.directLight = DdgiDirectLight::ShadowRays;
     else if (direct == "occlusion") d.directLight = DdgiDirectLight::OcclusionProbes;
     else throw InputError("gi.ddgi.direct: expected rays or occlusion, got '" + direct + "'");
+    d.occlusionStride = gi.getInt("ddgi.occlusion_stride", d.occlusionStride);
+    requireRange("ddgi.occlusion_stride", d.occlusionStride, 1, 4096);
     int seed = gi.getInt("ddgi.seed", int(d.seed));
     d.seed = std::uint32_t(seed);
     std::string backend = gi.getString("ddgi.backend", "gpu");

@@ -42,6 +42,7 @@ struct DdgiDesc {
     int cascades = 1;             // > 1: camera-centred cascades, spacing doubling outward
     bool scroll = false;          // camera-centred volume(s) scrolling in whole cells
     DdgiDirectLight directLight = DdgiDirectLight::ShadowRays;
+    int occlusionStride = 4;      // occlusion probes: shadow rays from every n-th blend ray's hit
     std::uint32_t seed = 1;       // random ray rotations; same seed, same frames, same result
     bool gpuBlend = true;         // blend on the GPU (GL compute) or with the CPU reference
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "gi/ddgi/occlusion_probes.h"
 #include "gi/raytrace/ray_tracer.h"
 
 namespace voxgi {
@@ -18,7 +19,9 @@ DdgiSystem::DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQu
     field_ = std::make_unique<ProbeField>(desc, layoutVolumes(desc, scene.bounds(), scene.camera.eye));
     Bounds b = scene.bounds();
     float radius = b.valid() ? 0.5f * glm::length(b.extent()) : 1.0f;
-    visibility_ = std::make_unique<ShadowRayVisibility>(tracer, 1e-4f * std::max(radius, 1e-3f));
+    shadowRays_ = std::make_unique<ShadowRayVisibility>(tracer, 1e-4f * std::max(radius, 1e-3f));
+    if (desc.directLight == DdgiDirectLight::OcclusionProbes)
+        occlusionProbes_ = std::make_unique<OcclusionProbeVisibility>(*field_, *shadowRays_);
 }
 
 DdgiSystem::~DdgiSystem() = default;
@@ -43,11 +46,18 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
     stats.probesBlended = int(blendProbes.size());
 
     t0 = std::chrono::steady_clock::now();
-    ShadeStats shade = shadeProbeRays(tracer_.scene(), *visibility_, field, rays_, trace_, blendProbes, frame_, shaded_);
-    stats.shadeMs = msSince(t0);
-    stats.shadowQueries = shade.shadowQueries;
-
+    const LightVisibility& visibility = occlusionProbes_ ? *occlusionProbes_ : *shadowRays_;
+    ShadeStats shade = shadeProbeRays(tracer_.scene(), visibility, field, rays_, trace_, blendProbes, frame_, shaded_);
     std::vector<BlendJob> jobs = makeBlendJobs(field, blendProbes, rays_.blendRays);
+    if (occlusionProbes_) {
+        // After shading, so shading reads the previous frame's occlusion (seed 004's lag).
+        stats.shadowQueries = updateOcclusionProbes(tracer_.scene(), *shadowRays_, field, rays_, trace_, jobs, frame_,
+                                                    desc.occlusionStride);
+    } else {
+        stats.shadowQueries = shade.shadowQueries;
+    }
+    stats.shadeMs = msSince(t0);
+
     BlendBackend& blender = backend ? *backend : cpuBlend_;
     t0 = std::chrono::steady_clock::now();
     blender.blend(field, rays_, shaded_, jobs);

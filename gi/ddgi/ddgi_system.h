@@ -22,7 +22,7 @@ class RayTracer;
 struct DdgiFrameStats {
     double traceMs = 0, shadeMs = 0, blendMs = 0, borderMs = 0, classifyMs = 0;
     std::int64_t raysTraced = 0;      // probe rays (fixed + blend)
-    std::int64_t shadowQueries = 0;   // shadow rays at hits
+    std::int64_t shadowQueries = 0;   // shadow rays (at hits, or into the occlusion probes)
     int probesBlended = 0;
     ProbeStateCounts states;
 };
@@ -49,7 +49,8 @@ private:
     const RayTracer& tracer_;
     GeometryQuery query_;
     std::unique_ptr<ProbeField> field_;
-    std::unique_ptr<LightVisibility> visibility_;
+    std::unique_ptr<LightVisibility> shadowRays_;
+    std::unique_ptr<LightVisibility> occlusionProbes_;  // only in the occlusion-probe mode
     CpuBlend cpuBlend_;
     RaySet rays_;
     ProbeTrace trace_;

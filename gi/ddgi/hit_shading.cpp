@@ -31,6 +31,20 @@ float ShadowRayVisibility::visible(int, glm::vec3 p, glm::vec3 n, glm::vec3 l, f
     return tracer_.occluded(origin, l, 0.0f, tMax) ? 0.0f : 1.0f;
 }
 
+void lightDirection(const Light& light, glm::vec3 p, glm::vec2 quadSample, glm::vec3* l, float* range) {
+    if (light.type == LightType::Directional) {
+        *l = -glm::normalize(light.direction);
+        *range = INFINITY;
+        return;
+    }
+    glm::vec3 position = light.type == LightType::Quad
+                             ? light.position + quadSample.x * light.edgeU + quadSample.y * light.edgeV
+                             : light.position;
+    glm::vec3 toLight = position - p;
+    *range = glm::length(toLight);
+    *l = *range > 0.0f ? toLight / *range : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
 glm::vec3 directIrradiance(const Scene& scene, const LightVisibility& visibility, glm::vec3 p, glm::vec3 n,
                            glm::vec2 quadSample) {
     glm::vec3 e(0.0f);

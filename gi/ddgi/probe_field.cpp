@@ -98,6 +98,8 @@ ProbeField::ProbeField(const DdgiDesc& desc, std::vector<ProbeVolume> volumes)
                       glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     distance.resize(tilesX * oct::tileSize(desc_.distanceTexels), tilesY * oct::tileSize(desc_.distanceTexels),
                     glm::vec4(0.0f));
+    if (desc_.directLight == DdgiDirectLight::OcclusionProbes)
+        occlusion.resize(distance.width, distance.height, glm::vec4(1.0f));
     probes.assign(std::size_t(total), ProbeRecord{});
     for (int p = 0; p < total; ++p) resetProbe(p);
 }
@@ -133,7 +135,10 @@ void ProbeField::resetProbe(int probe) {
     for (int y = 0; y < ni; ++y)
         for (int x = 0; x < ni; ++x) irradiance.at(it.x + x, it.y + y) = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     for (int y = 0; y < nd; ++y)
-        for (int x = 0; x < nd; ++x) distance.at(dt.x + x, dt.y + y) = glm::vec4(far, far * far, 0.0f, 0.0f);
+        for (int x = 0; x < nd; ++x) {
+            distance.at(dt.x + x, dt.y + y) = glm::vec4(far, far * far, 0.0f, 0.0f);
+            if (!occlusion.texels.empty()) occlusion.at(dt.x + x, dt.y + y) = glm::vec4(1.0f);
+        }
     probes[std::size_t(probe)] = ProbeRecord{};
 }
 

@@ -86,6 +86,9 @@ public:
 
     Atlas irradiance;
     Atlas distance;
+    // Occlusion probes: per-light visibility (up to 4 lights, rgba) of the surfaces each probe
+    // sees, same layout as `distance`; empty unless desc.directLight is OcclusionProbes.
+    Atlas occlusion;
     std::vector<ProbeRecord> probes;
 
 private:

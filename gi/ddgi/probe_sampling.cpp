@@ -28,8 +28,23 @@ float volumeBlendWeight(const ProbeVolume& v, glm::vec3 p) {
     return w;
 }
 
-glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer,
-                                 float* weightSum) {
+namespace {
+// x^(gamma/2) with a fast path for the default gamma 5 (x^2.5 = x^2 sqrt x); same values as pow.
+glm::vec3 decodeHalf(glm::vec3 x, float halfGamma) {
+    if (halfGamma == 2.5f) return x * x * glm::sqrt(x);
+    if (halfGamma == 1.0f) return x;
+    return glm::pow(x, glm::vec3(halfGamma));
+}
+}  // namespace
+
+namespace {
+
+// The weighted cage gather shared by irradiance and occlusion lookups: `lookup(tile, dir)`
+// returns the value of the probe whose tile (in tiles) is given, `dir` being the unit
+// direction from the probe to the (biased) point.
+template <typename Lookup>
+glm::vec4 gatherCage(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer, float* weightSum,
+                     Lookup&& lookup) {
     const DdgiDesc& desc = field.desc();
     const ProbeVolume& v = field.volumes()[std::size_t(vi)];
     glm::vec3 q = p + (n * desc.normalBias + toViewer * desc.viewBias) * v.minSpacing();
@@ -39,14 +54,17 @@ glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int vi, glm::vec3 p, g
     for (int a = 0; a < 3; ++a)
         if (v.counts[a] < 2) alpha[a] = 0.0f;
 
-    const int ni = desc.irradianceTexels, nd = desc.distanceTexels;
-    glm::vec3 sum(0.0f);
+    const int nd = desc.distanceTexels;
+    const int tileD = oct::tileSize(nd);
+    glm::vec4 sum(0.0f);
     float wsum = 0.0f;
     for (int corner = 0; corner < 8; ++corner) {
         glm::ivec3 step(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
         glm::ivec3 logical = base + step;
         if (glm::any(glm::greaterThanEqual(logical, v.counts))) continue;
-        int probe = v.probeBase + v.localIndex(v.storageOf(logical));
+        glm::ivec3 storage = v.storageOf(logical);
+        int probe = v.probeBase + v.localIndex(storage);
+        glm::vec2 tile(float(storage.x + v.counts.x * storage.z), float(v.tileRow + storage.y));
         const ProbeRecord& rec = field.probes[std::size_t(probe)];
         if (rec.state == ProbeState::Off) continue;
         glm::vec3 probePos = v.basePosition(logical) + rec.offset;
@@ -60,7 +78,7 @@ glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int vi, glm::vec3 p, g
         glm::vec3 fromProbe = q - probePos;
         float r = glm::length(fromProbe);
         glm::vec3 dirFromProbe = r > 0.0f ? fromProbe / r : -n;
-        glm::vec2 dc = glm::vec2(field.distanceTile(probe)) + oct::tileCoordinate(dirFromProbe, nd);
+        glm::vec2 dc = tile * float(tileD) + oct::tileCoordinate(dirFromProbe, nd);
         glm::vec4 moments = field.distance.bilinear(dc);
         w *= chebyshevVisibility(r, moments.x, moments.y);
         w = std::max(w, 1e-6f);
@@ -70,32 +88,70 @@ glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int vi, glm::vec3 p, g
 
         glm::vec3 tri = glm::mix(glm::vec3(1.0f) - alpha, alpha, glm::vec3(step));
         w *= tri.x * tri.y * tri.z;
-
-        glm::vec2 ic = glm::vec2(field.irradianceTile(probe)) + oct::tileCoordinate(n, ni);
-        glm::vec3 encoded = glm::max(glm::vec3(field.irradiance.bilinear(ic)), glm::vec3(0.0f));
-        // Interpolate in a sqrt-like space (gamma/2), as RTXGI does, then square.
-        sum += w * glm::pow(encoded, glm::vec3(0.5f * desc.irradianceGamma));
+        sum += w * lookup(tile, dirFromProbe);
         wsum += w;
     }
     if (weightSum) *weightSum = wsum;
-    if (!(wsum > 0.0f)) return glm::vec3(0.0f);
-    glm::vec3 e = sum / wsum;
-    return e * e;
+    return wsum > 0.0f ? sum / wsum : glm::vec4(-1.0f);
 }
 
-glm::vec3 sampleIrradiance(const ProbeField& field, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer) {
+// Cascades, finest first, each weighted by how far inside it p lies; the last takes the rest.
+template <typename PerVolume>
+glm::vec4 blendCascades(const ProbeField& field, glm::vec3 p, glm::vec4 none, PerVolume&& perVolume) {
     const auto& volumes = field.volumes();
-    if (volumes.size() == 1) return sampleVolumeIrradiance(field, 0, p, n, toViewer);
-    glm::vec3 sum(0.0f);
+    glm::vec4 sum(0.0f);
     float wsum = 0.0f;
     for (std::size_t v = 0; v < volumes.size() && wsum < 1.0f; ++v) {
         float w = v + 1 == volumes.size() ? 1.0f : volumeBlendWeight(volumes[v], p);
         w *= std::clamp(1.0f - wsum, 0.0f, 1.0f);
         if (w <= 0.0f) continue;
-        sum += w * sampleVolumeIrradiance(field, int(v), p, n, toViewer);
+        sum += w * perVolume(int(v));
         wsum += w;
     }
-    return wsum > 0.0f ? sum / wsum : glm::vec3(0.0f);
+    return wsum > 0.0f ? sum / wsum : none;
+}
+
+}  // namespace
+
+glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer,
+                                 float* weightSum) {
+    const DdgiDesc& desc = field.desc();
+    const int ni = desc.irradianceTexels;
+    const float tileI = float(oct::tileSize(ni));
+    const glm::vec2 normalCoordinate = oct::tileCoordinate(n, ni);
+    const float halfGamma = 0.5f * desc.irradianceGamma;
+    float wsum = 0.0f;
+    glm::vec4 mean = gatherCage(field, vi, p, n, toViewer, &wsum, [&](glm::vec2 tile, glm::vec3) {
+        glm::vec3 encoded = glm::max(glm::vec3(field.irradiance.bilinear(tile * tileI + normalCoordinate)), glm::vec3(0.0f));
+        // Interpolate in a sqrt-like space (gamma/2), as RTXGI does, then square.
+        return glm::vec4(decodeHalf(encoded, halfGamma), 0.0f);
+    });
+    if (weightSum) *weightSum = wsum;
+    if (!(wsum > 0.0f)) return glm::vec3(0.0f);
+    glm::vec3 e(mean);
+    return e * e;
+}
+
+glm::vec3 sampleIrradiance(const ProbeField& field, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer) {
+    if (field.volumes().size() == 1) return sampleVolumeIrradiance(field, 0, p, n, toViewer);
+    return glm::vec3(blendCascades(field, p, glm::vec4(0.0f), [&](int v) {
+        return glm::vec4(sampleVolumeIrradiance(field, v, p, n, toViewer), 0.0f);
+    }));
+}
+
+glm::vec4 sampleOcclusion(const ProbeField& field, glm::vec3 p, glm::vec3 n) {
+    if (field.occlusion.texels.empty()) return glm::vec4(1.0f);
+    const int nd = field.desc().distanceTexels;
+    const float tileD = float(oct::tileSize(nd));
+    auto perVolume = [&](int v) {
+        glm::vec4 value = gatherCage(field, v, p, n, n, nullptr, [&](glm::vec2 tile, glm::vec3 dirFromProbe) {
+            return field.occlusion.bilinear(tile * tileD + oct::tileCoordinate(dirFromProbe, nd));
+        });
+        // No probe sees p: assume lit rather than invent a shadow.
+        return value.x < 0.0f ? glm::vec4(1.0f) : value;
+    };
+    if (field.volumes().size() == 1) return perVolume(0);
+    return blendCascades(field, p, glm::vec4(1.0f), perVolume);
 }
 
 }  // namespace voxgi

@@ -24,4 +24,9 @@ glm::vec3 sampleIrradiance(const ProbeField& field, glm::vec3 p, glm::vec3 n, gl
 glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int volume, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer,
                                  float* weightSum = nullptr);
 
+// Occlusion probes (seed 004 ch. 5): visibility of up to four lights (one per channel) at the
+// surface point p, reconstructed from the occlusion atlas with the same cage weights, looked up
+// in the direction from each probe to p. All ones without an occlusion atlas.
+glm::vec4 sampleOcclusion(const ProbeField& field, glm::vec3 p, glm::vec3 n);
+
 }  // namespace voxgi
