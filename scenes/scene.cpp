@@ -1,6 +1,7 @@
 #include "scenes/scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -17,8 +18,16 @@ glm::mat4 Camera::projection() const {
 
 namespace {
 float srgbToLinear(std::uint8_t v) {
-    float c = float(v) / 255.0f;
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    // Tabulated: a bilinear lookup decodes 12 values, and the path tracer does millions.
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) {
+            float c = float(i) / 255.0f;
+            t[std::size_t(i)] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+        }
+        return t;
+    }();
+    return table[v];
 }
 }  // namespace
 
