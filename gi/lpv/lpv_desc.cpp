@@ -13,7 +13,8 @@ void requireRange(bool ok, const std::string& key, const std::string& range) {
 LpvDesc LpvDesc::fromSettings(const GiSettings& gi, bool cascaded) {
     gi.requireKnown("lpv", {"resolution", "cascades", "cell_size", "steps", "occlusion", "bounces", "rsm_size",
                             "gbuffer_blocker_size", "inject_normal_offset", "inject_light_offset",
-                            "apply_normal_offset", "dampening", "glossy", "forward_offset", "fade_cells", "backend"});
+                            "apply_normal_offset", "dampening", "glossy", "forward_offset", "fade_cells", "backend",
+                            "sparse", "reuse"});
     LpvDesc d;
     d.cascades = cascaded ? 3 : 1;
     d.resolution = gi.getInt("lpv.resolution", d.resolution);
@@ -44,6 +45,8 @@ LpvDesc LpvDesc::fromSettings(const GiSettings& gi, bool cascaded) {
                  "non-negative and under half the resolution");
     d.backend = gi.getString("lpv.backend", d.backend);
     requireRange(d.backend == "cpu" || d.backend == "gl", "backend", "cpu or gl");
+    d.sparse = gi.getBool("lpv.sparse", d.sparse);
+    d.reuse = gi.getBool("lpv.reuse", d.reuse);
     return d;
 }
 

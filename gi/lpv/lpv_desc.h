@@ -26,6 +26,8 @@ struct LpvDesc {
     float forwardOffset = 0.25f;  // clpv: cascades centred this fraction of their size ahead
     float fadeCells = 2.0f;     // clpv: width of the border fade, in cells
     std::string backend = "cpu";  // cpu (TBB reference) or gl (compute shaders)
+    bool sparse = true;         // cpu: propagate only bricks holding light (dilated per step)
+    bool reuse = true;          // skip the update while lights, geometry and placement are unchanged
 
     // Reads `lpv.*`; unknown keys and out-of-range values raise InputError.
     static LpvDesc fromSettings(const GiSettings& gi, bool cascaded);

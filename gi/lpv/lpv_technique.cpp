@@ -102,7 +102,7 @@ struct LpvTechnique::Impl {
     void update(const FrameInput& input, const GBufferView& g) {
         place(g);
         // Static scene, lights and placement: the propagated light is still valid.
-        if (valid && !placementChanged()) return;
+        if (desc.reuse && valid && !placementChanged()) return;
         lastOrigins.clear();
         for (const auto& p : placements) lastOrigins.push_back(p.grid.origin);
 
@@ -148,9 +148,13 @@ struct LpvTechnique::Impl {
             return;
         }
         t0 = std::chrono::steady_clock::now();
-        for (std::size_t c = 0; c < placements.size(); ++c)
-            propagators[c].propagate(injected[c], geometry[c], desc.steps, options, accumulated[c]);
+        double operatorMs = 0.0;
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            propagators[c].propagate(injected[c], geometry[c], desc.steps, options, accumulated[c], desc.sparse);
+            operatorMs += propagators[c].stats().operatorMs;
+        }
         input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
+        input.timers.addCpu("lpv.propagate_operator", operatorMs);
 
         t0 = std::chrono::steady_clock::now();
         const int n = desc.resolution;

@@ -1,7 +1,8 @@
 #include "gi/lpv/propagation.h"
 
 #include <algorithm>
-#include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <cmath>
 
 #include <tbb/parallel_for.h>
@@ -103,49 +104,107 @@ bool sharedFace(const GeometryVolume& gv, glm::ivec3 cell, const glm::ivec3& axi
 
 float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
-void gatherCell(const LightVolume& in, const GeometryVolume& gv, const PropagationOptions& opt, glm::ivec3 d,
-                glm::vec4 out[3]) {
+// The propagation operator of one cascade, built once per geometry volume: the 4x4 transfer
+// matrix from each neighbour (occluded faces folded in) and from the cell itself (bounces).
+// Steps then cost 6 + 1 matrix-vector products per colour and cell.
+struct Operator {
+    static constexpr std::int32_t kOpen = -1;  // use the unoccluded matrix of that axis
+    std::vector<std::int32_t> gather;  // [cell * 6 + axis] -> index into gatherPool, or kOpen
+    std::vector<glm::mat4> gatherPool;
+    std::vector<std::int32_t> self;    // [cell] -> index of 3 consecutive matrices in selfPool, or -1
+    std::vector<glm::mat4> selfPool;
+
+    Operator(const GeometryVolume& gv, const CascadeGrid& grid, const PropagationOptions& opt) {
+        const PropagationKernel& k = propagationKernel();
+        const PropagationTables& t = propagationTables();
+        gather.assign(grid.cellCount() * 6, kOpen);
+        self.assign(grid.cellCount(), -1);
+        if (!opt.occlusion || gv.blocker.empty()) return;
+        // Slices are built in parallel into their own pools, then concatenated.
+        const int n = grid.resolution;
+        std::vector<std::vector<glm::mat4>> gatherSlices(static_cast<std::size_t>(n));
+        std::vector<std::vector<glm::mat4>> selfSlices(static_cast<std::size_t>(n));
+        tbb::parallel_for(0, n, [&](int z) {
+            auto& gatherLocal = gatherSlices[std::size_t(z)];
+            auto& selfLocal = selfSlices[std::size_t(z)];
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    glm::ivec3 d(x, y, z);
+                    std::size_t di = grid.index(d);
+                    for (std::size_t a = 0; a < 6; ++a) {
+                        glm::vec4 blocker;
+                        glm::vec3 albedo;
+                        if (!sharedFace(gv, d - t.axes[a], t.axes[a], blocker, albedo)) continue;
+                        glm::mat4 m(0.0f);
+                        for (const FaceCoefficients& f : k.faces[a]) {
+                            float pass = 1.0f - clamp01(glm::dot(blocker, f.block));
+                            for (int col = 0; col < 4; ++col)
+                                for (int row = 0; row < 4; ++row) m[col][row] += pass * f.lobe[row] * f.sample[col];
+                        }
+                        gather[di * 6 + a] = std::int32_t(gatherLocal.size());
+                        gatherLocal.push_back(m);
+                    }
+                    if (!opt.bounces) continue;
+                    // Light of this cell blocked at one of its own faces bounces back into it,
+                    // shaped like the blocker's lobe normalized to unit flux.
+                    glm::mat4 channel[3] = {glm::mat4(0.0f), glm::mat4(0.0f), glm::mat4(0.0f)};
+                    bool any = false;
+                    for (std::size_t a = 0; a < 6; ++a) {
+                        glm::vec4 blocker;
+                        glm::vec3 albedo;
+                        if (!sharedFace(gv, d, t.axes[a], blocker, albedo)) continue;
+                        float flux = blocker.x * (4.0f * sh::kPi * sh::kY00);
+                        if (!(flux > 1e-12f) || albedo == glm::vec3(0.0f)) continue;
+                        glm::vec4 shape = blocker / flux;
+                        glm::vec4 blocked(0.0f);  // dot with the cell's SH: the flux stopped at this face
+                        for (const FaceCoefficients& f : k.faces[a]) blocked += clamp01(glm::dot(blocker, f.block)) * f.sample;
+                        for (int c = 0; c < 3; ++c)
+                            for (int col = 0; col < 4; ++col)
+                                for (int row = 0; row < 4; ++row) channel[c][col][row] += albedo[c] * shape[row] * blocked[col];
+                        any = true;
+                    }
+                    if (!any) continue;
+                    self[di] = std::int32_t(selfLocal.size());
+                    selfLocal.insert(selfLocal.end(), channel, channel + 3);
+                }
+        });
+        // Rebase the slice-local indices onto the concatenated pools.
+        for (int z = 0; z < n; ++z) {
+            const auto gatherBase = std::int32_t(gatherPool.size()), selfBase = std::int32_t(selfPool.size());
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    std::size_t di = grid.index({x, y, z});
+                    for (std::size_t a = 0; a < 6; ++a)
+                        if (gather[di * 6 + a] != kOpen) gather[di * 6 + a] += gatherBase;
+                    if (self[di] >= 0) self[di] += selfBase;
+                }
+            gatherPool.insert(gatherPool.end(), gatherSlices[std::size_t(z)].begin(), gatherSlices[std::size_t(z)].end());
+            selfPool.insert(selfPool.end(), selfSlices[std::size_t(z)].begin(), selfSlices[std::size_t(z)].end());
+        }
+    }
+};
+
+void gatherCell(const LightVolume& in, const Operator& op, glm::ivec3 d, glm::vec4 out[3]) {
     const PropagationKernel& k = propagationKernel();
     const PropagationTables& t = propagationTables();
     const CascadeGrid& grid = in.grid;
     out[0] = out[1] = out[2] = glm::vec4(0.0f);
-    const bool useGeometry = opt.occlusion && !gv.blocker.empty();
+    const std::size_t di = grid.index(d);
     for (std::size_t a = 0; a < 6; ++a) {
         glm::ivec3 s = d - t.axes[a];
         if (!grid.contains(s)) continue;
         std::size_t si = grid.index(s);
         const glm::vec4 src[3] = {in.r[si], in.g[si], in.b[si]};
         if (src[0] == glm::vec4(0.0f) && src[1] == glm::vec4(0.0f) && src[2] == glm::vec4(0.0f)) continue;
-        glm::vec4 blocker;
-        glm::vec3 albedo;
-        if (!useGeometry || !sharedFace(gv, s, t.axes[a], blocker, albedo)) {
-            for (int c = 0; c < 3; ++c) out[c] += k.unoccluded[a] * src[c];
-            continue;
-        }
-        for (const FaceCoefficients& f : k.faces[a]) {
-            float pass = 1.0f - clamp01(glm::dot(blocker, f.block));
-            for (int c = 0; c < 3; ++c) out[c] += (glm::dot(src[c], f.sample) * pass) * f.lobe;
-        }
+        std::int32_t m = op.gather[di * 6 + a];
+        const glm::mat4& transfer = m == Operator::kOpen ? k.unoccluded[a] : op.gatherPool[std::size_t(m)];
+        for (int c = 0; c < 3; ++c) out[c] += transfer * src[c];
     }
-    if (!useGeometry || !opt.bounces) return;
-    // Light of this cell blocked at one of its own faces bounces back into it.
-    std::size_t di = grid.index(d);
-    const glm::vec4 self[3] = {in.r[di], in.g[di], in.b[di]};
-    if (self[0] == glm::vec4(0.0f) && self[1] == glm::vec4(0.0f) && self[2] == glm::vec4(0.0f)) return;
-    for (std::size_t a = 0; a < 6; ++a) {
-        glm::vec4 blocker;
-        glm::vec3 albedo;
-        if (!sharedFace(gv, d, t.axes[a], blocker, albedo)) continue;
-        float flux = blocker.x * (4.0f * sh::kPi * sh::kY00);
-        if (!(flux > 1e-12f) || albedo == glm::vec3(0.0f)) continue;
-        glm::vec4 shape = blocker / flux;  // the blocker's lobe with unit total flux
-        glm::vec3 reflected(0.0f);
-        for (const FaceCoefficients& f : k.faces[a]) {
-            float beta = clamp01(glm::dot(blocker, f.block));
-            for (int c = 0; c < 3; ++c) reflected[c] += glm::dot(self[c], f.sample) * beta;
-        }
-        for (int c = 0; c < 3; ++c) out[c] += (albedo[c] * reflected[c]) * shape;
-    }
+    if (op.self[di] < 0) return;
+    const glm::mat4* channel = &op.selfPool[std::size_t(op.self[di])];
+    out[0] += channel[0] * in.r[di];
+    out[1] += channel[1] * in.g[di];
+    out[2] += channel[2] * in.b[di];
 }
 
 int brickSizeFor(int resolution) { return resolution % 8 == 0 ? 8 : 4; }
@@ -168,11 +227,12 @@ void CpuPropagator::step(const LightVolume& in, const GeometryVolume& geometry, 
     if (out.r.size() != in.r.size()) out.reset(grid);
     out.grid = grid;
     const int n = grid.resolution;
+    const Operator op(geometry, grid, options);
     tbb::parallel_for(0, n, [&](int z) {
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
                 glm::vec4 o[3];
-                gatherCell(in, geometry, options, {x, y, z}, o);
+                gatherCell(in, op, {x, y, z}, o);
                 std::size_t i = grid.index({x, y, z});
                 out.r[i] = o[0];
                 out.g[i] = o[1];
@@ -206,6 +266,10 @@ void CpuPropagator::propagate(const LightVolume& injected, const GeometryVolume&
                 if (!injected.isZero(grid.index({x, y, z}))) lit[brickIndex(glm::ivec3(x, y, z) / bs)] = 1;
     // Bounces make a cell's own light feed back, so a lit brick stays active.
     stats_.totalBricks = brickCount;
+    auto t0 = std::chrono::steady_clock::now();
+    const Operator op(geometry, grid, options);
+    auto t1 = std::chrono::steady_clock::now();
+    stats_.operatorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
     std::vector<glm::ivec3> active;
     std::vector<std::uint8_t> litOut(brickCount);
     for (int iteration = 0; iteration < steps; ++iteration) {
@@ -240,7 +304,7 @@ void CpuPropagator::propagate(const LightVolume& injected, const GeometryVolume&
                     for (int i = 0; i < bs; ++i) {
                         glm::ivec3 d = b * bs + glm::ivec3(i, j, k);
                         glm::vec4 o[3];
-                        gatherCell(ping_, geometry, options, d, o);
+                        gatherCell(ping_, op, d, o);
                         std::size_t c = grid.index(d);
                         pong_.r[c] = o[0];
                         pong_.g[c] = o[1];
@@ -257,6 +321,7 @@ void CpuPropagator::propagate(const LightVolume& injected, const GeometryVolume&
         pongLit = lit;
         lit = litOut;
     }
+    stats_.stepsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
 }
 
 }  // namespace voxgi

@@ -63,6 +63,8 @@ struct PropagationOptions {
 struct PropagationStats {
     std::size_t activeBricks = 0;  // bricks processed in the last step (sparse mode)
     std::size_t totalBricks = 0;
+    double operatorMs = 0.0;       // building the transfer matrices from the geometry volume
+    double stepsMs = 0.0;          // the iterations
 };
 
 // Runs `steps` iterations: accumulated = injected + sum of every iteration's output.
