@@ -15,12 +15,15 @@ gl::Handle makeAtlasTexture(const Atlas& atlas) {
 }
 
 void uploadAtlas(GLuint texture, const Atlas& atlas) {
-    glTextureSubImage2D(texture, 0, 0, 0, atlas.width, atlas.height, GL_RGBA, GL_FLOAT, atlas.texels.data());
+    std::vector<glm::vec4> rows;
+    atlas.toRows(rows);
+    glTextureSubImage2D(texture, 0, 0, 0, atlas.width, atlas.height, GL_RGBA, GL_FLOAT, rows.data());
 }
 
 void downloadAtlas(GLuint texture, Atlas& atlas) {
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(atlas.texels.size() * sizeof(glm::vec4)),
-                      atlas.texels.data());
+    std::vector<glm::vec4> rows(atlas.texels.size());
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(rows.size() * sizeof(glm::vec4)), rows.data());
+    atlas.fromRows(rows);
 }
 
 std::string indexed(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }

@@ -12,6 +12,7 @@ int positiveMod(int a, int n) { return ((a % n) + n) % n; }
 }  // namespace
 
 glm::ivec3 ProbeVolume::storageOf(glm::ivec3 l) const {
+    if (scroll == glm::ivec3(0)) return l;
     return {positiveMod(l.x + scroll.x, counts.x), positiveMod(l.y + scroll.y, counts.y),
             positiveMod(l.z + scroll.z, counts.z)};
 }
@@ -33,10 +34,12 @@ glm::ivec2 ProbeVolume::tile(int local) const {
     return {s.x + counts.x * s.z, tileRow + s.y};
 }
 
-void Atlas::resize(int w, int h, glm::vec4 fill) {
-    width = w;
-    height = h;
-    texels.assign(std::size_t(w) * std::size_t(h), fill);
+void Atlas::resize(int tilesAcross, int tilesDown, int tileSize, glm::vec4 fill) {
+    tile = tileSize;
+    tilesX = tilesAcross;
+    width = tilesAcross * tileSize;
+    height = tilesDown * tileSize;
+    texels.assign(std::size_t(width) * std::size_t(height), fill);
 }
 
 glm::vec4 Atlas::bilinear(glm::vec2 c) const {
@@ -45,9 +48,26 @@ glm::vec4 Atlas::bilinear(glm::vec2 c) const {
     glm::vec2 t = p - f;
     int x0 = std::clamp(int(f.x), 0, width - 1), y0 = std::clamp(int(f.y), 0, height - 1);
     int x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
-    glm::vec4 a = glm::mix(at(x0, y0), at(x1, y0), t.x);
-    glm::vec4 b = glm::mix(at(x0, y1), at(x1, y1), t.x);
-    return glm::mix(a, b, t.y);
+    glm::vec4 a, b, c0, d;
+    if ((x0 % tile) + 1 < tile && (y0 % tile) + 1 < tile) {
+        // All four texels in one tile (always so inside a bordered tile): one address.
+        const glm::vec4* q = &texels[index(x0, y0)];
+        a = q[0], b = q[1], c0 = q[tile], d = q[tile + 1];
+    } else {
+        a = at(x0, y0), b = at(x1, y0), c0 = at(x0, y1), d = at(x1, y1);
+    }
+    return glm::mix(glm::mix(a, b, t.x), glm::mix(c0, d, t.x), t.y);
+}
+
+void Atlas::toRows(std::vector<glm::vec4>& rows) const {
+    rows.resize(texels.size());
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) rows[std::size_t(y) * std::size_t(width) + std::size_t(x)] = at(x, y);
+}
+
+void Atlas::fromRows(const std::vector<glm::vec4>& rows) {
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) at(x, y) = rows[std::size_t(y) * std::size_t(width) + std::size_t(x)];
 }
 
 std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye) {
@@ -94,12 +114,10 @@ ProbeField::ProbeField(const DdgiDesc& desc, std::vector<ProbeVolume> volumes)
         tilesY += v.counts.y;
         total += v.probeCount();
     }
-    irradiance.resize(tilesX * oct::tileSize(desc_.irradianceTexels), tilesY * oct::tileSize(desc_.irradianceTexels),
-                      glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    distance.resize(tilesX * oct::tileSize(desc_.distanceTexels), tilesY * oct::tileSize(desc_.distanceTexels),
-                    glm::vec4(0.0f));
+    irradiance.resize(tilesX, tilesY, oct::tileSize(desc_.irradianceTexels), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    distance.resize(tilesX, tilesY, oct::tileSize(desc_.distanceTexels), glm::vec4(0.0f));
     if (desc_.directLight == DdgiDirectLight::OcclusionProbes)
-        occlusion.resize(distance.width, distance.height, glm::vec4(1.0f));
+        occlusion.resize(tilesX, tilesY, oct::tileSize(desc_.distanceTexels), glm::vec4(1.0f));
     probes.assign(std::size_t(total), ProbeRecord{});
     for (int p = 0; p < total; ++p) resetProbe(p);
 }

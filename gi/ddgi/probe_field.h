@@ -43,16 +43,28 @@ struct ProbeVolume {
     float maxDistance() const { return 1.5f * cellDiagonal(); }
 };
 
+// Texels of square tiles (one per probe), addressed by atlas coordinates (x, y) but stored tile
+// by tile: a tile's texels are contiguous, so lookups of one probe stay in a few pages. The GPU
+// texture is row-major; toRows / fromRows convert.
 struct Atlas {
     int width = 0;
     int height = 0;
+    int tile = 1;    // texels per tile side
+    int tilesX = 0;  // tiles per atlas row
     std::vector<glm::vec4> texels;
 
-    void resize(int w, int h, glm::vec4 fill);
-    glm::vec4& at(int x, int y) { return texels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
-    const glm::vec4& at(int x, int y) const { return texels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    void resize(int tilesAcross, int tilesDown, int tileSize, glm::vec4 fill);
+    std::size_t index(int x, int y) const {
+        int tx = x / tile, ty = y / tile;
+        return (std::size_t(ty * tilesX + tx) * std::size_t(tile) + std::size_t(y - ty * tile)) * std::size_t(tile) +
+               std::size_t(x - tx * tile);
+    }
+    glm::vec4& at(int x, int y) { return texels[index(x, y)]; }
+    const glm::vec4& at(int x, int y) const { return texels[index(x, y)]; }
     // Bilinear lookup at a texel coordinate (texel centres at .5), like GL_LINEAR.
     glm::vec4 bilinear(glm::vec2 coordinate) const;
+    void toRows(std::vector<glm::vec4>& rows) const;
+    void fromRows(const std::vector<glm::vec4>& rows);
 };
 
 struct ProbeRecord {

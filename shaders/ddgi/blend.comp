@@ -21,44 +21,72 @@ uniform float uBackfaceScale;
 
 float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
+// c^e by repeated squaring for whole exponents, as weightPow in gi/ddgi/probe_blend.cpp.
+float weightPow(float c, float e) {
+    if (e == floor(e) && e >= 1.0 && e <= 1024.0) {
+        int k = int(e);
+        float result = 1.0, base = c;
+        while (k != 0) {
+            if ((k & 1) != 0) result *= base;
+            base *= base;
+            k >>= 1;
+        }
+        return result;
+    }
+    return pow(c, e);
+}
+
+// Rays pass through shared memory in batches of 64, one load per thread (seed 004's update
+// kernel), so each ray is read from the buffer once per workgroup instead of once per texel.
+shared vec4 sDirection[64];
+shared vec4 sValue[64];
+
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    if (texel.x >= uTexels || texel.y >= uTexels) return;
+    bool inside = texel.x < uTexels && texel.y < uTexels;
     BlendJob job = jobs[gl_WorkGroupID.z];
-    vec3 dir = octTexelDirection(texel, uTexels);
+    vec3 dir = octTexelDirection(min(texel, ivec2(uTexels - 1)), uTexels);
 #if DISTANCE
     ivec2 at = ivec2(job.distanceX, job.distanceY) + 1 + texel;
+    vec2 sum = vec2(0.0);
 #else
     ivec2 at = ivec2(job.irradianceX, job.irradianceY) + 1 + texel;
+    vec3 sum = vec3(0.0);
 #endif
+    float wsum = 0.0;
+    for (int batch = 0; batch < uRays; batch += 64) {
+        int load = batch + int(gl_LocalInvocationIndex);
+        if (load < uRays) {
+            sDirection[gl_LocalInvocationIndex] = directions[load];
+            sValue[gl_LocalInvocationIndex] = rayValues[job.rayBase + load];
+        }
+        barrier();
+        int count = min(64, uRays - batch);
+        for (int i = 0; i < count; ++i) {
+            vec4 v = sValue[i];
+#if DISTANCE
+            float c = max(0.0, dot(dir, sDirection[i].xyz));
+            if (c <= 0.0) continue;
+            float w = weightPow(c, uExponent);
+            float d = v.w < 0.0 ? -uBackfaceScale * v.w : v.w;
+            d = min(d, job.maxDistance);
+            sum += w * vec2(d, d * d);
+            wsum += w;
+#else
+            if (v.w < 0.0) continue;
+            float w = max(0.0, dot(dir, sDirection[i].xyz));
+            sum += w * v.rgb;
+            wsum += w;
+#endif
+        }
+        barrier();
+    }
+    if (!inside || !(wsum > 0.0)) return;
     vec4 previous = imageLoad(uAtlas, at);
     float hysteresis = job.hysteresis;
 #if DISTANCE
-    vec2 sum = vec2(0.0);
-    float wsum = 0.0;
-    for (int i = 0; i < uRays; ++i) {
-        float c = max(0.0, dot(dir, directions[i].xyz));
-        if (c <= 0.0) continue;
-        float w = pow(c, uExponent);
-        vec4 v = rayValues[job.rayBase + i];
-        float d = v.w < 0.0 ? -uBackfaceScale * v.w : v.w;
-        d = min(d, job.maxDistance);
-        sum += w * vec2(d, d * d);
-        wsum += w;
-    }
-    if (!(wsum > 0.0)) return;
     imageStore(uAtlas, at, vec4(mix(sum / wsum, previous.xy, hysteresis), 0.0, 0.0));
 #else
-    vec3 sum = vec3(0.0);
-    float wsum = 0.0;
-    for (int i = 0; i < uRays; ++i) {
-        vec4 v = rayValues[job.rayBase + i];
-        if (v.w < 0.0) continue;
-        float w = max(0.0, dot(dir, directions[i].xyz));
-        sum += w * v.rgb;
-        wsum += w;
-    }
-    if (!(wsum > 0.0)) return;
     vec3 e = max(PI * sum / wsum, vec3(0.0));
     vec3 encoded = pow(e, vec3(1.0 / uGamma));
     vec3 prev = previous.rgb;
