@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/global_control.h>
 
+#include "gi/pathtrace/bsdf.h"
 #include "gi/pathtrace/path_tracer.h"
 #include "scenes/primitives.h"
 #include "scenes/scene_loader.h"
@@ -195,6 +196,53 @@ TEST(PathTracer, SquareLightFormFactor) {
     std::printf("square light: L = %.5f +- %.5f, analytic rho Le F = %.5f (F = %.5f)\n", mean, se, expected, F);
     EXPECT_LT(std::abs(mean - expected), 3.0 * se + 1e-6);
     EXPECT_LT(se, 0.01 * expected);
+}
+
+TEST(PathTracer, GlossyUnderSquareLightMatchesQuadrature) {
+    // Light sampling, BSDF sampling and their MIS weights must add up to the integral of the
+    // BRDF over the light, L = Le * integral f cos cos' / r^2 dA, here by a 400x400 midpoint rule.
+    struct Case {
+        const char* material;
+        float albedo, roughness, metallic, specular;
+    };
+    for (const Case& k : {Case{"metal", 0.9f, 0.4f, 1.0f, 0.0f}, Case{"coated", 0.5f, 0.25f, 0.0f, 0.5f}}) {
+        char json[1024];
+        std::snprintf(json, sizeof json, R"({
+          "camera": {"eye": [-1.5, 0.8, 0.2], "target": [0, 0, 0], "fov": 60, "resolution": [16, 16]},
+          "materials": {"m": {"albedo": %g, "roughness": %g, "metallic": %g, "specular": %g}},
+          "lights": [{"type": "quad", "corner": [-0.2, 0.5, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "radiance": 2}],
+          "meshes": [{"type": "quad", "material": "m", "corners": [[-9,0,9],[9,0,9],[9,0,-9],[-9,0,-9]]}]})",
+                      k.albedo, k.roughness, k.metallic, k.specular);
+        Scene s = parseSceneJson(json, "glossy.json");
+        PathTracerOptions o;
+        o.maxBounces = 1;
+        PathTracer tracer(s, o);
+        const glm::vec3 eye(-1.5f, 0.8f, 0.2f), p(0.0f);
+        pt::Bsdf bsdf(s.materials[0], s.materials[0].albedo, glm::normalize(eye - p), {0, 1, 0}, {0, 1, 0}, true);
+        const int grid = 400;
+        double integral = 0.0;
+        for (int i = 0; i < grid; ++i)
+            for (int j = 0; j < grid; ++j) {
+                glm::vec3 q(-0.2f + (float(i) + 0.5f) / grid, 0.5f, -0.5f + (float(j) + 0.5f) / grid);
+                glm::vec3 d = q - p;
+                float r2 = glm::dot(d, d);
+                glm::vec3 wi = d / std::sqrt(r2);
+                // eval includes cos at the surface; the light faces down: cos' = wi.y.
+                integral += double(bsdf.eval(wi).g) * double(wi.y) / double(r2) / double(grid * grid);
+            }
+        double expected = 2.0 * integral;
+        double sum = 0.0, sumSq = 0.0;
+        const int n = 20000;
+        for (int i = 0; i < n; ++i) {
+            double v = tracer.trace(eye, p - eye, std::uint64_t(i)).beauty().g;
+            sum += v;
+            sumSq += v * v;
+        }
+        double mean = sum / n, se = std::sqrt(std::max(sumSq / n - mean * mean, 0.0) / (n - 1));
+        std::printf("%s under a square light: L = %.5f +- %.5f, quadrature %.5f\n", k.material, mean, se, expected);
+        EXPECT_LT(std::abs(mean - expected), 3.0 * se + 1e-4 * expected) << k.material;
+        EXPECT_LT(se, 0.02 * expected) << k.material;
+    }
 }
 
 TEST(PathTracer, GlassDoesNotCreateEnergy) {
