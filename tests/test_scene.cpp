@@ -43,7 +43,7 @@ TEST(Scene, BuiltinCornellBoxHasPublishedDimensions) {
     // 5 walls + 2 blocks of 5 quads = 15 quads, plus the light quad: 32 triangles.
     EXPECT_EQ(s.triangleCount(), 32u);
     EXPECT_NEAR(s.camera.fovYDegrees, 2.0 * std::atan(12.5 / 35.0) * 180.0 / 3.14159265358979, 1e-3);
-    EXPECT_EQ(s.gi.getString("method", ""), "direct");
+    EXPECT_EQ(s.gi.getString("method", ""), "clpv");
 }
 
 TEST(Scene, ParsesEveryLightKindAndPrimitive) {

@@ -18,7 +18,7 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi render SCENE [--method direct] -o OUT.exr [--png OUT.png] [--width W --height H] [--frames N]\n"
+    "voxgi render SCENE [--method direct|lpv|clpv|ddgi] -o OUT.exr [--png OUT.png] [--width W --height H] [--frames N]\n"
     "       [--timings T.json] [--exposure STOPS] [--set section.key=value]... [--plan]\n"
     "  SCENE: a scene .json, a mesh file, or a built-in scene name (cornell-box)\n"
     "  --frames: frames accumulated (default 64 with area lights, else 1)";
@@ -37,7 +37,6 @@ int runRender(const std::vector<std::string>& argv) {
     Args args(argv, {"--method", "-o", "--png", "--width", "--height", "--frames", "--timings", "--exposure", "--set"},
               {"--plan"}, {"--set"});
     args.requirePositional(1, kUsage);
-    const std::string method = args.value("--method", "direct");
     auto out = args.value("-o");
     if (!out && !args.flag("--plan")) throw InputError("-o OUT.exr is required; usage: " + std::string(kUsage));
     if (out) requireWritable(*out, "-o");
@@ -47,6 +46,8 @@ int runRender(const std::vector<std::string>& argv) {
 
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
+    // --method, else the scene's gi.method, else direct light only.
+    const std::string method = args.value("--method", scene.gi.getString("method", "direct"));
     validateMethod(method);
     const int frames = args.integer("--frames", defaultFrameCount(scene), 1, 1 << 20);
     FramePlan plan = planFrame(scene, method, frames);
