@@ -28,14 +28,14 @@ Scene sceneWith(const std::vector<Mesh>& meshes) {
     return scene;
 }
 
-GeometryVolume voxelize(const Scene& scene, float voxelSize, BlockerFit fit = BlockerFit::Projection) {
+SparseGeometryVolume voxelize(const Scene& scene, float voxelSize, BlockerFit fit = BlockerFit::Projection) {
     VoxelizeSettings settings;
     settings.voxelSize = voxelSize;
     settings.blockerFit = fit;
     return voxelizeScene(scene, settings);
 }
 
-std::vector<glm::ivec3> occupiedVoxels(const GeometryVolume& v, int level = 0) {
+std::vector<glm::ivec3> occupiedVoxels(const SparseGeometryVolume& v, int level = 0) {
     std::vector<glm::ivec3> out;
     IndexBox b = v.indexBounds(level);
     for (int z = b.min.z; z <= b.max.z; ++z)
@@ -46,14 +46,14 @@ std::vector<glm::ivec3> occupiedVoxels(const GeometryVolume& v, int level = 0) {
 }
 
 // Clipped area summed over voxels, recovered from the Projection fit's constant term.
-double totalArea(const GeometryVolume& v) {
+double totalArea(const SparseGeometryVolume& v) {
     double h = v.voxelSize(), sum = 0.0;
     for (const glm::ivec3& c : occupiedVoxels(v)) sum += 4.0 * kShY00 * v.blockerSH(c)[0] * h * h;
     return sum;
 }
 
 // True when a 6-connected walk through empty voxels from outside the bounds reaches `inside`.
-bool leaksTo(const GeometryVolume& v, const glm::ivec3& inside) {
+bool leaksTo(const SparseGeometryVolume& v, const glm::ivec3& inside) {
     IndexBox b = v.indexBounds();
     glm::ivec3 lo = b.min - 1, hi = b.max + 1, size = hi - lo + 1;
     std::vector<char> seen(std::size_t(size.x) * size.y * size.z, 0);
@@ -99,7 +99,7 @@ TEST(Voxelize, AxisAlignedBoxShellIsExactAndClosed) {
     // Faces at 0.05 and 0.95 run through the middle of voxel layers 0 and 9: the shell of the
     // 10^3 block, 10^3 - 8^3 voxels.
     glm::mat4 t = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)), glm::vec3(0.9f));
-    GeometryVolume v = voxelize(sceneWith({makeBox(t, 0)}), 0.1f);
+    SparseGeometryVolume v = voxelize(sceneWith({makeBox(t, 0)}), 0.1f);
     EXPECT_EQ(v.activeVoxelCount(), 488u);
     for (const glm::ivec3& c : occupiedVoxels(v)) {
         EXPECT_TRUE(glm::all(glm::greaterThanEqual(c, glm::ivec3(0))) && glm::all(glm::lessThanEqual(c, glm::ivec3(9))));
@@ -115,7 +115,7 @@ TEST(Voxelize, SphereStaysWithinTheShellBoundsAndClosed) {
     const float r = 0.4f, h = 0.025f;
     const glm::vec3 center(0.51f, 0.49f, 0.505f);
     Scene scene = sceneWith({makeSphere(glm::scale(glm::translate(glm::mat4(1.0f), center), glm::vec3(r)), 0, 32)});
-    GeometryVolume v = voxelize(scene, h);
+    SparseGeometryVolume v = voxelize(scene, h);
     // The mesh lies between the sphere and the sphere shrunk by the faces' sagitta.
     const float inner = r * std::cos(3.14159265f / 16.0f), slack = 1e-4f * h;
     std::set<std::tuple<int, int, int>> occupied;
@@ -143,7 +143,7 @@ TEST(Voxelize, PlaneOnVoxelBoundariesTouchesBothLayersAndCountsAreaOnce) {
     // z = 0.5 is the face between layers 3 and 4 (h = 0.125, exact in binary); x and y run from
     // face 0 to face 8. Closed voxel boxes: columns -1..8 in x and y, layers 3 and 4.
     Mesh quad = makeQuad({glm::vec3(0, 0, 0.5f), glm::vec3(1, 0, 0.5f), glm::vec3(1, 1, 0.5f), glm::vec3(0, 1, 0.5f)}, 0);
-    GeometryVolume v = voxelize(sceneWith({quad}), 0.125f);
+    SparseGeometryVolume v = voxelize(sceneWith({quad}), 0.125f);
     EXPECT_EQ(v.activeVoxelCount(), 10u * 10u * 2u);
     IndexBox b = v.indexBounds();
     EXPECT_EQ(b.min, glm::ivec3(-1, -1, 3));
@@ -158,7 +158,7 @@ TEST(Voxelize, PlaneOnVoxelBoundariesTouchesBothLayersAndCountsAreaOnce) {
 TEST(Voxelize, TiltedTriangleMatchesIndependentClippingAndDenseSamples) {
     const float h = 0.1f;
     glm::vec3 a(0.013f, 0.021f, 0.37f), b(1.31f, 0.27f, 0.05f), c(0.42f, 1.17f, 0.93f);
-    GeometryVolume v = voxelize(sceneWith({makePolygons({a, b, c}, {{0, 1, 2}}, 0)}), h);
+    SparseGeometryVolume v = voxelize(sceneWith({makePolygons({a, b, c}, {{0, 1, 2}}, 0)}), h);
     // Bounds: every voxel the exact clip gives area is occupied; every occupied voxel's box,
     // grown by a hair, still meets the triangle.
     std::size_t withArea = 0, occupied = 0;
@@ -199,7 +199,7 @@ TEST(Voxelize, BadTrianglesAreSkippedAndCounted) {
     m.materialIds.assign(6, 0);
     VoxelizeSettings settings;
     settings.voxelSize = 0.1f;
-    GeometryVolume v = voxelizeScene(sceneWith({m}), settings);
+    SparseGeometryVolume v = voxelizeScene(sceneWith({m}), settings);
     EXPECT_EQ(v.stats().triangles, 6u);
     EXPECT_EQ(v.stats().trianglesUsed, 1u);
     EXPECT_EQ(v.stats().skippedDegenerate, 3u);  // collinear, repeated index, index out of range
@@ -219,7 +219,7 @@ TEST(Voxelize, EmptySceneGivesAnEmptyVolume) {
     VoxelizeSettings settings;
     settings.voxelSize = 0.1f;
     settings.levels = 2;
-    GeometryVolume v = voxelizeScene(Scene{}, settings);
+    SparseGeometryVolume v = voxelizeScene(Scene{}, settings);
     EXPECT_EQ(v.levelCount(), 2);
     EXPECT_EQ(v.activeVoxelCount(0), 0u);
     EXPECT_TRUE(v.indexBounds().empty());
@@ -243,6 +243,6 @@ TEST(Voxelize, AbsurdResolutionIsRefusedBeforeAllocating) {
     EXPECT_THROW(voxelizeScene(scene, settings), InputError);
     // The estimate bounds the real count from above on ordinary input.
     settings.voxelSize = 0.02f;
-    GeometryVolume v = voxelizeScene(scene, settings);
+    SparseGeometryVolume v = voxelizeScene(scene, settings);
     EXPECT_GE(v.stats().estimatedVoxels, v.activeVoxelCount());
 }

@@ -20,7 +20,7 @@ Scene sceneWith(const std::vector<Mesh>& meshes, std::vector<Material> materials
     return scene;
 }
 
-GeometryVolume voxelize(const Scene& scene, float h, int levels = 1, BlockerFit fit = BlockerFit::PlaneExact) {
+SparseGeometryVolume voxelize(const Scene& scene, float h, int levels = 1, BlockerFit fit = BlockerFit::PlaneExact) {
     VoxelizeSettings settings;
     settings.voxelSize = h;
     settings.levels = levels;
@@ -50,7 +50,7 @@ TEST(Blocker, ShBasisFollowsTheStatedConvention) {
 }
 
 TEST(Blocker, FullWallBlocksAlongItsNormalAndNotAlongItsPlane) {
-    GeometryVolume v = voxelize(sceneWith({wall()}), 0.25f);
+    SparseGeometryVolume v = voxelize(sceneWith({wall()}), 0.25f);
     for (glm::ivec3 c : {glm::ivec3(0, 0, 1), glm::ivec3(3, 5, 1), glm::ivec3(-2, 4, 1)}) {
         glm::vec4 sh = v.blockerSH(c);
         EXPECT_NEAR(evaluateBlocker(sh, {0, 0, 1}), 1.0f, 1e-4f);
@@ -67,7 +67,7 @@ TEST(Blocker, FullWallBlocksAlongItsNormalAndNotAlongItsPlane) {
         for (const glm::vec3& w : kAxes) EXPECT_EQ(evaluateBlocker(v.blockerSH(c), w), 0.0f);
     }
     // The seeds' literal projection of the clamped cosine: 3/4 along the normal, 1/4 in plane.
-    GeometryVolume p = voxelize(sceneWith({wall()}), 0.25f, 1, BlockerFit::Projection);
+    SparseGeometryVolume p = voxelize(sceneWith({wall()}), 0.25f, 1, BlockerFit::Projection);
     EXPECT_NEAR(evaluateBlocker(p.blockerSH({0, 0, 1}), {0, 0, 1}), 0.75f, 1e-4f);
     EXPECT_NEAR(evaluateBlocker(p.blockerSH({0, 0, 1}), {1, 0, 0}), 0.25f, 1e-4f);
 }
@@ -76,7 +76,7 @@ TEST(Blocker, HalfCoveredVoxelBlocksHalf) {
     // The wall ends at x = 0.125, halfway through voxel column 0.
     Mesh half = makeQuad({glm::vec3(-1, -1, 0.3f), glm::vec3(0.125f, -1, 0.3f), glm::vec3(0.125f, 2, 0.3f),
                           glm::vec3(-1, 2, 0.3f)}, 0);
-    GeometryVolume v = voxelize(sceneWith({half}), 0.25f);
+    SparseGeometryVolume v = voxelize(sceneWith({half}), 0.25f);
     EXPECT_NEAR(evaluateBlocker(v.blockerSH({0, 2, 1}), {0, 0, 1}), 0.5f, 1e-4f);
     EXPECT_NEAR(evaluateBlocker(v.blockerSH({-1, 2, 1}), {0, 0, 1}), 1.0f, 1e-4f);
 }
@@ -85,7 +85,7 @@ TEST(Blocker, ClosedObjectBlocksItsMeanSilhouetteInEveryDirection) {
     // A cube of side h/2 inside one voxel: surface 6/4 of a face, net normal 0, so by Cauchy's
     // formula it blocks (6/4)/4 = 0.375 from every direction.
     glm::mat4 t = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)), glm::vec3(0.5f));
-    GeometryVolume v = voxelize(sceneWith({makeBox(t, 0)}), 1.0f);
+    SparseGeometryVolume v = voxelize(sceneWith({makeBox(t, 0)}), 1.0f);
     ASSERT_EQ(v.activeVoxelCount(), 1u);
     glm::vec4 sh = v.blockerSH({0, 0, 0});
     for (const glm::vec3& w : kAxes) EXPECT_NEAR(evaluateBlocker(sh, w), 0.375f, 1e-5f);
@@ -112,7 +112,7 @@ TEST(Albedo, AreaWeightedAcrossMaterialsAndTextured) {
     tex.rgba = {255, 255, 255, 255, 0, 0, 0, 255};
     tex.averageLinear = glm::vec3(0.5f);
     scene.textures.push_back(tex);
-    GeometryVolume v = voxelize(scene, 0.1f);
+    SparseGeometryVolume v = voxelize(scene, 0.1f);
     EXPECT_NEAR(glm::length(v.albedo({2, 4, 0}) - glm::vec3(1, 0, 0)), 0.0f, 1e-5f);
     EXPECT_NEAR(glm::length(v.albedo({8, 4, 0}) - glm::vec3(0, 1, 0)), 0.0f, 1e-5f);
     EXPECT_NEAR(glm::length(v.albedo({5, 4, 0}) - glm::vec3(0.5f, 0.5f, 0)), 0.0f, 1e-4f);
@@ -124,11 +124,11 @@ TEST(Levels, CoarseLevelsNestAndMatchDirectVoxelization) {
     glm::mat4 t = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.43f, 0.51f, 0.47f)), 0.7f, glm::vec3(1, 1, 0));
     Scene scene = sceneWith({makeSphere(glm::scale(t, glm::vec3(0.3f)), 0, 24), makeBox(glm::scale(t, glm::vec3(0.5f, 0.2f, 0.3f)), 0)});
     const float h = 0.02f;
-    GeometryVolume v = voxelize(scene, h, 3);
+    SparseGeometryVolume v = voxelize(scene, h, 3);
     ASSERT_EQ(v.levelCount(), 3);
     for (int level = 1; level < 3; ++level) {
         EXPECT_FLOAT_EQ(v.voxelSize(level), h * float(1 << level));
-        GeometryVolume direct = voxelize(scene, h * float(1 << level));
+        SparseGeometryVolume direct = voxelize(scene, h * float(1 << level));
         EXPECT_EQ(v.activeVoxelCount(level), direct.activeVoxelCount());
         IndexBox b = direct.indexBounds();
         int mismatches = 0;
@@ -151,7 +151,7 @@ TEST(Levels, CoarseLevelsNestAndMatchDirectVoxelization) {
 TEST(Bricks, ActiveBricksCoverOccupancyAndDilation) {
     Scene scene = sceneWith({makeSphere(glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f)), glm::vec3(0.25f)), 0)});
     const float h = 0.02f;
-    GeometryVolume v = voxelize(scene, h);
+    SparseGeometryVolume v = voxelize(scene, h);
     for (int k : {0, 1, 3}) {
         std::vector<Brick> bricks = v.activeBricks(0, k);
         std::set<std::tuple<int, int, int>> set;

@@ -23,7 +23,7 @@ using Key = std::tuple<int, int, int>;
 double occupancyIoU(const Scene& scene, float voxelSize, std::size_t* sizes = nullptr) {
     VoxelizeSettings settings;
     settings.voxelSize = voxelSize;
-    GeometryVolume volume = voxelizeScene(scene, settings);
+    SparseGeometryVolume volume = voxelizeScene(scene, settings);
     std::set<Key> oracle;
     for (const glm::ivec3& v : meshToVolumeSurfaceVoxels(scene, voxelSize)) oracle.insert({v.x, v.y, v.z});
     std::size_t both = 0, ours = 0;

@@ -73,7 +73,7 @@ int benchVoxelize(const std::vector<std::string>& argv) {
         double best = 1e30;
         std::uint64_t active = 0, bytes = 0;
         for (int r = 0; r < repeats; ++r) {
-            GeometryVolume v = voxelizeScene(scene, settings);
+            SparseGeometryVolume v = voxelizeScene(scene, settings);
             best = std::min(best, v.stats().seconds);
             active = v.activeVoxelCount();
             bytes = v.memoryBytes();

@@ -72,7 +72,7 @@ int runVoxelize(const std::vector<std::string>& argv) {
     Scene scene = loadSceneArgument(source);
     ProgressBar bar;
     settings.progress = [&bar](float f) { bar.update(f); };
-    GeometryVolume volume = voxelizeScene(scene, settings);
+    SparseGeometryVolume volume = voxelizeScene(scene, settings);
     const VoxelizeStats& s = volume.stats();
     if (s.trianglesUsed == 0)
         throw InputError(source + ": no valid triangles to voxelize (" + std::to_string(s.skippedNonFinite) +

@@ -82,61 +82,61 @@ std::string gridName(const std::string& base, int level) {
     return level == 0 ? base : base + "_L" + std::to_string(level);
 }
 
-GeometryVolume::GeometryVolume() : grids_(std::make_unique<detail::GeometryGrids>()) {}
-GeometryVolume::~GeometryVolume() = default;
-GeometryVolume::GeometryVolume(GeometryVolume&&) noexcept = default;
-GeometryVolume& GeometryVolume::operator=(GeometryVolume&&) noexcept = default;
+SparseGeometryVolume::SparseGeometryVolume() : grids_(std::make_unique<detail::GeometryGrids>()) {}
+SparseGeometryVolume::~SparseGeometryVolume() = default;
+SparseGeometryVolume::SparseGeometryVolume(SparseGeometryVolume&&) noexcept = default;
+SparseGeometryVolume& SparseGeometryVolume::operator=(SparseGeometryVolume&&) noexcept = default;
 
-detail::GeometryGrids& GeometryVolume::grids() { return *grids_; }
-const detail::GeometryGrids& GeometryVolume::grids() const { return *grids_; }
+detail::GeometryGrids& SparseGeometryVolume::grids() { return *grids_; }
+const detail::GeometryGrids& SparseGeometryVolume::grids() const { return *grids_; }
 
-int GeometryVolume::levelCount() const { return int(grids_->levels.size()); }
-bool GeometryVolume::hasSdf() const { return bool(grids_->sdf); }
-const std::string& GeometryVolume::sourceHash() const { return grids_->sourceHash; }
-const VoxelizeStats& GeometryVolume::stats() const { return grids_->stats; }
+int SparseGeometryVolume::levelCount() const { return int(grids_->levels.size()); }
+bool SparseGeometryVolume::hasSdf() const { return bool(grids_->sdf); }
+const std::string& SparseGeometryVolume::sourceHash() const { return grids_->sourceHash; }
+const VoxelizeStats& SparseGeometryVolume::stats() const { return grids_->stats; }
 
 namespace {
 const detail::LevelGrids& levelOf(const detail::GeometryGrids& g, int level) {
     if (level < 0 || level >= int(g.levels.size()))
-        throw std::out_of_range("GeometryVolume: no level " + std::to_string(level));
+        throw std::out_of_range("SparseGeometryVolume: no level " + std::to_string(level));
     return g.levels[std::size_t(level)];
 }
 openvdb::Coord coord(const glm::ivec3& v) { return openvdb::Coord(v.x, v.y, v.z); }
 }  // namespace
 
-float GeometryVolume::voxelSize(int level) const { return float(levelOf(*grids_, level).voxelSize); }
+float SparseGeometryVolume::voxelSize(int level) const { return float(levelOf(*grids_, level).voxelSize); }
 
-bool GeometryVolume::occupied(const glm::ivec3& ijk, int level) const {
+bool SparseGeometryVolume::occupied(const glm::ivec3& ijk, int level) const {
     return levelOf(*grids_, level).occupancy->tree().isValueOn(coord(ijk));
 }
 
-glm::vec4 GeometryVolume::blockerSH(const glm::ivec3& ijk, int level) const {
+glm::vec4 SparseGeometryVolume::blockerSH(const glm::ivec3& ijk, int level) const {
     const auto& l = levelOf(*grids_, level);
     glm::vec4 sh;
     for (int c = 0; c < 4; ++c) sh[c] = l.blocker[c]->tree().getValue(coord(ijk));
     return sh;
 }
 
-glm::vec3 GeometryVolume::albedo(const glm::ivec3& ijk, int level) const {
+glm::vec3 SparseGeometryVolume::albedo(const glm::ivec3& ijk, int level) const {
     auto v = levelOf(*grids_, level).albedo->tree().getValue(coord(ijk));
     return {v.x(), v.y(), v.z()};
 }
 
-glm::vec3 GeometryVolume::normal(const glm::ivec3& ijk, int level) const {
+glm::vec3 SparseGeometryVolume::normal(const glm::ivec3& ijk, int level) const {
     auto v = levelOf(*grids_, level).normal->tree().getValue(coord(ijk));
     return {v.x(), v.y(), v.z()};
 }
 
-float GeometryVolume::sdf(const glm::ivec3& ijk) const {
-    if (!grids_->sdf) throw std::logic_error("GeometryVolume: no sdf grid");
+float SparseGeometryVolume::sdf(const glm::ivec3& ijk) const {
+    if (!grids_->sdf) throw std::logic_error("SparseGeometryVolume: no sdf grid");
     return grids_->sdf->tree().getValue(coord(ijk));
 }
 
-std::uint64_t GeometryVolume::activeVoxelCount(int level) const {
+std::uint64_t SparseGeometryVolume::activeVoxelCount(int level) const {
     return levelOf(*grids_, level).occupancy->activeVoxelCount();
 }
 
-IndexBox GeometryVolume::indexBounds(int level) const {
+IndexBox SparseGeometryVolume::indexBounds(int level) const {
     openvdb::CoordBBox box = levelOf(*grids_, level).occupancy->evalActiveVoxelBoundingBox();
     IndexBox b;
     if (box.empty()) return b;
@@ -145,15 +145,15 @@ IndexBox GeometryVolume::indexBounds(int level) const {
     return b;
 }
 
-glm::vec3 GeometryVolume::voxelCenter(const glm::ivec3& ijk, int level) const {
+glm::vec3 SparseGeometryVolume::voxelCenter(const glm::ivec3& ijk, int level) const {
     return (glm::vec3(ijk) + 0.5f) * voxelSize(level);
 }
 
-glm::ivec3 GeometryVolume::voxelAt(const glm::vec3& world, int level) const {
+glm::ivec3 SparseGeometryVolume::voxelAt(const glm::vec3& world, int level) const {
     return glm::ivec3(glm::floor(world / voxelSize(level)));
 }
 
-std::vector<Brick> GeometryVolume::activeBricks(int level, int dilateVoxels) const {
+std::vector<Brick> SparseGeometryVolume::activeBricks(int level, int dilateVoxels) const {
     const auto& l = levelOf(*grids_, level);
     openvdb::BoolTree tree(l.occupancy->tree());
     if (dilateVoxels > 0)
@@ -175,19 +175,19 @@ std::vector<Brick> GeometryVolume::activeBricks(int level, int dilateVoxels) con
     return bricks;
 }
 
-std::uint64_t GeometryVolume::memoryBytes() const {
+std::uint64_t SparseGeometryVolume::memoryBytes() const {
     std::uint64_t bytes = 0;
     for (const auto& grid : grids_->all()) bytes += grid->memUsage();
     return bytes;
 }
 
-GeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& settings) {
+SparseGeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& settings) {
     if (!(settings.voxelSize > 0.0f) || !std::isfinite(settings.voxelSize))
         throw InputError("--voxel-size: must be a positive finite number");
     if (settings.levels < 1 || settings.levels > 16) throw InputError("--levels: must be in [1, 16]");
     initializeOpenVdb();
     auto start = std::chrono::steady_clock::now();
-    GeometryVolume volume;
+    SparseGeometryVolume volume;
     detail::GeometryGrids& g = volume.grids();
     g.blockerFit = settings.blockerFit;
     g.sourceHash = geometryHash(scene, settings);

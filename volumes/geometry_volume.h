@@ -64,12 +64,13 @@ struct IndexBox {
     bool empty() const { return max.x < min.x || max.y < min.y || max.z < min.z; }
 };
 
-class GeometryVolume {
+// Named apart from gi/lpv's dense per-cascade GeometryVolume, which can be filled from this one.
+class SparseGeometryVolume {
 public:
-    GeometryVolume();
-    ~GeometryVolume();
-    GeometryVolume(GeometryVolume&&) noexcept;
-    GeometryVolume& operator=(GeometryVolume&&) noexcept;
+    SparseGeometryVolume();
+    ~SparseGeometryVolume();
+    SparseGeometryVolume(SparseGeometryVolume&&) noexcept;
+    SparseGeometryVolume& operator=(SparseGeometryVolume&&) noexcept;
 
     int levelCount() const;
     float voxelSize(int level = 0) const;
@@ -106,7 +107,7 @@ private:
 
 // Voxelizes every mesh of the scene. Throws InputError on an unusable setting (voxel size,
 // levels, estimated voxel count above maxVoxels). Bad triangles are skipped and counted.
-GeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& settings);
+SparseGeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& settings);
 
 // A 64-bit hash (hex) of everything the volume depends on: positions, indices, uvs, material
 // albedos and textures, and the voxel settings.
@@ -114,12 +115,12 @@ std::string geometryHash(const Scene& scene, const VoxelizeSettings& settings);
 
 // .vdb files: all grids of all levels plus file metadata. Written to a temporary file then
 // renamed. Reading throws InputError ("<path>: <problem>") on absent, corrupt or foreign files.
-void writeGeometryVolume(const std::string& path, const GeometryVolume& volume);
-GeometryVolume readGeometryVolume(const std::string& path);
+void writeGeometryVolume(const std::string& path, const SparseGeometryVolume& volume);
+SparseGeometryVolume readGeometryVolume(const std::string& path);
 
 // Reuses cacheDir/geometry-<hash>.vdb when it exists and its hash matches, else voxelizes and
 // writes it. `fromCache` (optional) tells which happened.
-GeometryVolume loadOrBuildGeometryVolume(const Scene& scene, const VoxelizeSettings& settings,
+SparseGeometryVolume loadOrBuildGeometryVolume(const Scene& scene, const VoxelizeSettings& settings,
                                          const std::string& cacheDir, bool* fromCache = nullptr);
 
 // Grid names: level 0 has the plain name ("occupancy"), level L > 0 the suffix "_L<L>".

@@ -64,7 +64,7 @@ std::string geometryHash(const Scene& scene, const VoxelizeSettings& settings) {
     return hex;
 }
 
-void writeGeometryVolume(const std::string& path, const GeometryVolume& volume) {
+void writeGeometryVolume(const std::string& path, const SparseGeometryVolume& volume) {
     initializeOpenVdb();
     const detail::GeometryGrids& g = volume.grids();
     openvdb::MetaMap meta;
@@ -112,7 +112,7 @@ std::string stringMeta(const openvdb::MetaMap& meta, const std::string& key) {
 
 }  // namespace
 
-GeometryVolume readGeometryVolume(const std::string& path) {
+SparseGeometryVolume readGeometryVolume(const std::string& path) {
     initializeOpenVdb();
     if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not found");
     openvdb::GridPtrVec grids;
@@ -126,7 +126,7 @@ GeometryVolume readGeometryVolume(const std::string& path) {
     } catch (const std::exception& e) {
         throw InputError(path + ": not a readable .vdb file (" + std::string(e.what()) + ")");
     }
-    GeometryVolume volume;
+    SparseGeometryVolume volume;
     detail::GeometryGrids& g = volume.grids();
     g.sourceHash = stringMeta(*meta, "voxgi_source_hash");
     g.blockerFit = stringMeta(*meta, "voxgi_blocker_fit") == "projection" ? BlockerFit::Projection : BlockerFit::PlaneExact;
@@ -145,14 +145,14 @@ GeometryVolume readGeometryVolume(const std::string& path) {
     return volume;
 }
 
-GeometryVolume loadOrBuildGeometryVolume(const Scene& scene, const VoxelizeSettings& settings,
+SparseGeometryVolume loadOrBuildGeometryVolume(const Scene& scene, const VoxelizeSettings& settings,
                                          const std::string& cacheDir, bool* fromCache) {
     const std::string hash = geometryHash(scene, settings);
     const std::string path = (std::filesystem::path(cacheDir) / ("geometry-" + hash + ".vdb")).string();
     if (fromCache) *fromCache = false;
     if (std::filesystem::is_regular_file(path)) {
         try {
-            GeometryVolume cached = readGeometryVolume(path);
+            SparseGeometryVolume cached = readGeometryVolume(path);
             if (cached.sourceHash() == hash && cached.levelCount() == settings.levels && cached.hasSdf() == settings.sdf) {
                 if (fromCache) *fromCache = true;
                 return cached;
@@ -161,7 +161,7 @@ GeometryVolume loadOrBuildGeometryVolume(const Scene& scene, const VoxelizeSetti
             // A damaged cache entry is rebuilt below.
         }
     }
-    GeometryVolume volume = voxelizeScene(scene, settings);
+    SparseGeometryVolume volume = voxelizeScene(scene, settings);
     std::error_code ec;
     std::filesystem::create_directories(cacheDir, ec);
     if (ec) throw InputError(cacheDir + ": cannot create cache directory (" + ec.message() + ")");

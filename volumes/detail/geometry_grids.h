@@ -1,4 +1,4 @@
-// The OpenVDB side of GeometryVolume, for .cpp files only (never include from a public header).
+// The OpenVDB side of SparseGeometryVolume, for .cpp files only (never include from a public header).
 #pragma once
 
 #include <array>

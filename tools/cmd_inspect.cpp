@@ -1,0 +1,110 @@
+// voxgi inspect: what a .vdb file holds, per grid (in the spirit of vdb_print), value
+// histograms, and coloured slices to PNG.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "scenes/errors.h"
+#include "scenes/image.h"
+#include "tools/commands.h"
+#include "tools/scene_arg.h"
+#include "volumes/vdb_inspect.h"
+
+namespace voxgi::cli {
+
+namespace {
+
+const char* kUsage =
+    "voxgi inspect FILE.vdb [--stats [--bins N]] [--metadata] [--slice x|y|z=WORLD -o SLICE.png [--grid NAME]]\n"
+    "  --stats: per-grid histogram of values (vector lengths for vector grids)\n"
+    "  --slice: the voxel layer at a world coordinate, coloured (albedo in sRGB, vectors 0.5+0.5v,\n"
+    "           scalars on a blue-red ramp); --grid picks the grid (default albedo, else the first)";
+
+std::string formatBytes(std::uint64_t bytes) {
+    char text[32];
+    if (bytes >= (1ull << 20)) std::snprintf(text, sizeof text, "%.2f MiB", double(bytes) / double(1 << 20));
+    else std::snprintf(text, sizeof text, "%.1f KiB", double(bytes) / 1024.0);
+    return text;
+}
+
+void printGrids(const std::string& path, const VdbFileInfo& info, bool metadata) {
+    std::printf("%s: %zu grid(s)\n", path.c_str(), info.grids.size());
+    for (const auto& [key, value] : info.metadata)
+        if (metadata || key.rfind("voxgi_", 0) == 0) std::printf("  %s = %s\n", key.c_str(), value.c_str());
+    for (const VdbGridInfo& g : info.grids) {
+        std::printf("%-16s %-6s class %-11s voxel %g", g.name.c_str(), g.valueType.c_str(), g.gridClass.c_str(),
+                    g.voxelSize.x);
+        if (g.voxelSize.y != g.voxelSize.x || g.voxelSize.z != g.voxelSize.x)
+            std::printf("x%gx%g", g.voxelSize.y, g.voxelSize.z);
+        std::printf("  active %llu", static_cast<unsigned long long>(g.activeVoxels));
+        if (g.indexBox.empty()) {
+            std::printf("  (empty)");
+        } else {
+            std::printf("  index [%d %d %d]..[%d %d %d]  world [%g %g %g]..[%g %g %g]", g.indexBox.min.x,
+                        g.indexBox.min.y, g.indexBox.min.z, g.indexBox.max.x, g.indexBox.max.y, g.indexBox.max.z,
+                        g.worldMin.x, g.worldMin.y, g.worldMin.z, g.worldMax.x, g.worldMax.y, g.worldMax.z);
+        }
+        std::printf("  memory %s\n", formatBytes(g.memoryBytes).c_str());
+        if (metadata)
+            for (const auto& [key, value] : g.metadata) std::printf("    %s = %s\n", key.c_str(), value.c_str());
+    }
+}
+
+void printHistograms(const std::vector<VdbHistogram>& histograms) {
+    for (const VdbHistogram& h : histograms) {
+        std::uint64_t total = 0, peak = 1;
+        for (auto c : h.counts) total += c, peak = std::max(peak, c);
+        std::printf("%s (%s, %llu active, range [%g, %g]):\n", h.grid.c_str(), h.quantity.c_str(),
+                    static_cast<unsigned long long>(total), h.min, h.max);
+        for (std::size_t b = 0; b < h.counts.size(); ++b) {
+            double lo = h.min + (h.max - h.min) * double(b) / double(h.counts.size());
+            double hi = h.min + (h.max - h.min) * double(b + 1) / double(h.counts.size());
+            int bar = int(40 * h.counts[b] / peak);
+            std::printf("  [%11.4g, %11.4g) %10llu %.*s\n", lo, hi, static_cast<unsigned long long>(h.counts[b]), bar,
+                        "########################################");
+        }
+    }
+}
+
+int runInspect(const std::vector<std::string>& argv) {
+    Args args(argv, {"--slice", "-o", "--grid", "--bins"}, {"--stats", "--metadata"});
+    args.requirePositional(1, kUsage);
+    const std::string path = args.positional()[0];
+    const int bins = args.integer("--bins", 10, 1, 1000);
+    auto sliceSpec = args.value("--slice");
+    auto out = args.value("-o");
+    if (sliceSpec && !out) throw InputError("--slice needs -o SLICE.png");
+    if (out && !sliceSpec) throw InputError("-o is only used with --slice");
+    int axis = -1;
+    double world = 0.0;
+    if (sliceSpec) {
+        const std::string& s = *sliceSpec;
+        char* end = nullptr;
+        if (s.size() > 2 && s[1] == '=' && (s[0] == 'x' || s[0] == 'y' || s[0] == 'z')) {
+            axis = s[0] - 'x';
+            world = std::strtod(s.c_str() + 2, &end);
+        }
+        if (axis < 0 || !end || *end != '\0' || !std::isfinite(world))
+            throw InputError("--slice: expected x=WORLD, y=WORLD or z=WORLD, got '" + s + "'");
+        requireWritable(*out, "-o");
+    }
+
+    VdbFileInfo info = inspectVdbFile(path);
+    printGrids(path, info, args.flag("--metadata"));
+    if (args.flag("--stats")) printHistograms(vdbHistograms(path, bins));
+    if (sliceSpec) {
+        VdbSlice slice = sliceVdbFile(path, args.value("--grid", ""), axis, world);
+        writePngRgb8(*out, slice.width, slice.height, slice.rgb);
+        std::printf("wrote %s: grid %s, %c index %d, %dx%d", out->c_str(), slice.grid.c_str(), 'x' + axis,
+                    slice.indexPlane, slice.width, slice.height);
+        if (slice.valueMax > slice.valueMin) std::printf(", ramp [%g, %g]", slice.valueMin, slice.valueMax);
+        std::printf("\n");
+    }
+    return kOk;
+}
+
+}  // namespace
+
+VOXGI_REGISTER_COMMAND("inspect", kUsage, runInspect);
+
+}  // namespace voxgi::cli
