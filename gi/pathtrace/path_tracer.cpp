@@ -9,12 +9,14 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/pathtrace/integrator.h"
+#include "scenes/errors.h"
 
 namespace voxgi {
 
 namespace {
 
 constexpr int kTile = 16;
+constexpr double kMaxImageBytes = 6.0 * double(1 << 30);
 
 bool hasQuadGeometry(const Scene& scene) {
     Scene probe;
@@ -73,6 +75,12 @@ struct PathTracer::Impl {
         up = glm::cross(right, forward);
         tanHalfY = std::tan(glm::radians(c.fovYDegrees) * 0.5f);
         aspect = float(width) / float(height);
+        if (width <= 0 || height <= 0) throw InputError("path tracer: image size must be positive");
+        // Refuse before allocating: an absurd size would otherwise end in the OOM killer.
+        double bytes = double(width) * double(height) * double(sizeof(PixelSum) + 16 * sizeof(float));
+        if (bytes > kMaxImageBytes)
+            throw InputError("path tracer: " + std::to_string(width) + "x" + std::to_string(height) + " needs " +
+                             std::to_string(int(bytes / double(1 << 30))) + " GiB of accumulation and image buffers");
         sums.resize(std::size_t(width) * std::size_t(height));
     }
 
