@@ -196,7 +196,7 @@ TEST(VoxelizeCli, BadInputExitsTwoWithOneLineAndNoOutput) {
         EXPECT_EQ(lineCount(r.output), 1) << r.output;
         EXPECT_NE(r.output.find(file), std::string::npos) << r.output;
     }
-    auto absurd = test::runVoxgi("voxelize cornell-box --voxel-size 1e-6 -o " + dir + "/huge.vdb");
+    auto absurd = test::runVoxgi("voxelize cornell-box --voxel-size 1e-4 -o " + dir + "/huge.vdb");
     EXPECT_EQ(absurd.exitCode, 2) << absurd.output;
     EXPECT_EQ(lineCount(absurd.output), 1) << absurd.output;
     EXPECT_NE(absurd.output.find("--max-voxels"), std::string::npos) << absurd.output;
@@ -205,6 +205,7 @@ TEST(VoxelizeCli, BadInputExitsTwoWithOneLineAndNoOutput) {
     EXPECT_EQ(capped.exitCode, 2) << capped.output;
     EXPECT_FALSE(test::fileExists(dir + "/capped.vdb"));
     EXPECT_EQ(test::runVoxgi("voxelize cornell-box --voxel-size -1 -o " + dir + "/neg.vdb").exitCode, 2);
+    EXPECT_EQ(test::runVoxgi("voxelize cornell-box --voxel-size 1e-9 -o " + dir + "/tiny.vdb").exitCode, 2);
     EXPECT_EQ(test::runVoxgi("voxelize cornell-box -o " + dir + "/nosize.vdb").exitCode, 2);
     // A mesh whose every triangle has zero area.
     test::writeFile(dir + "/degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 1\nv 0 0 3\nf 1 2 3\nf 1 4 5\n");

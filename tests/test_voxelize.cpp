@@ -230,13 +230,15 @@ TEST(Voxelize, EmptySceneGivesAnEmptyVolume) {
 TEST(Voxelize, AbsurdResolutionIsRefusedBeforeAllocating) {
     Scene scene = test::cornellBox();
     VoxelizeSettings settings;
-    settings.voxelSize = 1e-5f;
+    settings.voxelSize = 1e-4f;  // ~2e8 voxels on the 0.55 m box
     try {
         voxelizeScene(scene, settings);
         FAIL() << "expected a refusal";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("--max-voxels"), std::string::npos) << e.what();
     }
+    settings.voxelSize = 1e-6f;  // below what OpenVDB transforms accept
+    EXPECT_THROW(voxelizeScene(scene, settings), InputError);
     settings.voxelSize = 0.0f;
     EXPECT_THROW(voxelizeScene(scene, settings), InputError);
     settings.voxelSize = std::numeric_limits<float>::quiet_NaN();
