@@ -13,34 +13,46 @@ namespace voxgi {
 namespace {
 constexpr float kPi = 3.14159265358979323846f;
 
-// c^e by repeated squaring when e is a whole number (the default 50): far cheaper than powf
-// in the innermost loop, and equal to it within float rounding.
-float weightPow(float c, float e) {
-    if (e == float(int(e)) && e >= 1.0f && e <= 1024.0f) {
-        int k = int(e);
-        float result = 1.0f, base = c;
-        while (k) {
-            if (k & 1) result *= base;
-            base *= base;
-            k >>= 1;
+constexpr int kLanes = 8;
+
+// One job's rays as structure-of-arrays, padded to whole lanes with zero-weight rays, so the
+// per-texel loops below run eight rays at a time (the compiler vectorizes the lane loops).
+struct RayLanes {
+    int count = 0;  // padded
+    std::vector<float> dx, dy, dz, r, g, b, front, distance;
+
+    void fill(const RaySet& rays, const glm::vec4* values, float maxDistance) {
+        count = (rays.blendRays + kLanes - 1) / kLanes * kLanes;
+        for (auto* v : {&dx, &dy, &dz, &r, &g, &b, &front, &distance}) v->assign(std::size_t(count), 0.0f);
+        for (int i = 0; i < rays.blendRays; ++i) {
+            const glm::vec3& d = rays.blendDirection(i);
+            const glm::vec4& v = values[i];
+            dx[std::size_t(i)] = d.x, dy[std::size_t(i)] = d.y, dz[std::size_t(i)] = d.z;
+            // Backfaces carry no light; their distance is shortened (kBackfaceDistanceScale).
+            bool isFront = v.w >= 0.0f;
+            front[std::size_t(i)] = isFront ? 1.0f : 0.0f;
+            r[std::size_t(i)] = isFront ? v.x : 0.0f, g[std::size_t(i)] = isFront ? v.y : 0.0f;
+            b[std::size_t(i)] = isFront ? v.z : 0.0f;
+            distance[std::size_t(i)] = std::min(isFront ? v.w : -kBackfaceDistanceScale * v.w, maxDistance);
         }
-        return result;
     }
-    return std::pow(c, e);
-}
+};
 
 float maxComponent(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 
-glm::vec4 blendIrradianceTexel(const BlendParams& bp, const RaySet& rays, const glm::vec4* values, glm::vec3 dir,
-                               glm::vec4 previous, float hysteresis) {
+glm::vec4 blendIrradianceTexel(const BlendParams& bp, const RayLanes& rays, glm::vec3 dir, glm::vec4 previous,
+                               float hysteresis) {
+    float sr[kLanes] = {}, sg[kLanes] = {}, sb[kLanes] = {}, sw[kLanes] = {};
+    for (int i = 0; i < rays.count; i += kLanes)
+        for (int j = 0; j < kLanes; ++j) {
+            std::size_t k = std::size_t(i + j);
+            float c = dir.x * rays.dx[k] + dir.y * rays.dy[k] + dir.z * rays.dz[k];
+            float w = std::max(0.0f, c) * rays.front[k];
+            sr[j] += w * rays.r[k], sg[j] += w * rays.g[k], sb[j] += w * rays.b[k], sw[j] += w;
+        }
     glm::vec3 sum(0.0f);
     float wsum = 0.0f;
-    for (int i = 0; i < rays.blendRays; ++i) {
-        if (values[i].w < 0.0f) continue;  // backfaces carry no light
-        float w = std::max(0.0f, glm::dot(dir, rays.blendDirection(i)));
-        sum += w * glm::vec3(values[i]);
-        wsum += w;
-    }
+    for (int j = 0; j < kLanes; ++j) sum += glm::vec3(sr[j], sg[j], sb[j]), wsum += sw[j];
     if (!(wsum > 0.0f)) return previous;  // no ray in this hemisphere: keep what we had
     // pi * (cosine-weighted mean radiance) estimates the irradiance for uniform directions.
     glm::vec3 e = glm::max(kPi * sum / wsum, glm::vec3(0.0f));
@@ -56,19 +68,37 @@ glm::vec4 blendIrradianceTexel(const BlendParams& bp, const RaySet& rays, const 
     return glm::vec4(glm::mix(encoded, prev, hysteresis), 1.0f);
 }
 
-glm::vec4 blendDistanceTexel(const BlendParams& bp, const RaySet& rays, const glm::vec4* values, glm::vec3 dir,
-                             glm::vec4 previous, float hysteresis, float maxDistance) {
+// Weights c^exponent: by repeated squaring when the exponent is a whole number (the default
+// 50), the same in shaders/ddgi/blend.comp.
+glm::vec4 blendDistanceTexel(const BlendParams& bp, const RayLanes& rays, glm::vec3 dir, glm::vec4 previous,
+                             float hysteresis) {
+    const float e = bp.distanceExponent;
+    const bool whole = e == float(int(e)) && e >= 1.0f && e <= 1024.0f;
+    float sd[kLanes] = {}, sd2[kLanes] = {}, sw[kLanes] = {};
+    for (int i = 0; i < rays.count; i += kLanes) {
+        float base[kLanes], w[kLanes];
+        for (int j = 0; j < kLanes; ++j) {
+            std::size_t k = std::size_t(i + j);
+            base[j] = std::max(0.0f, dir.x * rays.dx[k] + dir.y * rays.dy[k] + dir.z * rays.dz[k]);
+            w[j] = 1.0f;
+        }
+        if (whole) {
+            for (int bits = int(e); bits; bits >>= 1) {
+                if (bits & 1)
+                    for (int j = 0; j < kLanes; ++j) w[j] *= base[j];
+                for (int j = 0; j < kLanes; ++j) base[j] *= base[j];
+            }
+        } else {
+            for (int j = 0; j < kLanes; ++j) w[j] = base[j] > 0.0f ? std::pow(base[j], e) : 0.0f;
+        }
+        for (int j = 0; j < kLanes; ++j) {
+            float d = rays.distance[std::size_t(i + j)];
+            sd[j] += w[j] * d, sd2[j] += w[j] * d * d, sw[j] += w[j];
+        }
+    }
     glm::vec2 sum(0.0f);
     float wsum = 0.0f;
-    for (int i = 0; i < rays.blendRays; ++i) {
-        float c = std::max(0.0f, glm::dot(dir, rays.blendDirection(i)));
-        if (c <= 0.0f) continue;
-        float w = weightPow(c, bp.distanceExponent);
-        float d = values[i].w < 0.0f ? -kBackfaceDistanceScale * values[i].w : values[i].w;
-        d = std::min(d, maxDistance);
-        sum += w * glm::vec2(d, d * d);
-        wsum += w;
-    }
+    for (int j = 0; j < kLanes; ++j) sum += glm::vec2(sd[j], sd2[j]), wsum += sw[j];
     if (!(wsum > 0.0f)) return previous;
     glm::vec2 result = glm::mix(sum / wsum, glm::vec2(previous), hysteresis);
     return glm::vec4(result, 0.0f, 0.0f);
@@ -110,20 +140,21 @@ void CpuBlend::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sh
                      const std::vector<BlendJob>& jobs) {
     const BlendParams bp = BlendParams::from(field.desc());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        RayLanes lanes;
         for (std::size_t j = r.begin(); j != r.end(); ++j) {
             const BlendJob& job = jobs[j];
-            const glm::vec4* values = &shaded.values[std::size_t(job.rayBase)];
+            lanes.fill(rays, &shaded.values[std::size_t(job.rayBase)], job.maxDistance);
             for (int y = 0; y < bp.irradianceTexels; ++y)
                 for (int x = 0; x < bp.irradianceTexels; ++x) {
                     glm::vec4& t = field.irradiance.at(job.irradianceX + 1 + x, job.irradianceY + 1 + y);
-                    t = blendIrradianceTexel(bp, rays, values, oct::texelDirection(x, y, bp.irradianceTexels), t,
+                    t = blendIrradianceTexel(bp, lanes, oct::texelDirection(x, y, bp.irradianceTexels), t,
                                              job.hysteresis);
                 }
             for (int y = 0; y < bp.distanceTexels; ++y)
                 for (int x = 0; x < bp.distanceTexels; ++x) {
                     glm::vec4& t = field.distance.at(job.distanceX + 1 + x, job.distanceY + 1 + y);
-                    t = blendDistanceTexel(bp, rays, values, oct::texelDirection(x, y, bp.distanceTexels), t,
-                                           job.hysteresis, job.maxDistance);
+                    t = blendDistanceTexel(bp, lanes, oct::texelDirection(x, y, bp.distanceTexels), t,
+                                           job.hysteresis);
                 }
         }
     });

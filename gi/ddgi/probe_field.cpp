@@ -59,6 +59,16 @@ glm::vec4 Atlas::bilinear(glm::vec2 c) const {
     return glm::mix(glm::mix(a, b, t.x), glm::mix(c0, d, t.x), t.y);
 }
 
+glm::vec4 Atlas::bilinearInTile(glm::ivec2 tileIndex, glm::vec2 local) const {
+    glm::vec2 p = local - 0.5f;
+    glm::vec2 f = glm::floor(p);
+    glm::vec2 t = p - f;
+    int x0 = std::clamp(int(f.x), 0, tile - 2), y0 = std::clamp(int(f.y), 0, tile - 2);
+    const glm::vec4* q = &texels[(std::size_t(tileIndex.y * tilesX + tileIndex.x) * std::size_t(tile) + std::size_t(y0)) *
+                                     std::size_t(tile) + std::size_t(x0)];
+    return glm::mix(glm::mix(q[0], q[1], t.x), glm::mix(q[tile], q[tile + 1], t.x), t.y);
+}
+
 void Atlas::toRows(std::vector<glm::vec4>& rows) const {
     rows.resize(texels.size());
     for (int y = 0; y < height; ++y)

@@ -63,6 +63,9 @@ struct Atlas {
     const glm::vec4& at(int x, int y) const { return texels[index(x, y)]; }
     // Bilinear lookup at a texel coordinate (texel centres at .5), like GL_LINEAR.
     glm::vec4 bilinear(glm::vec2 coordinate) const;
+    // Bilinear lookup inside tile `tileIndex` (in tiles) at a coordinate local to the tile; the
+    // 2x2 footprint is clamped into the tile. The lookup the probe sampling uses.
+    glm::vec4 bilinearInTile(glm::ivec2 tileIndex, glm::vec2 local) const;
     void toRows(std::vector<glm::vec4>& rows) const;
     void fromRows(const std::vector<glm::vec4>& rows);
 };

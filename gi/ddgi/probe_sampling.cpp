@@ -40,7 +40,7 @@ glm::vec3 decodeHalf(glm::vec3 x, float halfGamma) {
 namespace {
 
 // The weighted cage gather shared by irradiance and occlusion lookups: `lookup(tile, dir)`
-// returns the value of the probe whose tile (in tiles) is given, `dir` being the unit
+// returns the value of the probe whose tile index is given, `dir` being the unit
 // direction from the probe to the (biased) point.
 template <typename Lookup>
 glm::vec4 gatherCage(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer, float* weightSum,
@@ -55,7 +55,6 @@ glm::vec4 gatherCage(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, 
         if (v.counts[a] < 2) alpha[a] = 0.0f;
 
     const int nd = desc.distanceTexels;
-    const int tileD = oct::tileSize(nd);
     glm::vec4 sum(0.0f);
     float wsum = 0.0f;
     for (int corner = 0; corner < 8; ++corner) {
@@ -64,7 +63,7 @@ glm::vec4 gatherCage(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, 
         if (glm::any(glm::greaterThanEqual(logical, v.counts))) continue;
         glm::ivec3 storage = v.storageOf(logical);
         int probe = v.probeBase + v.localIndex(storage);
-        glm::vec2 tile(float(storage.x + v.counts.x * storage.z), float(v.tileRow + storage.y));
+        glm::ivec2 tile(storage.x + v.counts.x * storage.z, v.tileRow + storage.y);
         const ProbeRecord& rec = field.probes[std::size_t(probe)];
         if (rec.state == ProbeState::Off) continue;
         glm::vec3 probePos = v.basePosition(logical) + rec.offset;
@@ -78,8 +77,7 @@ glm::vec4 gatherCage(const ProbeField& field, int vi, glm::vec3 p, glm::vec3 n, 
         glm::vec3 fromProbe = q - probePos;
         float r = glm::length(fromProbe);
         glm::vec3 dirFromProbe = r > 0.0f ? fromProbe / r : -n;
-        glm::vec2 dc = tile * float(tileD) + oct::tileCoordinate(dirFromProbe, nd);
-        glm::vec4 moments = field.distance.bilinear(dc);
+        glm::vec4 moments = field.distance.bilinearInTile(tile, oct::tileCoordinate(dirFromProbe, nd));
         w *= chebyshevVisibility(r, moments.x, moments.y);
         w = std::max(w, 1e-6f);
         // Crush tiny weights: the eye reads light leaking through a 1 % weight as full light.
@@ -117,12 +115,11 @@ glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int vi, glm::vec3 p, g
                                  float* weightSum) {
     const DdgiDesc& desc = field.desc();
     const int ni = desc.irradianceTexels;
-    const float tileI = float(oct::tileSize(ni));
     const glm::vec2 normalCoordinate = oct::tileCoordinate(n, ni);
     const float halfGamma = 0.5f * desc.irradianceGamma;
     float wsum = 0.0f;
-    glm::vec4 mean = gatherCage(field, vi, p, n, toViewer, &wsum, [&](glm::vec2 tile, glm::vec3) {
-        glm::vec3 encoded = glm::max(glm::vec3(field.irradiance.bilinear(tile * tileI + normalCoordinate)), glm::vec3(0.0f));
+    glm::vec4 mean = gatherCage(field, vi, p, n, toViewer, &wsum, [&](glm::ivec2 tile, glm::vec3) {
+        glm::vec3 encoded = glm::max(glm::vec3(field.irradiance.bilinearInTile(tile, normalCoordinate)), glm::vec3(0.0f));
         // Interpolate in a sqrt-like space (gamma/2), as RTXGI does, then square.
         return glm::vec4(decodeHalf(encoded, halfGamma), 0.0f);
     });
@@ -142,10 +139,9 @@ glm::vec3 sampleIrradiance(const ProbeField& field, glm::vec3 p, glm::vec3 n, gl
 glm::vec4 sampleOcclusion(const ProbeField& field, glm::vec3 p, glm::vec3 n) {
     if (field.occlusion.texels.empty()) return glm::vec4(1.0f);
     const int nd = field.desc().distanceTexels;
-    const float tileD = float(oct::tileSize(nd));
     auto perVolume = [&](int v) {
-        glm::vec4 value = gatherCage(field, v, p, n, n, nullptr, [&](glm::vec2 tile, glm::vec3 dirFromProbe) {
-            return field.occlusion.bilinear(tile * tileD + oct::tileCoordinate(dirFromProbe, nd));
+        glm::vec4 value = gatherCage(field, v, p, n, n, nullptr, [&](glm::ivec2 tile, glm::vec3 dirFromProbe) {
+            return field.occlusion.bilinearInTile(tile, oct::tileCoordinate(dirFromProbe, nd));
         });
         // No probe sees p: assume lit rather than invent a shadow.
         return value.x < 0.0f ? glm::vec4(1.0f) : value;

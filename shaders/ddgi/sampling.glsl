@@ -20,16 +20,15 @@ uniform sampler2D uIrradianceAtlas;
 uniform sampler2D uDistanceAtlas;
 layout(std430, binding = 5) readonly buffer ProbeData { vec4 probeData[]; };  // xyz offset, w state
 
-// Manual bilinear with texelFetch: the same arithmetic as Atlas::bilinear on the CPU.
-vec4 ddgiBilinear(sampler2D atlas, vec2 c) {
-    ivec2 size = textureSize(atlas, 0);
-    vec2 p = c - 0.5;
+// Manual bilinear with texelFetch inside one probe tile: the same arithmetic as
+// Atlas::bilinearInTile on the CPU (fractions from the tile-local coordinate).
+vec4 ddgiBilinear(sampler2D atlas, ivec2 tileOrigin, int tileSize, vec2 local) {
+    vec2 p = local - 0.5;
     vec2 f = floor(p);
     vec2 t = p - f;
-    ivec2 i0 = clamp(ivec2(f), ivec2(0), size - 1);
-    ivec2 i1 = min(i0 + 1, size - 1);
-    vec4 a = mix(texelFetch(atlas, i0, 0), texelFetch(atlas, ivec2(i1.x, i0.y), 0), t.x);
-    vec4 b = mix(texelFetch(atlas, ivec2(i0.x, i1.y), 0), texelFetch(atlas, i1, 0), t.x);
+    ivec2 i0 = tileOrigin + clamp(ivec2(f), ivec2(0), ivec2(tileSize - 2));
+    vec4 a = mix(texelFetch(atlas, i0, 0), texelFetch(atlas, i0 + ivec2(1, 0), 0), t.x);
+    vec4 b = mix(texelFetch(atlas, i0 + ivec2(0, 1), 0), texelFetch(atlas, i0 + ivec2(1, 1), 0), t.x);
     return mix(a, b, t.y);
 }
 
@@ -87,7 +86,7 @@ vec3 ddgiSampleVolume(int v, vec3 p, vec3 n, vec3 toViewer) {
         vec3 fromProbe = q - probePos;
         float r = length(fromProbe);
         vec3 dirFromProbe = r > 0.0 ? fromProbe / r : -n;
-        vec4 moments = ddgiBilinear(uDistanceAtlas, vec2(tile * tileD) + octTileCoordinate(dirFromProbe, uDistanceTexels));
+        vec4 moments = ddgiBilinear(uDistanceAtlas, tile * tileD, tileD, octTileCoordinate(dirFromProbe, uDistanceTexels));
         w *= ddgiChebyshev(r, moments.x, moments.y);
         w = max(w, 1e-6);
         const float crush = 0.2;
@@ -95,7 +94,7 @@ vec3 ddgiSampleVolume(int v, vec3 p, vec3 n, vec3 toViewer) {
         vec3 tri = mix(vec3(1.0) - alpha, alpha, vec3(stp));
         w *= tri.x * tri.y * tri.z;
 
-        vec3 encoded = max(ddgiBilinear(uIrradianceAtlas, vec2(tile * tileI) + octTileCoordinate(n, uIrradianceTexels)).rgb, vec3(0.0));
+        vec3 encoded = max(ddgiBilinear(uIrradianceAtlas, tile * tileI, tileI, octTileCoordinate(n, uIrradianceTexels)).rgb, vec3(0.0));
         sum += w * pow(encoded, vec3(0.5 * uGamma));
         wsum += w;
     }
