@@ -71,31 +71,21 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
     specularProbability_ = ws + wd > 0.0f ? ws / (ws + wd) : 0.0f;
 }
 
-glm::vec3 Bsdf::evalOpaque(glm::vec3 wi) const {
+glm::vec3 Bsdf::evalOpaque(glm::vec3 wi, float* pdf) const {
+    *pdf = 0.0f;
     float nl = glm::dot(n_, wi), nv = glm::dot(n_, wo_);
     if (nl <= 0.0f || nv <= 0.0f || glm::dot(ng_, wi) <= 0.0f) return glm::vec3(0.0f);
     glm::vec3 f = diffuse_ * (1.0f / kPi);
-    if (std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f) {
+    *pdf = (1.0f - specularProbability_) * nl / kPi;
+    if (specularProbability_ > 0.0f) {  // non-zero exactly when F0 is
         glm::vec3 h = glm::normalize(wo_ + wi);
         float a2 = alpha_ * alpha_;
-        f += fresnelSchlick(f0_, glm::dot(wo_, h)) * ggxD(std::max(glm::dot(n_, h), 0.0f), a2) *
-             smithVisibility(nl, nv, a2);
+        float nh = std::max(glm::dot(n_, h), 0.0f), vh = glm::dot(wo_, h);
+        float D = ggxD(nh, a2);
+        f += fresnelSchlick(f0_, vh) * D * smithVisibility(nl, nv, a2);
+        if (vh > 0.0f) *pdf += specularProbability_ * D * nh / (4.0f * vh);
     }
     return f * nl;
-}
-
-float Bsdf::pdfOpaque(glm::vec3 wi) const {
-    float nl = glm::dot(n_, wi);
-    if (nl <= 0.0f || glm::dot(ng_, wi) <= 0.0f || glm::dot(n_, wo_) <= 0.0f) return 0.0f;
-    float pdf = (1.0f - specularProbability_) * nl / kPi;
-    if (specularProbability_ > 0.0f) {
-        glm::vec3 h = glm::normalize(wo_ + wi);
-        float vh = glm::dot(wo_, h);
-        if (vh > 0.0f)
-            pdf += specularProbability_ * ggxD(std::max(glm::dot(n_, h), 0.0f), alpha_ * alpha_) *
-                   std::max(glm::dot(n_, h), 0.0f) / (4.0f * vh);
-    }
-    return pdf;
 }
 
 glm::vec3 Bsdf::evalRoughDielectric(glm::vec3 wi, float* pdf) const {
@@ -134,24 +124,30 @@ glm::vec3 Bsdf::evalRoughDielectric(glm::vec3 wi, float* pdf) const {
     return albedo_ * (woh * std::abs(wih) * (1.0f - F) * D * G * eta_ * eta_ / (cosO * denom));
 }
 
-glm::vec3 Bsdf::eval(glm::vec3 wi) const {
+glm::vec3 Bsdf::evalPdf(glm::vec3 wi, float* pdf) const {
     glm::vec3 f(0.0f);
-    if (opaqueWeight_ > 0.0f) f += opaqueWeight_ * evalOpaque(wi);
+    *pdf = 0.0f;
+    if (opaqueWeight_ > 0.0f) {
+        float p;
+        f += opaqueWeight_ * evalOpaque(wi, &p);
+        *pdf += opaqueWeight_ * p;
+    }
     if (transmission_ > 0.0f && !smoothDielectric_) {
         float p;
         f += transmission_ * evalRoughDielectric(wi, &p);
+        *pdf += transmission_ * p;
     }
     return f;
 }
 
+glm::vec3 Bsdf::eval(glm::vec3 wi) const {
+    float p;
+    return evalPdf(wi, &p);
+}
+
 float Bsdf::pdf(glm::vec3 wi) const {
-    float p = 0.0f;
-    if (opaqueWeight_ > 0.0f) p += opaqueWeight_ * pdfOpaque(wi);
-    if (transmission_ > 0.0f && !smoothDielectric_) {
-        float pd;
-        evalRoughDielectric(wi, &pd);
-        p += transmission_ * pd;
-    }
+    float p;
+    evalPdf(wi, &p);
     return p;
 }
 
@@ -234,9 +230,9 @@ bool Bsdf::sample(glm::vec3 u, BsdfSample& out) const {
     }
     if (!ok) return false;
     // Non-delta lobes: one-sample MIS over every lobe that could have produced this direction.
-    out.pdf = pdf(out.direction);
+    glm::vec3 f = evalPdf(out.direction, &out.pdf);
     if (!(out.pdf > 0.0f)) return false;
-    out.weight = eval(out.direction) / out.pdf;
+    out.weight = f / out.pdf;
     return out.weight.r > 0.0f || out.weight.g > 0.0f || out.weight.b > 0.0f;
 }
 

@@ -34,6 +34,8 @@ public:
     // f |cos(n, wi)|, for next-event estimation; delta lobes give zero.
     glm::vec3 eval(glm::vec3 wi) const;
     float pdf(glm::vec3 wi) const;
+    // Both at once, sharing the half vector and the distribution term.
+    glm::vec3 evalPdf(glm::vec3 wi, float* pdf) const;
     // u in [0,1)^3. False when the sample carries no energy (below the horizon...).
     bool sample(glm::vec3 u, BsdfSample& out) const;
     // True when eval can be non-zero somewhere (a light sample is worth tracing).
@@ -43,8 +45,7 @@ public:
     glm::vec3 geometricNormal() const { return ng_; }
 
 private:
-    glm::vec3 evalOpaque(glm::vec3 wi) const;
-    float pdfOpaque(glm::vec3 wi) const;
+    glm::vec3 evalOpaque(glm::vec3 wi, float* pdf) const;
     glm::vec3 evalRoughDielectric(glm::vec3 wi, float* pdf) const;
     bool sampleOpaque(glm::vec3 u, BsdfSample& out) const;
     bool sampleDielectric(glm::vec3 u, BsdfSample& out) const;

@@ -46,14 +46,15 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, 
         float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
         LightSample ls = lights_.sampleEmissive(p, u0, u1, u2);
         if (ls.pdf > 0.0f) {
-            glm::vec3 f = bsdf.eval(ls.direction);
+            float bsdfPdf;
+            glm::vec3 f = bsdf.evalPdf(ls.direction, &bsdfPdf);
             if (maxComponent(f) > 0.0f) {
                 glm::vec3 o = offsetOrigin(p, ng, ls.direction);
                 // Stop short of the emitter so its own triangle does not count as a blocker.
                 float tMax = ls.distance - 2e-5f * (1.0f + sceneScale_);
                 ++rays;
                 if (tMax > 0.0f && !tracer_.occluded(o, ls.direction, 0.0f, tMax))
-                    sum += f * ls.radiance * powerHeuristic(ls.pdf, bsdf.pdf(ls.direction));
+                    sum += f * ls.radiance * powerHeuristic(ls.pdf, bsdfPdf);
             }
         }
     }

@@ -18,6 +18,8 @@ namespace {
 constexpr int kTile = 16;
 constexpr double kMaxImageBytes = 6.0 * double(1 << 30);
 
+// Whether Scene::addQuadLightGeometry would add nothing, asked of a copy holding only the
+// lights and mesh names, so the naming rule lives in one place and the meshes are not copied.
 bool hasQuadGeometry(const Scene& scene) {
     Scene probe;
     probe.lights = scene.lights;
