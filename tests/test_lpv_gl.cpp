@@ -61,7 +61,7 @@ TEST_F(LpvGl, PropagationMatchesCpuReference) {
     grid.cellSize = 0.1f;
     LightVolume injected;
     injected.reset(grid);
-    GeometryVolume geometry;
+    BlockerVolume geometry;
     geometry.reset(grid);
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);

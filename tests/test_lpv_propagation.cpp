@@ -73,7 +73,7 @@ TEST(LpvPropagation, OneStepInEmptySpaceConservesFlux) {
         in.b[i] += v4(sh::cosineLobe(-n)) * 1e-3f;
     }
     LightVolume out;
-    GeometryVolume empty;
+    BlockerVolume empty;
     empty.reset(in.grid);
     CpuPropagator::step(in, empty, {}, out);
     for (int c = 0; c < 3; ++c) {
@@ -91,7 +91,7 @@ TEST(LpvPropagation, PointSourceFallsOffAsInverseSquare) {
     in.reset(unitGrid(n));
     glm::ivec3 src(n / 2);
     addIsotropic(in, src, 1.0f);
-    GeometryVolume empty;
+    BlockerVolume empty;
     empty.reset(in.grid);
     CpuPropagator p;
     p.propagate(in, empty, 200, {}, acc);
@@ -113,7 +113,7 @@ TEST(LpvPropagation, BlockerWallStopsTheFluxCrossingIt) {
     LightVolume in, open, walled;
     in.reset(unitGrid(n));
     addIsotropic(in, {6, 12, 12}, 1.0f);
-    GeometryVolume empty, wall;
+    BlockerVolume empty, wall;
     empty.reset(in.grid);
     wall.reset(in.grid);
     // A full wall on the plane x = 10 (corner index 10) facing the source (-x): blocker
@@ -149,7 +149,7 @@ TEST(LpvPropagation, EachBounceCarriesAtMostAlbedoTimesIncoming) {
     LightVolume in;
     in.reset(unitGrid(n));
     addIsotropic(in, {4, 4, 4}, 1.0f);
-    GeometryVolume box;
+    BlockerVolume box;
     box.reset(in.grid);
     for (int z = 0; z <= n; ++z)
         for (int y = 0; y <= n; ++y)
@@ -185,7 +185,7 @@ TEST(LpvPropagation, ThousandStepsStayBoundedAndFinite) {
     LightVolume in, acc;
     in.reset(unitGrid(n));
     addIsotropic(in, {8, 8, 8}, 1e6f);
-    GeometryVolume gv;
+    BlockerVolume gv;
     gv.reset(in.grid);
     // Random blockers with albedo close to 1 everywhere: the stiff case.
     std::mt19937 rng(3);
@@ -211,7 +211,7 @@ TEST(LpvPropagation, SparseMatchesDense) {
     in.reset(unitGrid(n));
     addIsotropic(in, {5, 6, 7}, 2.0f);
     addIsotropic(in, {25, 20, 9}, 0.5f);
-    GeometryVolume gv;
+    BlockerVolume gv;
     gv.reset(in.grid);
     for (int y = 0; y <= n; ++y)
         for (int z = 0; z <= n; ++z) {

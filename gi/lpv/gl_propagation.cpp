@@ -48,7 +48,7 @@ struct GlPropagator::Impl {
 GlPropagator::GlPropagator(int resolution) : impl_(std::make_unique<Impl>(resolution)) {}
 GlPropagator::~GlPropagator() = default;
 
-void GlPropagator::propagate(const LightVolume& injected, const GeometryVolume& geometry, int steps,
+void GlPropagator::propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                              const PropagationOptions& options) {
     Impl& m = *impl_;
     const std::vector<glm::vec4>* channels[3] = {&injected.r, &injected.g, &injected.b};

@@ -19,7 +19,7 @@ public:
     GlPropagator& operator=(const GlPropagator&) = delete;
 
     // Uploads the injected light and the geometry, runs `steps` iterations on the GPU.
-    void propagate(const LightVolume& injected, const GeometryVolume& geometry, int steps,
+    void propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                    const PropagationOptions& options);
     // The accumulated light (r, g, b RGBA32F 3D textures).
     GLuint accumulated(int channel) const;

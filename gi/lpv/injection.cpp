@@ -32,7 +32,7 @@ double injectLight(const SurfelSource& source, const InjectionOffsets& offsets, 
     return total;
 }
 
-void injectBlockers(const SurfelSource& source, GeometryVolume& scratch, GeometryVolume& volume) {
+void injectBlockers(const SurfelSource& source, BlockerVolume& scratch, BlockerVolume& volume) {
     const CascadeGrid& grid = volume.grid;
     const float h = grid.cellSize;
     const int corners = volume.cornerCount();

@@ -27,7 +27,7 @@ double injectLight(const SurfelSource& source, const InjectionOffsets& offsets, 
 
 // Adds one source's blockers into `scratch` (zeroed on entry, same placement as `volume`) and
 // merges them into `volume` by max.
-void injectBlockers(const SurfelSource& source, GeometryVolume& scratch, GeometryVolume& volume);
+void injectBlockers(const SurfelSource& source, BlockerVolume& scratch, BlockerVolume& volume);
 
 // The blocker SH of a fully covered face with normal n: 1 along n (2-band SH of the cosine lobe
 // peaks at 3/4, hence the 4/3).

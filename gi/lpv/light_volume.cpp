@@ -21,7 +21,7 @@ bool LightVolume::isZero(std::size_t i) const {
     return r[i] == glm::vec4(0.0f) && g[i] == glm::vec4(0.0f) && b[i] == glm::vec4(0.0f);
 }
 
-void GeometryVolume::reset(const CascadeGrid& placement) {
+void BlockerVolume::reset(const CascadeGrid& placement) {
     grid = placement;
     std::size_t n = std::size_t(cornerCount());
     blocker.assign(n * n * n, glm::vec4(0.0f));
@@ -37,7 +37,7 @@ glm::vec4 mergeBlockers(glm::vec4 a, glm::vec4 b) {
     return b.x > a.x ? b : a;
 }
 
-void GeometryVolume::mergeMax(const GeometryVolume& other) {
+void BlockerVolume::mergeMax(const BlockerVolume& other) {
     for (std::size_t i = 0; i < blocker.size(); ++i) {
         blocker[i] = mergeBlockers(blocker[i], other.blocker[i]);
         albedo[i] = glm::max(albedo[i], other.albedo[i]);

@@ -46,7 +46,7 @@ struct LightVolume {
 
 // Blocker SH (probability that light travelling in a direction is stopped) and diffuse albedo
 // at the (resolution + 1)^3 cell corners.
-struct GeometryVolume {
+struct BlockerVolume {
     CascadeGrid grid;
     std::vector<glm::vec4> blocker;
     std::vector<glm::vec3> albedo;
@@ -58,7 +58,7 @@ struct GeometryVolume {
         return (std::size_t(c.z) * n + std::size_t(c.y)) * n + std::size_t(c.x);
     }
     // Merges another source (mergeBlockers per sample; albedo by max per channel).
-    void mergeMax(const GeometryVolume& other);
+    void mergeMax(const BlockerVolume& other);
 };
 
 // The merge of two sources' blockers at one sample: max when they face the same way, sum

@@ -14,7 +14,7 @@ LpvDesc LpvDesc::fromSettings(const GiSettings& gi, bool cascaded) {
     gi.requireKnown("lpv", {"resolution", "cascades", "cell_size", "steps", "occlusion", "bounces", "rsm_size",
                             "gbuffer_blocker_size", "inject_normal_offset", "inject_light_offset",
                             "apply_normal_offset", "dampening", "glossy", "forward_offset", "fade_cells", "backend",
-                            "sparse", "reuse"});
+                            "sparse", "reuse", "static_blockers"});
     LpvDesc d;
     d.cascades = cascaded ? 3 : 1;
     d.resolution = gi.getInt("lpv.resolution", d.resolution);
@@ -47,6 +47,7 @@ LpvDesc LpvDesc::fromSettings(const GiSettings& gi, bool cascaded) {
     requireRange(d.backend == "cpu" || d.backend == "gl", "backend", "cpu or gl");
     d.sparse = gi.getBool("lpv.sparse", d.sparse);
     d.reuse = gi.getBool("lpv.reuse", d.reuse);
+    d.staticBlockers = gi.getBool("lpv.static_blockers", d.staticBlockers);
     return d;
 }
 

@@ -28,6 +28,8 @@ struct LpvDesc {
     std::string backend = "cpu";  // cpu (TBB reference) or gl (compute shaders)
     bool sparse = true;         // cpu: propagate only bricks holding light (dilated per step)
     bool reuse = true;          // skip the update while lights, geometry and placement are unchanged
+    bool staticBlockers = true; // blockers from the voxelized scene (volumes/, cached .vdb) merged
+                                // with the dynamic RSM and G-buffer blockers
 
     // Reads `lpv.*`; unknown keys and out-of-range values raise InputError.
     static LpvDesc fromSettings(const GiSettings& gi, bool cascaded);

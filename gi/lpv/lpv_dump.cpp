@@ -29,7 +29,7 @@ void tag(GridT& grid, const std::string& name, int cascade, float cellSize) {
 }  // namespace
 
 void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
-                 const std::vector<GeometryVolume>& geometry) {
+                 const std::vector<BlockerVolume>& geometry) {
     initializeOpenVdb();
     openvdb::GridPtrVec grids;
     for (std::size_t c = 0; c < light.size(); ++c) {
@@ -55,7 +55,7 @@ void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
                 grids.push_back(grid);
             }
         if (c >= geometry.size()) continue;
-        const GeometryVolume& gv = geometry[c];
+        const BlockerVolume& gv = geometry[c];
         const int n = gv.cornerCount();
         for (int k = 0; k < 4; ++k) {
             auto grid = openvdb::FloatGrid::create(0.0f);

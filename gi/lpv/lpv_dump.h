@@ -13,6 +13,6 @@
 namespace voxgi {
 
 void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
-                 const std::vector<GeometryVolume>& geometry);
+                 const std::vector<BlockerVolume>& geometry);
 
 }  // namespace voxgi

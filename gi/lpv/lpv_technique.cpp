@@ -1,6 +1,7 @@
 #include "gi/lpv/lpv_technique.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 
 #include "gi/lpv/cascades.h"
@@ -9,6 +10,7 @@
 #include "gi/lpv/lpv_dump.h"
 #include "gi/lpv/propagation.h"
 #include "gi/lpv/rsm.h"
+#include "gi/lpv/static_blockers.h"
 #include "render/gl/program.h"
 #include "render/gl/resources.h"
 #include "render/gl/scene_gpu.h"
@@ -65,16 +67,31 @@ struct LpvTechnique::Impl {
     gl::Program apply;
     std::vector<CascadePlacement> placements;
     std::vector<LightVolume> injected, accumulated;
-    std::vector<GeometryVolume> geometry;
+    std::vector<BlockerVolume> geometry;
     std::vector<CpuPropagator> propagators;
     std::vector<std::unique_ptr<GlPropagator>> glPropagators;
     std::vector<gl::Handle> textures;  // 3 per cascade: r, g, b
     std::vector<glm::ivec3> lastOrigins;
+    std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
     bool valid = false;
 
     Impl(const Scene& s, const LpvDesc& d, bool c)
         : scene(s), desc(d), cascaded(c), rsm(d.rsmSize),
           apply(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply.frag")) {
+        // The cell size is fixed once, from the scene camera, so moving cameras keep cascades
+        // (and the voxelized blockers) consistent.
+        desc.cellSize = finestCellSize(desc, scene.bounds(), scene.camera.eye);
+        if (desc.staticBlockers && scene.triangleCount() > 0) {
+            VoxelizeSettings vs;
+            vs.voxelSize = desc.cellSize;
+            vs.levels = desc.cascades;
+            try {
+                voxels = std::make_unique<SparseGeometryVolume>(loadOrBuildGeometryVolume(scene, vs, geometryCacheDir()));
+            } catch (const InputError& e) {
+                // OpenVDB cannot hold cells this small (or this many): dynamic blockers only.
+                std::fprintf(stderr, "voxgi: lpv: static blockers off (%s)\n", e.what());
+            }
+        }
         if (desc.cascades > kMaxCascades) throw InputError("gi.lpv.cascades: at most 6");
         injected.resize(std::size_t(desc.cascades));
         accumulated.resize(std::size_t(desc.cascades));
@@ -128,11 +145,15 @@ struct LpvTechnique::Impl {
 
         t0 = std::chrono::steady_clock::now();
         for (std::size_t c = 0; c < placements.size(); ++c) {
-            GeometryVolume scratch;
+            BlockerVolume scratch;
             scratch.reset(placements[c].grid);
             geometry[c].reset(placements[c].grid);
             for (const SurfelSource& s : sources) injectBlockers(s, scratch, geometry[c]);
             injectBlockers(camera, scratch, geometry[c]);
+            if (voxels) {
+                staticBlockers(*voxels, int(c), scratch);
+                geometry[c].mergeMax(scratch);
+            }
         }
         input.timers.addCpu("lpv.blockers", millisecondsSince(t0));
 

@@ -81,7 +81,7 @@ PropagationKernel buildKernel() {
 
 // The geometry volume at the centre of the face between `cell` and `cell + axis`: the mean of
 // the face's 4 corner samples (one trilinear fetch on the GPU).
-bool sharedFace(const GeometryVolume& gv, glm::ivec3 cell, const glm::ivec3& axis, glm::vec4& blocker,
+bool sharedFace(const BlockerVolume& gv, glm::ivec3 cell, const glm::ivec3& axis, glm::vec4& blocker,
                 glm::vec3& albedo) {
     glm::ivec3 base = cell + glm::max(axis, glm::ivec3(0));
     int k = axis.x != 0 ? 0 : axis.y != 0 ? 1 : 2;
@@ -104,6 +104,18 @@ bool sharedFace(const GeometryVolume& gv, glm::ivec3 cell, const glm::ivec3& axi
 
 float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
+// The reflected light's lobe: the blocker's SH with unit flux, its band-1 part limited to
+// that of a clamped cosine (|c1| <= 2/sqrt(3) c0). Blockers fitted or merged from several
+// surfaces can have a stronger band 1, and such a lobe, re-emitted step after step, would let
+// the directional terms grow without bound while the flux stays put.
+glm::vec4 reflectionShape(glm::vec4 blocker, float flux) {
+    glm::vec4 shape = blocker / flux;
+    glm::vec3 band1(shape.y, shape.z, shape.w);
+    float limit = 1.1547005f * shape.x, length = glm::length(band1);
+    if (length > limit) band1 *= limit / length;
+    return glm::vec4(shape.x, band1);
+}
+
 // The propagation operator of one cascade, built once per geometry volume: the 4x4 transfer
 // matrix from each neighbour (occluded faces folded in) and from the cell itself (bounces).
 // Steps then cost 6 + 1 matrix-vector products per colour and cell.
@@ -114,7 +126,7 @@ struct Operator {
     std::vector<std::int32_t> self;    // [cell] -> index of 3 consecutive matrices in selfPool, or -1
     std::vector<glm::mat4> selfPool;
 
-    Operator(const GeometryVolume& gv, const CascadeGrid& grid, const PropagationOptions& opt) {
+    Operator(const BlockerVolume& gv, const CascadeGrid& grid, const PropagationOptions& opt) {
         const PropagationKernel& k = propagationKernel();
         const PropagationTables& t = propagationTables();
         gather.assign(grid.cellCount() * 6, kOpen);
@@ -155,7 +167,7 @@ struct Operator {
                         if (!sharedFace(gv, d, t.axes[a], blocker, albedo)) continue;
                         float flux = blocker.x * (4.0f * sh::kPi * sh::kY00);
                         if (!(flux > 1e-12f) || albedo == glm::vec3(0.0f)) continue;
-                        glm::vec4 shape = blocker / flux;
+                        glm::vec4 shape = reflectionShape(blocker, flux);
                         glm::vec4 blocked(0.0f);  // dot with the cell's SH: the flux stopped at this face
                         for (const FaceCoefficients& f : k.faces[a]) blocked += clamp01(glm::dot(blocker, f.block)) * f.sample;
                         for (int c = 0; c < 3; ++c)
@@ -221,7 +233,7 @@ const PropagationKernel& propagationKernel() {
     return kernel;
 }
 
-void CpuPropagator::step(const LightVolume& in, const GeometryVolume& geometry, const PropagationOptions& options,
+void CpuPropagator::step(const LightVolume& in, const BlockerVolume& geometry, const PropagationOptions& options,
                          LightVolume& out) {
     const CascadeGrid& grid = in.grid;
     if (out.r.size() != in.r.size()) out.reset(grid);
@@ -241,7 +253,7 @@ void CpuPropagator::step(const LightVolume& in, const GeometryVolume& geometry, 
     });
 }
 
-void CpuPropagator::propagate(const LightVolume& injected, const GeometryVolume& geometry, int steps,
+void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                               const PropagationOptions& options, LightVolume& accumulated, bool sparse) {
     const CascadeGrid& grid = injected.grid;
     accumulated = injected;

@@ -71,10 +71,10 @@ struct PropagationStats {
 // `sparse` processes only bricks holding light (dilated one brick per step).
 class CpuPropagator {
 public:
-    void propagate(const LightVolume& injected, const GeometryVolume& geometry, int steps,
+    void propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                    const PropagationOptions& options, LightVolume& accumulated, bool sparse = true);
     // One iteration from `in` to `out` (dense), for tests.
-    static void step(const LightVolume& in, const GeometryVolume& geometry, const PropagationOptions& options,
+    static void step(const LightVolume& in, const BlockerVolume& geometry, const PropagationOptions& options,
                      LightVolume& out);
     const PropagationStats& stats() const { return stats_; }
 

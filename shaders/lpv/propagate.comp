@@ -25,6 +25,14 @@ uniform vec4 uFaceLobe[30];    // cosine lobe about the face normal / pi
 uniform mat4 uUnoccluded[6];
 const float FLUX_OF_Y00 = 3.5449077018110318;  // 4 pi Y00
 
+// Unit-flux blocker lobe with band 1 limited to a clamped cosine's (see propagation.cpp).
+vec4 reflectionShape(vec4 blocker, float flux) {
+    vec4 shape = blocker / flux;
+    float limit = 1.1547005 * shape.x, len = length(shape.yzw);
+    if (len > limit) shape.yzw *= limit / len;
+    return shape;
+}
+
 bool inside(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uResolution))); }
 
 // Mean of the 4 corner samples of the face between `cell` and `cell + axis`.
@@ -79,7 +87,7 @@ void main() {
             sharedFace(d, uAxes[a], blocker, albedo);
             float flux = blocker.x * FLUX_OF_Y00;
             if (!(flux > 1e-12) || albedo == vec3(0.0)) continue;
-            vec4 shape = blocker / flux;
+            vec4 shape = reflectionShape(blocker, flux);
             vec3 reflected = vec3(0.0);
             for (int f = 0; f < 5; ++f) {
                 int i = a * 5 + f;
