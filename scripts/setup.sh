@@ -9,6 +9,7 @@ packages=(
   libglm-dev libglfw3-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-utils
   libassimp-dev nlohmann-json3-dev libstb-dev
   libgtest-dev xvfb xauth
+  gnuplot-nox
 )
 
 missing=()

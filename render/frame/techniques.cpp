@@ -1,5 +1,6 @@
 #include "render/frame/techniques.h"
 
+#include "gi/ambient/ambient_technique.h"
 #include "gi/lpv/lpv_technique.h"
 #include "gi/ddgi/ddgi_technique.h"
 #include "scenes/errors.h"
@@ -17,7 +18,7 @@ struct Entry {
 // One line per method.
 const Entry kMethods[] = {
     {"direct", [](const Scene&) -> std::unique_ptr<GiTechnique> { return nullptr; }},
-    {"ambient", nullptr},
+    {"ambient", createAmbient},
     {"lpv", createLpv},
     {"clpv", createClpv},
     {"ilpv", nullptr},

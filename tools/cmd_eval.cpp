@@ -1,0 +1,223 @@
+// voxgi eval: error against run time. Renders scenes with methods x quality presets, measures
+// each image against a (cached) path-traced reference on the full image and the indirect layer,
+// and writes report.md / report.json / results.csv with plots, FLIP maps and crops. With
+// --stability it runs the stiff and extreme cases instead (eval_stability.cpp).
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "gi/ambient/ambient_fit.h"
+#include "gi/metrics/flip.h"
+#include "render/frame/frame_renderer.h"
+#include "render/frame/techniques.h"
+#include "render/gl/context.h"
+#include "scenes/errors.h"
+#include "tools/commands.h"
+#include "tools/eval_report.h"
+#include "tools/eval_stability.h"
+#include "tools/scene_arg.h"
+
+namespace voxgi::cli {
+
+namespace {
+
+const char* kUsage =
+    "voxgi eval SCENE... -o DIR [--methods direct,ambient,lpv,clpv,ddgi] [--presets low,medium,high]\n"
+    "       [--reference REF.exr | auto] [--spp N] [--cache DIR] [--frames N] [--warmup N] [--width W --height H]\n"
+    "       [--set section.key=value]...\n"
+    "  voxgi eval --stability -o DIR [--cases NAME,...]\n"
+    "  --spp: reference samples per pixel (default 256); --cache: reference cache (default DIR/cache)\n"
+    "  --frames: frames accumulated per run (default the scene's, at least warm-up + 5); --warmup: untimed frames (4)";
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    std::string part;
+    while (std::getline(in, part, ','))
+        if (!part.empty()) out.push_back(part);
+    return out;
+}
+
+std::string sceneName(const std::string& argument) {
+    std::string stem = std::filesystem::path(argument).stem().string();
+    for (char& c : stem)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return stem.empty() ? "scene" : stem;
+}
+
+// Error 0 stays black, rising through red and yellow to white at 1 (or above).
+void writeFlipMap(const std::string& path, const Image& test, const Image& reference) {
+    std::vector<float> e = flip::hdrFlip(test.find("beauty")->data, reference.find("beauty")->data,
+                                         reference.width(), reference.height()).error;
+    std::vector<std::uint8_t> rgb(3 * e.size());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+        float v = std::clamp(e[i], 0.0f, 1.0f);
+        float c[3] = {std::sqrt(v), v, v * v * v};
+        for (int k = 0; k < 3; ++k) rgb[3 * i + std::size_t(k)] = std::uint8_t(std::lround(255.0f * c[k]));
+    }
+    writePngRgb8(path, reference.width(), reference.height(), rgb);
+}
+
+// The centre half of each image, side by side, tone-mapped as the previews.
+void writeCrops(const std::string& path, const std::vector<const Image*>& images) {
+    const Image& first = *images.front();
+    const int w = std::max(1, first.width() / 2), h = std::max(1, first.height() / 2);
+    const int x0 = (first.width() - w) / 2, y0 = (first.height() - h) / 2;
+    const int gap = 4, total = int(images.size()) * (w + gap) - gap;
+    std::vector<std::uint8_t> rgb(std::size_t(3) * std::size_t(total) * std::size_t(h), 255);
+    for (std::size_t n = 0; n < images.size(); ++n)
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                glm::vec3 c = toneMapToSrgb(images[n]->rgb("beauty", x0 + x, y0 + y), 0.0f);
+                std::size_t o = 3 * (std::size_t(y) * std::size_t(total) + n * std::size_t(w + gap) + std::size_t(x));
+                for (int k = 0; k < 3; ++k) rgb[o + std::size_t(k)] = std::uint8_t(std::lround(255.0f * std::clamp(c[k], 0.0f, 1.0f)));
+            }
+    writePngRgb8(path, total, h, rgb);
+}
+
+std::string settingsText(const EvalPreset& p) {
+    std::string s;
+    for (const auto& [k, v] : p.settings) s += (s.empty() ? "" : " ") + k + "=" + v;
+    return s;
+}
+
+EvalRow measure(const EvalPreset& preset, MethodRun run, const Reference& ref, const std::string& dir,
+                const std::string& sceneDir, const RenderSettings& rs) {
+    EvalRow row;
+    row.method = preset.method;
+    row.preset = preset.name;
+    row.settings = settingsText(preset);
+    row.frameMs = run.frameMs;
+    row.frames = rs.frames;
+    row.warmupFrames = run.warmupFrames;
+    row.timedFrames = run.timedFrames;
+    row.stages = run.stages;
+    row.full = computeMetrics(run.image, ref.image, "beauty");
+    row.indirect = computeMetrics(run.image, ref.image, "indirect");
+    row.meanIndirect = layerMean(run.image, "indirect");
+    const std::string stem = preset.name == "default" ? preset.method : preset.method + "-" + preset.name;
+    row.imagePng = sceneDir + "/" + stem + ".png";
+    row.flipPng = sceneDir + "/" + stem + "-flip.png";
+    writePng(dir + "/" + row.imagePng, run.image, "beauty", 0.0f);
+    writeFlipMap(dir + "/" + row.flipPng, run.image, ref.image);
+    return row;
+}
+
+int runEvaluation(const Args& args, const std::string& dir, const std::vector<std::string>& argv) {
+    if (args.positional().empty()) throw InputError("give at least one SCENE; usage: " + std::string(kUsage));
+    const std::vector<std::string> methods = splitList(args.value("--methods", "direct,ambient,lpv,clpv,ddgi"));
+    const std::vector<std::string> presetNames = splitList(args.value("--presets", "low,medium,high"));
+    if (methods.empty()) throw InputError("--methods: empty list");
+    for (const std::string& m : methods) validateMethod(m);
+    for (const std::string& m : methods) presetsFor(m, presetNames);  // checks the preset names early
+    const std::string refArg = args.value("--reference", "auto");
+    if (refArg != "auto" && args.positional().size() != 1)
+        throw InputError("--reference " + refArg + ": a reference file fits one scene; use auto for several");
+    const int spp = args.integer("--spp", 256, 1, 1 << 20);
+    const int warmup = args.integer("--warmup", 4, 0, 1 << 16);
+    const std::string cacheDir = args.value("--cache", dir + "/cache");
+
+    std::vector<Scene> scenes;
+    for (const std::string& s : args.positional()) {
+        scenes.push_back(loadSceneArgument(s));
+        applySceneOverrides(args, scenes.back());
+    }
+    auto context = gl::Context::createHeadless();
+    ReportInfo info;
+    info.device = context->description();
+    info.gnuplot = gnuplotAvailable();
+    info.command = "voxgi eval";
+    for (const std::string& a : argv) info.command += " " + a;
+
+    std::vector<SceneEval> results;
+    for (std::size_t si = 0; si < scenes.size(); ++si) {
+        const Scene& scene = scenes[si];
+        SceneEval se;
+        se.name = sceneName(args.positional()[si]);
+        se.source = args.positional()[si];
+        se.width = scene.camera.width;
+        se.height = scene.camera.height;
+        std::filesystem::create_directories(dir + "/" + se.name);
+        std::printf("%s: reference...\n", se.name.c_str());
+        std::fflush(stdout);
+        Reference ref = refArg == "auto" ? loadOrRenderReference(scene, se.name, spp, cacheDir)
+                                         : readReference(refArg, scene);
+        se.referenceSpp = ref.spp;
+        se.referenceSeconds = ref.seconds;
+        se.referenceCached = ref.fromCache;
+        se.referencePath = ref.path;
+        se.referenceMeanIndirect = layerMean(ref.image, "indirect");
+        se.selfFull = computeMetrics(ref.image, ref.image, "beauty");
+        se.selfIndirect = computeMetrics(ref.image, ref.image, "indirect");
+        se.referencePng = se.name + "/reference.png";
+        writePng(dir + "/" + se.referencePng, ref.image, "beauty", 0.0f);
+
+        RenderSettings rs;
+        rs.width = scene.camera.width;
+        rs.height = scene.camera.height;
+        rs.warmup = warmup;
+        rs.frames = args.integer("--frames", std::max(defaultFrameCount(scene), warmup + 5), 1, 1 << 20);
+        std::vector<Image> images;
+        for (const std::string& method : methods)
+            for (const EvalPreset& preset : presetsFor(method, presetNames)) {
+                std::printf("%s: %s %s...\n", se.name.c_str(), method.c_str(), preset.name.c_str());
+                std::fflush(stdout);
+                std::vector<std::pair<std::string, std::string>> extra;
+                std::string fitted;
+                if (method == "ambient") {
+                    // Linear in E: one render with E = 1 gives each pixel's response.
+                    MethodRun unit = renderMethod(scene, preset, rs, {{"ambient.irradiance", "1"}});
+                    glm::vec3 e = fitAmbientIrradiance(*unit.image.find("indirect"), *ref.image.find("indirect"));
+                    char buf[96];
+                    std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g", e.x, e.y, e.z);
+                    fitted = buf;
+                    extra.push_back({"ambient.irradiance", fitted});
+                }
+                MethodRun run = renderMethod(scene, preset, rs, extra);
+                EvalRow row = measure(preset, run, ref, dir, se.name, rs);
+                row.ambientIrradiance = fitted;
+                std::printf("  %.2f ms/frame, RMSE %.4g FLIP %.4g (full), RMSE %.4g FLIP %.4g (indirect)\n",
+                            row.frameMs, row.full.rmse, row.full.flip, row.indirect.rmse, row.indirect.flip);
+                se.rows.push_back(row);
+                images.push_back(std::move(run.image));
+            }
+        std::vector<const Image*> crops{&ref.image};
+        for (const Image& im : images) crops.push_back(&im);
+        se.cropsPng = se.name + "/crops.png";
+        writeCrops(dir + "/" + se.cropsPng, crops);
+        results.push_back(std::move(se));
+    }
+    std::vector<std::string> plots = writeEvalReport(dir, results, info);
+    std::printf("wrote %s/report.md, report.json, results.csv%s\n", dir.c_str(),
+                info.gnuplot ? (" and " + std::to_string(plots.size()) + " plots").c_str()
+                             : " (gnuplot not found: no plots)");
+    return kOk;
+}
+
+int runEval(const std::vector<std::string>& argv) {
+    Args args(argv,
+              {"-o", "--methods", "--presets", "--reference", "--spp", "--cache", "--frames", "--warmup", "--width",
+               "--height", "--set", "--cases"},
+              {"--stability"}, {"--set"});
+    auto out = args.value("-o");
+    if (!out) throw InputError("-o DIR is required; usage: " + std::string(kUsage));
+    std::error_code ec;
+    std::filesystem::create_directories(*out, ec);
+    if (ec || !std::filesystem::is_directory(*out)) throw InputError("-o " + *out + ": cannot create the folder");
+    if (args.flag("--stability")) {
+        if (!args.positional().empty()) throw InputError("--stability takes no SCENE (its scenes are built in)");
+        auto cases = args.value("--cases");
+        return runStabilitySuite(*out, cases ? splitList(*cases) : std::vector<std::string>{}) ? kOk : kFailure;
+    }
+    if (args.has("--cases")) throw InputError("--cases: only with --stability");
+    return runEvaluation(args, *out, argv);
+}
+
+}  // namespace
+
+VOXGI_REGISTER_COMMAND("eval", kUsage, runEval);
+
+}  // namespace voxgi::cli

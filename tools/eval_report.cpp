@@ -1,0 +1,222 @@
+#include "tools/eval_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "scenes/errors.h"
+
+namespace voxgi::cli {
+
+void writeTextFile(const std::string& path, const std::string& text) {
+    std::string tmp = temporaryPathFor(path);
+    {
+        std::ofstream out(tmp);
+        out << text;
+        if (!out) throw InputError(path + ": cannot write");
+    }
+    renameInto(tmp, path);
+}
+
+glm::dvec3 layerMean(const Image& image, const std::string& layer) {
+    const ImageLayer* l = image.find(layer);
+    if (!l || l->channels != 3) throw InputError("layer " + layer + ": missing or not RGB");
+    glm::dvec3 sum(0.0);
+    glm::dvec3 count(0.0);
+    for (std::size_t i = 0; i < l->data.size(); ++i)
+        if (std::isfinite(l->data[i])) {
+            sum[int(i % 3)] += l->data[i];
+            count[int(i % 3)] += 1.0;
+        }
+    return sum / glm::max(count, glm::dvec3(1.0));
+}
+
+bool gnuplotAvailable() { return std::system("gnuplot -e 'exit' >/dev/null 2>&1") == 0; }
+
+std::vector<std::size_t> paretoFront(const std::vector<double>& time, const std::vector<double>& error) {
+    std::vector<std::size_t> order(time.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return time[a] != time[b] ? time[a] < time[b] : error[a] < error[b];
+    });
+    std::vector<std::size_t> front;
+    double best = INFINITY;
+    for (std::size_t i : order) {
+        if (!std::isfinite(error[i]) || !(error[i] < best)) continue;
+        best = error[i];
+        front.push_back(i);
+    }
+    return front;
+}
+
+namespace {
+
+std::string fmt(double v, const char* f = "%.4g") {
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, v);
+    return buf;
+}
+
+nlohmann::json metricsJson(const ImageMetrics& m) { return nlohmann::json::parse(toJson(m), nullptr, false); }
+
+std::string label(const EvalRow& r) { return r.preset == "default" ? r.method : r.method + "-" + r.preset; }
+
+std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& info,
+                     const std::vector<std::string>& plots) {
+    std::ostringstream md;
+    md << "# voxgi eval report\n\n";
+    md << "Command: `" << info.command << "`  \nDevice: " << info.device << "\n\n";
+    md << "Time is the median wall clock of one frame after the warm-up frames (`renderFrame`, which waits for "
+          "the GPU); the image is the average of all frames. Errors are against the path-traced reference on the "
+          "full image (beauty) and on the indirect-only layer. FLIP is the mean HDR-FLIP.\n\n";
+    if (!info.gnuplot) md << "**Plots skipped: gnuplot was not found** (install `gnuplot-nox`).\n\n";
+    for (const SceneEval& s : scenes) {
+        md << "## " << s.name << "\n\n";
+        md << s.width << "x" << s.height << ", reference: " << s.referenceSpp << " spp path traced in "
+           << fmt(s.referenceSeconds, "%.1f") << " s" << (s.referenceCached ? " (reused from cache)" : "")
+           << ". Reference against itself: RMSE " << fmt(s.selfFull.rmse) << ", FLIP " << fmt(s.selfFull.flip)
+           << " (full), RMSE " << fmt(s.selfIndirect.rmse) << " (indirect).\n\n";
+        md << "| method | preset | frame ms | RMSE full | relMSE full | FLIP full | RMSE indirect | relMSE indirect | "
+              "FLIP indirect | settings |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+        for (const EvalRow& r : s.rows)
+            md << "| " << r.method << " | " << r.preset << " | " << fmt(r.frameMs, "%.1f") << " | "
+               << fmt(r.full.rmse) << " | " << fmt(r.full.relMse) << " | " << fmt(r.full.flip) << " | "
+               << fmt(r.indirect.rmse) << " | " << fmt(r.indirect.relMse) << " | " << fmt(r.indirect.flip) << " | "
+               << (r.method == "ambient" ? "fitted ambient.irradiance=" + r.ambientIrradiance
+                                         : (r.settings.empty() ? "-" : r.settings))
+               << " |\n";
+        md << "\nStage medians (GPU ms / CPU ms):\n\n";
+        for (const EvalRow& r : s.rows) {
+            md << "- " << label(r) << ":";
+            for (const auto& [stage, t] : r.stages)
+                md << " " << stage << " " << fmt(t.gpuMs, "%.2f") << "/" << fmt(t.cpuMs, "%.2f");
+            md << "\n";
+        }
+        md << "\n";
+        for (const std::string& p : plots)
+            if (p.find("plots/" + s.name + "-") == 0) md << "![" << p << "](" << p << ")\n";
+        md << "\nReference | images | HDR-FLIP maps (black = no error, white = 1):\n\n";
+        md << "![reference](" << s.referencePng << ")";
+        for (const EvalRow& r : s.rows) md << " ![" << label(r) << "](" << r.imagePng << ")";
+        md << "\n\n";
+        for (const EvalRow& r : s.rows) md << " ![" << label(r) << " FLIP](" << r.flipPng << ")";
+        md << "\n\nCentre crops, left to right: reference";
+        for (const EvalRow& r : s.rows) md << ", " << label(r);
+        md << "\n\n![crops](" << s.cropsPng << ")\n\n";
+    }
+    return md.str();
+}
+
+std::string json(const std::vector<SceneEval>& scenes, const ReportInfo& info) {
+    nlohmann::json j;
+    j["command"] = info.command;
+    j["device"] = info.device;
+    j["plots"] = info.gnuplot;
+    for (const SceneEval& s : scenes) {
+        nlohmann::json js{{"name", s.name},
+                          {"source", s.source},
+                          {"width", s.width},
+                          {"height", s.height},
+                          {"reference", {{"spp", s.referenceSpp}, {"seconds", s.referenceSeconds},
+                                         {"cached", s.referenceCached}, {"path", s.referencePath}}},
+                          {"reference_mean_indirect", {s.referenceMeanIndirect.x, s.referenceMeanIndirect.y, s.referenceMeanIndirect.z}},
+                          {"reference_self", {{"full", metricsJson(s.selfFull)}, {"indirect", metricsJson(s.selfIndirect)}}}};
+        for (const EvalRow& r : s.rows) {
+            nlohmann::json stages = nlohmann::json::object();
+            for (const auto& [stage, t] : r.stages) stages[stage] = {{"gpu_ms", t.gpuMs}, {"cpu_ms", t.cpuMs}};
+            nlohmann::json jr{{"method", r.method},         {"preset", r.preset},
+                              {"settings", r.settings},     {"frame_ms", r.frameMs},
+                              {"frames", r.frames},         {"warmup_frames", r.warmupFrames},
+                              {"timed_frames", r.timedFrames}, {"stages", stages},
+                              {"full", metricsJson(r.full)}, {"indirect", metricsJson(r.indirect)},
+                              {"image", r.imagePng},        {"flip_map", r.flipPng}};
+            jr["mean_indirect"] = {r.meanIndirect.x, r.meanIndirect.y, r.meanIndirect.z};
+            if (r.method == "ambient") jr["ambient_irradiance"] = r.ambientIrradiance;
+            js["runs"].push_back(jr);
+        }
+        j["scenes"].push_back(js);
+    }
+    return j.dump(2) + "\n";
+}
+
+std::string csv(const std::vector<SceneEval>& scenes) {
+    std::ostringstream c;
+    c << "scene,method,preset,frame_ms,rmse_full,relmse_full,flip_full,ssim_full,rmse_indirect,relmse_indirect,"
+         "flip_indirect,reference_spp,reference_seconds\n";
+    for (const SceneEval& s : scenes)
+        for (const EvalRow& r : s.rows)
+            c << s.name << "," << r.method << "," << r.preset << "," << fmt(r.frameMs, "%.4f") << ","
+              << fmt(r.full.rmse, "%.6g") << "," << fmt(r.full.relMse, "%.6g") << "," << fmt(r.full.flip, "%.6g")
+              << "," << fmt(r.full.ssim, "%.6g") << "," << fmt(r.indirect.rmse, "%.6g") << ","
+              << fmt(r.indirect.relMse, "%.6g") << "," << fmt(r.indirect.flip, "%.6g") << "," << s.referenceSpp << ","
+              << fmt(s.referenceSeconds, "%.3f") << "\n";
+    return c.str();
+}
+
+// Two plots per scene: error against time (FLIP full, RMSE indirect), and the Pareto front of
+// FLIP full against time. Data and scripts stay next to the PNGs so they can be re-plotted.
+std::vector<std::string> plot(const std::string& dir, const SceneEval& s) {
+    std::vector<std::string> written;
+    std::ostringstream data;
+    data << "# label frame_ms flip_full rmse_indirect\n";
+    std::vector<double> time, error;
+    for (const EvalRow& r : s.rows) {
+        data << label(r) << " " << fmt(std::max(r.frameMs, 1e-3), "%.6g") << " " << fmt(r.full.flip, "%.6g") << " "
+             << fmt(r.indirect.rmse, "%.6g") << "\n";
+        time.push_back(r.frameMs);
+        error.push_back(r.full.flip);
+    }
+    std::ostringstream front;
+    for (std::size_t i : paretoFront(time, error))
+        front << fmt(std::max(time[i], 1e-3), "%.6g") << " " << fmt(error[i], "%.6g") << "\n";
+    const std::string base = dir + "/plots/" + s.name;
+    writeTextFile(base + ".dat", data.str());
+    writeTextFile(base + "-pareto.dat", front.str());
+    std::ostringstream gp;
+    gp << "set terminal png size 900,520\nset logscale x\nset grid\nset key outside right\n"
+       << "set xlabel 'frame time (ms, median)'\n"
+       << "set output '" << base << "-error-vs-time.png'\n"
+       << "set title '" << s.name << ": error against frame time'\nset ylabel 'error'\n"
+       << "plot '" << base << ".dat' using 2:3 with points pt 7 ps 1.5 title 'HDR-FLIP (full)', \\\n"
+       << "     '' using 2:4 with points pt 5 ps 1.5 title 'RMSE (indirect)', \\\n"
+       << "     '' using 2:3:1 with labels offset 0,1 font ',8' notitle\n"
+       << "set output '" << base << "-pareto.png'\n"
+       << "set title '" << s.name << ": Pareto front, methods x presets'\nset ylabel 'HDR-FLIP (full)'\n"
+       << "plot '" << base << ".dat' using 2:3 with points pt 7 ps 1.5 title 'method/preset', \\\n"
+       << "     '' using 2:3:1 with labels offset 0,1 font ',8' notitle, \\\n"
+       << "     '" << base << "-pareto.dat' using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \\\n"
+       << "     '" << base << "-pareto.dat' using 1:2 with points pt 6 ps 2.5 lc rgb 'black' notitle\n";
+    writeTextFile(base + ".gp", gp.str());
+    if (std::system(("gnuplot '" + base + ".gp' >/dev/null 2>&1").c_str()) != 0)
+        throw InputError(base + ".gp: gnuplot failed");
+    written.push_back("plots/" + s.name + "-error-vs-time.png");
+    written.push_back("plots/" + s.name + "-pareto.png");
+    return written;
+}
+
+}  // namespace
+
+std::vector<std::string> writeEvalReport(const std::string& dir, const std::vector<SceneEval>& scenes,
+                                         const ReportInfo& info) {
+    std::vector<std::string> plots;
+    if (info.gnuplot) {
+        std::filesystem::create_directories(dir + "/plots");
+        for (const SceneEval& s : scenes)
+            for (const std::string& p : plot(dir, s)) plots.push_back(p);
+    }
+    writeTextFile(dir + "/report.json", json(scenes, info));
+    writeTextFile(dir + "/results.csv", csv(scenes));
+    writeTextFile(dir + "/report.md", markdown(scenes, info, plots));
+    return plots;
+}
+
+}  // namespace voxgi::cli

@@ -1,0 +1,149 @@
+#include "tools/eval_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "gi/pathtrace/path_tracer.h"
+#include "render/frame/frame_renderer.h"
+#include "render/frame/techniques.h"
+#include "scenes/errors.h"
+
+namespace voxgi::cli {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::vector<double> tailFrom(const std::vector<double>& v, std::size_t from) {
+    return from < v.size() ? std::vector<double>(v.begin() + std::ptrdiff_t(from), v.end()) : std::vector<double>{};
+}
+
+// Everything the picture depends on, so a changed scene or camera never reuses a stale file.
+std::string sceneKey(const Scene& scene) {
+    std::ostringstream s;
+    s.precision(9);
+    const Camera& c = scene.camera;
+    s << c.eye.x << c.eye.y << c.eye.z << c.target.x << c.target.y << c.target.z << c.fovYDegrees << c.width << 'x'
+      << c.height << '|';
+    for (const Light& l : scene.lights)
+        s << int(l.type) << l.position.x << l.position.y << l.position.z << l.color.x << l.color.y << l.color.z
+          << l.direction.x << l.direction.y << l.direction.z << '|';
+    for (const Material& m : scene.materials)
+        s << m.albedo.x << m.albedo.y << m.albedo.z << m.emission.x << m.roughness << m.metallic << m.specular << '|';
+    for (const Mesh& m : scene.meshes) {
+        s << m.positions.size() << ':' << m.indices.size();
+        for (const glm::vec3& p : m.positions) s << p.x << p.y << p.z;
+    }
+    s << scene.sky.enabled << scene.sky.radiance.x;
+    std::ostringstream hex;
+    hex << std::hex << std::hash<std::string>{}(s.str());
+    return hex.str();
+}
+}  // namespace
+
+MethodRun renderMethod(const Scene& base, const EvalPreset& preset, const RenderSettings& settings,
+                       const std::vector<std::pair<std::string, std::string>>& extra) {
+    Scene scene = base;
+    for (const auto& [k, v] : preset.settings) scene.gi.set(k, v);
+    for (const auto& [k, v] : extra) scene.gi.set(k, v);
+    FrameOptions options;
+    options.width = settings.width;
+    options.height = settings.height;
+    FrameRenderer renderer(scene, options, createTechnique(preset.method, scene));
+    MethodRun run;
+    run.warmupFrames = std::min(settings.warmup, settings.frames - 1);
+    run.timedFrames = settings.frames - run.warmupFrames;
+    std::map<std::string, std::size_t> gpuStart, cpuStart;
+    std::vector<double> frameMs;
+    for (int f = 0; f < settings.frames; ++f) {
+        if (f == run.warmupFrames)
+            for (const auto& [stage, s] : renderer.timers().samples()) {
+                gpuStart[stage] = s.gpuMs.size();
+                cpuStart[stage] = s.cpuMs.size();
+            }
+        auto start = Clock::now();
+        renderer.renderFrame();
+        double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        if (f >= run.warmupFrames) frameMs.push_back(ms);
+    }
+    run.frameMs = median(frameMs);
+    const auto& samples = renderer.timers().samples();
+    for (const std::string& stage : renderer.timers().stageOrder()) {
+        auto it = samples.find(stage);
+        if (it == samples.end()) continue;
+        StageTiming t;
+        t.gpuMs = median(tailFrom(it->second.gpuMs, gpuStart.count(stage) ? gpuStart[stage] : 0));
+        t.cpuMs = median(tailFrom(it->second.cpuMs, cpuStart.count(stage) ? cpuStart[stage] : 0));
+        run.stages.emplace_back(stage, t);
+    }
+    run.image = renderer.resolve();
+    return run;
+}
+
+Reference loadOrRenderReference(const Scene& scene, const std::string& name, int spp, const std::string& cacheDir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(cacheDir, ec);
+    if (ec) throw InputError(cacheDir + ": cannot create the reference cache (" + ec.message() + ")");
+    const std::string stem = cacheDir + "/" + name + "-" + std::to_string(scene.camera.width) + "x" +
+                             std::to_string(scene.camera.height) + "-" + std::to_string(spp) + "spp-" + sceneKey(scene);
+    Reference ref;
+    ref.path = stem + ".exr";
+    ref.spp = spp;
+    if (fs::exists(ref.path) && fs::exists(stem + ".json")) {
+        ref.image = readExr(ref.path);
+        std::ifstream in(stem + ".json");
+        nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+        ref.seconds = j.is_object() ? j.value("seconds", 0.0) : 0.0;
+        ref.fromCache = true;
+        return ref;
+    }
+    auto start = Clock::now();
+    PathTracer tracer(scene, PathTracerOptions{});
+    // Passes of a few samples keep memory flat and let a slow scene print progress.
+    while (tracer.samplesPerPixel() < spp) {
+        tracer.render(std::min(8, spp - tracer.samplesPerPixel()));
+        std::fprintf(stderr, "\r  reference %s: %d/%d spp", name.c_str(), tracer.samplesPerPixel(), spp);
+    }
+    std::fprintf(stderr, "\n");
+    ref.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    ref.image = tracer.image();
+    writeExr(ref.path, ref.image);
+    std::string tmp = temporaryPathFor(stem + ".json");
+    {
+        std::ofstream out(tmp);
+        out << nlohmann::json{{"spp", spp}, {"seconds", ref.seconds}, {"rays", tracer.raysTraced()}}.dump(2) << "\n";
+    }
+    renameInto(tmp, stem + ".json");
+    return ref;
+}
+
+Reference readReference(const std::string& path, const Scene& scene) {
+    Reference ref;
+    ref.path = path;
+    ref.image = readExr(path);
+    ref.fromCache = true;
+    if (ref.image.width() != scene.camera.width || ref.image.height() != scene.camera.height)
+        throw InputError("--reference " + path + ": " + std::to_string(ref.image.width()) + "x" +
+                         std::to_string(ref.image.height()) + " does not match the render size " +
+                         std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height));
+    if (!ref.image.find("indirect"))
+        throw InputError("--reference " + path + ": no indirect layer (write it with voxgi reference)");
+    return ref;
+}
+
+}  // namespace voxgi::cli

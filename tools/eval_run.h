@@ -1,0 +1,53 @@
+// The measuring half of `voxgi eval`: renders a scene with one method and preset on the frame
+// renderer (warm-up frames, then per-frame wall clock and per-stage GPU/CPU medians), and
+// computes or reuses a cached path-traced reference.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "scenes/image.h"
+#include "scenes/scene.h"
+#include "tools/eval_presets.h"
+
+namespace voxgi::cli {
+
+struct StageTiming {
+    double gpuMs = 0.0;  // median over the timed frames (0 for CPU-only stages)
+    double cpuMs = 0.0;
+};
+
+struct MethodRun {
+    Image image;
+    double frameMs = 0.0;  // median wall clock of one frame (renderFrame, which waits for the GPU)
+    int warmupFrames = 0;
+    int timedFrames = 0;
+    std::vector<std::pair<std::string, StageTiming>> stages;  // in the renderer's order
+};
+
+struct RenderSettings {
+    int width = 0, height = 0;  // the scene camera's size already overridden
+    int frames = 0;             // frames accumulated into the image, warm-up included
+    int warmup = 0;             // first frames left out of the timing
+};
+
+// Needs a current GL context. `extra` gi settings are applied over the scene's.
+MethodRun renderMethod(const Scene& scene, const EvalPreset& preset, const RenderSettings& settings,
+                       const std::vector<std::pair<std::string, std::string>>& extra = {});
+
+struct Reference {
+    Image image;
+    int spp = 0;
+    double seconds = 0.0;  // path tracing time when computed (from the cache's record otherwise)
+    bool fromCache = false;
+    std::string path;
+};
+
+// `cacheDir`/<name>-<w>x<h>-<spp>spp-<hash>.exr (+ .json with spp and time) when present, else
+// path traced and written there.
+Reference loadOrRenderReference(const Scene& scene, const std::string& name, int spp, const std::string& cacheDir);
+// A reference given as a file; its size must match the scene camera's.
+Reference readReference(const std::string& path, const Scene& scene);
+
+}  // namespace voxgi::cli
