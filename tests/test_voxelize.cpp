@@ -88,8 +88,12 @@ TEST(TriangleBox, SeparatingAxesAgreeWithClipping) {
         bool sat = triangleOverlapsBox(a, b, c, glm::vec3(0.0f), glm::vec3(0.5f));
         bool clipped = polygonMoments(clipTriangleToBox(a, b, c, glm::vec3(-0.5f), glm::vec3(0.5f))).area > 0.0f;
         bool grown = clipTriangleToBox(a, b, c, glm::vec3(-0.5001f), glm::vec3(0.5001f)).count > 0;
-        if (clipped) EXPECT_TRUE(sat) << i;
-        if (sat) EXPECT_TRUE(grown) << i;
+        if (clipped) {
+            EXPECT_TRUE(sat) << i;
+        }
+        if (sat) {
+            EXPECT_TRUE(grown) << i;
+        }
         overlaps += sat;
     }
     EXPECT_GT(overlaps, 2000);
@@ -128,7 +132,9 @@ TEST(Voxelize, SphereStaysWithinTheShellBoundsAndClosed) {
                 float dmin = glm::length(glm::clamp(center, lo, hi) - center);
                 float dmax = glm::length(glm::max(glm::abs(lo - center), glm::abs(hi - center)));
                 bool on = occupied.count({x, y, z}) != 0;
-                if (on) EXPECT_TRUE(dmin <= r + slack && dmax >= inner - slack) << x << " " << y << " " << z;
+                if (on) {
+                    EXPECT_TRUE(dmin <= r + slack && dmax >= inner - slack) << x << " " << y << " " << z;
+                }
                 if (dmin < inner - slack && dmax > r + slack) {
                     ++required;
                     EXPECT_TRUE(on) << "hole at " << x << " " << y << " " << z;
@@ -169,8 +175,12 @@ TEST(Voxelize, TiltedTriangleMatchesIndependentClippingAndDenseSamples) {
                 bool area = polygonMoments(clipTriangleToBox(a, b, c, lo, hi)).area > 0.0f;
                 bool near = clipTriangleToBox(a, b, c, lo - 1e-4f * h, hi + 1e-4f * h).count > 0;
                 bool on = v.occupied({x, y, z});
-                if (area) EXPECT_TRUE(on) << x << " " << y << " " << z;
-                if (on) EXPECT_TRUE(near) << x << " " << y << " " << z;
+                if (area) {
+                    EXPECT_TRUE(on) << x << " " << y << " " << z;
+                }
+                if (on) {
+                    EXPECT_TRUE(near) << x << " " << y << " " << z;
+                }
                 withArea += area;
                 occupied += on;
             }

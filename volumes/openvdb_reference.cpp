@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <sys/resource.h>
+
 #include <openvdb/tools/MeshToVolume.h>
 
 #include "volumes/detail/geometry_grids.h"
@@ -11,16 +13,25 @@
 
 namespace voxgi {
 
+double processCpuSeconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+           1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 MeshToVolumeRun runMeshToUnsignedDistance(const Scene& scene, float voxelSize, float halfWidth) {
     initializeOpenVdb();
     detail::MeshArrays arrays = detail::collectMeshArrays(scene);
     std::vector<openvdb::Vec4I> quads;
     auto xform = detail::voxelTransform(voxelSize);
+    const double cpuStart = processCpuSeconds();
     auto start = std::chrono::steady_clock::now();
     auto grid = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(*xform, arrays.points,
                                                                                 arrays.triangles, quads, halfWidth);
     MeshToVolumeRun run;
     run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.cpuSeconds = processCpuSeconds() - cpuStart;
     run.activeVoxels = grid->activeVoxelCount();
     run.memoryBytes = grid->memUsage();
     return run;

@@ -13,9 +13,13 @@ namespace voxgi {
 
 struct MeshToVolumeRun {
     double seconds = 0.0;
+    double cpuSeconds = 0.0;  // user + system time of the whole process during the call
     std::uint64_t activeVoxels = 0;
     std::uint64_t memoryBytes = 0;  // the grid's memUsage
 };
+
+// User + system CPU seconds this process has used so far (all threads).
+double processCpuSeconds();
 
 // Unsigned distance field with the given half width (voxels) at the voxel size, voxel (i,j,k)
 // covering [i, i+1] * h like the geometry volumes. Timing excludes gathering the arrays.

@@ -25,11 +25,13 @@ constexpr int kLeavesPerBin = kBin / 8;
 constexpr float kSlack = 1e-4f;        // box growth (voxels) that keeps touching triangles in
 constexpr float kTouchWeight = 1e-6f;  // albedo weight of a voxel a triangle only touches
 
+struct SmallTexture;
+
 struct PreparedTriangle {
     glm::vec3 p[3];          // world space
     glm::vec3 unitNormal;
     glm::vec3 albedo;        // material albedo, times the texture average when sampled nowhere
-    const Texture* texture;  // sampled at each piece's centroid when the mesh has uvs
+    const SmallTexture* texture;  // sampled at each piece's centroid when the mesh has uvs
     glm::vec2 uv[3];
     glm::ivec3 lo, hi;       // voxels touched by the bounding box (closed boxes, with slack)
 };
@@ -43,26 +45,50 @@ glm::ivec3 floorDiv(const glm::ivec3& v, int d) {
     return glm::ivec3(int(std::floor(double(v.x) / d)), int(std::floor(double(v.y) / d)), int(std::floor(double(v.z) / d)));
 }
 
-// Nearest-texel lookup through an sRGB table: one fetch per clipped piece keeps textured
-// scenes as fast as untextured ones (a bilinear pow() lookup would dominate the run time).
-struct SrgbTable {
-    float value[256];
-    SrgbTable() {
-        for (int i = 0; i < 256; ++i) {
-            float c = float(i) / 255.0f;
-            value[i] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-        }
+// A small linear-RGB copy of each diffuse texture (at most 64x64 cells, each the mean of a
+// strided sample of its texels). A voxel piece spans many texels anyway, and a table that fits
+// in cache keeps textured scenes as fast as untextured ones: point lookups into the full
+// images were half the rasterizer's time on Sponza, all of it cache misses.
+struct SmallTexture {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> texels;  // rows top first, like Texture
+
+    explicit SmallTexture(const Texture& t) {
+        static const struct SrgbTable {
+            float value[256];
+            SrgbTable() {
+                for (int i = 0; i < 256; ++i) {
+                    float c = float(i) / 255.0f;
+                    value[i] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+                }
+            }
+        } table;
+        width = std::min(t.width, 64);
+        height = std::min(t.height, 64);
+        texels.resize(std::size_t(width) * std::size_t(height));
+        for (int cy = 0; cy < height; ++cy)
+            for (int cx = 0; cx < width; ++cx) {
+                int x0 = cx * t.width / width, x1 = (cx + 1) * t.width / width;
+                int y0 = cy * t.height / height, y1 = (cy + 1) * t.height / height;
+                int sx = std::max(1, (x1 - x0) / 4), sy = std::max(1, (y1 - y0) / 4);
+                glm::vec3 sum(0.0f);
+                int n = 0;
+                for (int y = y0; y < y1; y += sy)
+                    for (int x = x0; x < x1; x += sx, ++n) {
+                        const std::uint8_t* p = &t.rgba[(std::size_t(y) * std::size_t(t.width) + std::size_t(x)) * 4];
+                        sum += glm::vec3(table.value[p[0]], table.value[p[1]], table.value[p[2]]);
+                    }
+                texels[std::size_t(cy) * std::size_t(width) + std::size_t(cx)] = sum / float(std::max(n, 1));
+            }
+    }
+
+    glm::vec3 at(glm::vec2 uv) const {
+        float u = uv.x - std::floor(uv.x), v = 1.0f - (uv.y - std::floor(uv.y));
+        int x = std::min(width - 1, std::max(0, int(u * float(width))));
+        int y = std::min(height - 1, std::max(0, int(v * float(height))));
+        return texels[std::size_t(y) * std::size_t(width) + std::size_t(x)];
     }
 };
-
-glm::vec3 textureAt(const Texture& t, glm::vec2 uv) {
-    static const SrgbTable table;
-    float u = uv.x - std::floor(uv.x), v = 1.0f - (uv.y - std::floor(uv.y));
-    int x = std::min(t.width - 1, std::max(0, int(u * float(t.width))));
-    int y = std::min(t.height - 1, std::max(0, int(v * float(t.height))));
-    const std::uint8_t* p = &t.rgba[(std::size_t(y) * std::size_t(t.width) + std::size_t(x)) * 4];
-    return glm::vec3(table.value[p[0]], table.value[p[1]], table.value[p[2]]);
-}
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -150,7 +176,7 @@ private:
         s.area += m.area;
         s.vectorArea += m.area * t.unitNormal;
         glm::vec3 albedo = t.albedo;
-        if (t.texture) albedo *= textureAt(*t.texture, uvAt(t, q, m.area > 0.0f ? m.centroid : piece.count ? piece.v[0] : q[0]));
+        if (t.texture) albedo *= t.texture->at(uvAt(t, q, m.area > 0.0f ? m.centroid : piece.count ? piece.v[0] : q[0]));
         const float w = m.area + kTouchWeight;
         s.albedoSum += w * albedo;
         s.albedoWeight += w;
@@ -175,6 +201,13 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
     const double h = settings.voxelSize;
     // Index coordinates stay far inside int range, and bins inside their 21-bit key fields.
     const double maxIndex = double(kBin) * double(1 << 19);
+    std::vector<char> textureUsable(scene.textures.size(), 0);
+    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        textureUsable[i] = t.width > 0 && t.height > 0 &&
+                           t.rgba.size() >= std::size_t(t.width) * std::size_t(t.height) * 4;
+    }
+    std::vector<std::unique_ptr<SmallTexture>> smallTextures(scene.textures.size());
     std::vector<PreparedTriangle> triangles;
     triangles.reserve(scene.triangleCount());
     double estimate = 0.0;
@@ -220,16 +253,15 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
                                            ? &scene.materials[mesh.materialIds[f]] : nullptr;
             t.albedo = material ? material->albedo : glm::vec3(0.8f);
             t.texture = nullptr;
-            const Texture* texture = material && material->albedoTexture >= 0 &&
-                                             std::size_t(material->albedoTexture) < scene.textures.size()
-                                         ? &scene.textures[material->albedoTexture] : nullptr;
-            if (texture && texture->width > 0 && texture->height > 0 &&
-                texture->rgba.size() >= std::size_t(texture->width) * std::size_t(texture->height) * 4) {
+            const int texture = material ? material->albedoTexture : -1;
+            if (texture >= 0 && std::size_t(texture) < scene.textures.size() && textureUsable[std::size_t(texture)]) {
                 if (mesh.uvs.size() == mesh.positions.size()) {
-                    t.texture = texture;
+                    auto& small = smallTextures[std::size_t(texture)];
+                    if (!small) small = std::make_unique<SmallTexture>(scene.textures[std::size_t(texture)]);
+                    t.texture = small.get();
                     for (int i = 0; i < 3; ++i) t.uv[i] = mesh.uvs[idx[i]];
                 } else {
-                    t.albedo *= texture->averageLinear;
+                    t.albedo *= scene.textures[std::size_t(texture)].averageLinear;
                 }
             }
             triangles.push_back(t);
