@@ -14,10 +14,10 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi dump SCENE --method lpv|clpv|ddgi [--frame K] -o OUT.vdb [--width W --height H] [--set section.key=value]...";
+    "voxgi dump SCENE --method lpv|clpv|ddgi [--frame K] -o OUT.vdb [--width W --height H] [--backend cpu|gl] [--set section.key=value]...";
 
 int runDump(const std::vector<std::string>& argv) {
-    Args args(argv, {"--method", "-o", "--frame", "--width", "--height", "--set"}, {}, {"--set"});
+    Args args(argv, {"--method", "-o", "--frame", "--width", "--height", "--set", "--backend"}, {}, {"--set"});
     args.requirePositional(1, kUsage);
     auto out = args.value("-o");
     if (!out) throw InputError("-o OUT.vdb is required; usage: " + std::string(kUsage));

@@ -19,7 +19,7 @@ namespace {
 
 const char* kUsage =
     "voxgi render SCENE [--method direct|lpv|clpv|ddgi] -o OUT.exr [--png OUT.png] [--width W --height H] [--frames N]\n"
-    "       [--timings T.json] [--exposure STOPS] [--set section.key=value]... [--plan]\n"
+    "       [--timings T.json] [--exposure STOPS] [--backend cpu|gl] [--set section.key=value]... [--plan]\n"
     "  SCENE: a scene .json, a mesh file, or a built-in scene name (cornell-box)\n"
     "  --frames: frames accumulated (default 64 with area lights, else 1)";
 
@@ -34,7 +34,7 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
 }
 
 int runRender(const std::vector<std::string>& argv) {
-    Args args(argv, {"--method", "-o", "--png", "--width", "--height", "--frames", "--timings", "--exposure", "--set"},
+    Args args(argv, {"--method", "-o", "--png", "--width", "--height", "--frames", "--timings", "--exposure", "--set", "--backend"},
               {"--plan"}, {"--set"});
     args.requirePositional(1, kUsage);
     auto out = args.value("-o");

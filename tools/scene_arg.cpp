@@ -22,6 +22,11 @@ Scene loadSceneArgument(const std::string& argument) {
 void applySceneOverrides(const Args& args, Scene& scene) {
     scene.camera.width = args.integer("--width", scene.camera.width, 1, 16384);
     scene.camera.height = args.integer("--height", scene.camera.height, 1, 16384);
+    if (auto backend = args.value("--backend")) {
+        if (*backend != "cpu" && *backend != "gl") throw InputError("--backend " + *backend + ": expected cpu or gl");
+        scene.gi.set("lpv.backend", *backend);
+        scene.gi.set("ddgi.backend", *backend);
+    }
     for (const std::string& s : args.values("--set")) scene.gi.applyOverride(s);
 }
 
