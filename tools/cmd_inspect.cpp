@@ -2,7 +2,9 @@
 // histograms, and coloured slices to PNG.
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
+#include <vector>
 
 #include "scenes/errors.h"
 #include "scenes/image.h"
@@ -18,7 +20,8 @@ const char* kUsage =
     "voxgi inspect FILE.vdb [--stats [--bins N]] [--metadata] [--slice x|y|z=WORLD -o SLICE.png [--grid NAME]]\n"
     "  --stats: per-grid histogram of values (vector lengths for vector grids)\n"
     "  --slice: the voxel layer at a world coordinate, coloured (albedo in sRGB, vectors 0.5+0.5v,\n"
-    "           scalars on a blue-red ramp); --grid picks the grid (default albedo, else the first)";
+    "           scalars on a blue-red ramp); --grid picks the grid (default albedo, else the first);\n"
+    "           voxels are drawn as squares so the image's longer side reaches --pixels (default 512)";
 
 std::string formatBytes(std::uint64_t bytes) {
     char text[32];
@@ -67,7 +70,7 @@ void printHistograms(const std::vector<VdbHistogram>& histograms) {
 }
 
 int runInspect(const std::vector<std::string>& argv) {
-    Args args(argv, {"--slice", "-o", "--grid", "--bins"}, {"--stats", "--metadata"});
+    Args args(argv, {"--slice", "-o", "--grid", "--bins", "--pixels"}, {"--stats", "--metadata"});
     args.requirePositional(1, kUsage);
     const std::string path = args.positional()[0];
     const int bins = args.integer("--bins", 10, 1, 1000);
@@ -94,9 +97,17 @@ int runInspect(const std::vector<std::string>& argv) {
     if (args.flag("--stats")) printHistograms(vdbHistograms(path, bins));
     if (sliceSpec) {
         VdbSlice slice = sliceVdbFile(path, args.value("--grid", ""), axis, world);
-        writePngRgb8(*out, slice.width, slice.height, slice.rgb);
-        std::printf("wrote %s: grid %s, %c index %d, %dx%d", out->c_str(), slice.grid.c_str(), 'x' + axis,
-                    slice.indexPlane, slice.width, slice.height);
+        // Whole pixels per voxel, so that small grids stay readable.
+        const int scale = std::max(1, args.integer("--pixels", 512, 1, 16384) / std::max(slice.width, slice.height));
+        std::vector<std::uint8_t> rgb(std::size_t(slice.width) * scale * std::size_t(slice.height) * scale * 3);
+        for (int y = 0; y < slice.height * scale; ++y)
+            for (int x = 0; x < slice.width * scale; ++x)
+                for (int c = 0; c < 3; ++c)
+                    rgb[(std::size_t(y) * std::size_t(slice.width * scale) + std::size_t(x)) * 3 + std::size_t(c)] =
+                        slice.rgb[(std::size_t(y / scale) * std::size_t(slice.width) + std::size_t(x / scale)) * 3 + std::size_t(c)];
+        writePngRgb8(*out, slice.width * scale, slice.height * scale, rgb);
+        std::printf("wrote %s: grid %s, %c index %d, %dx%d voxels at %d pixel(s) each", out->c_str(), slice.grid.c_str(),
+                    'x' + axis, slice.indexPlane, slice.width, slice.height, scale);
         if (slice.valueMax > slice.valueMin) std::printf(", ramp [%g, %g]", slice.valueMin, slice.valueMax);
         std::printf("\n");
     }
