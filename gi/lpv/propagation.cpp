@@ -116,17 +116,19 @@ glm::vec4 reflectionShape(glm::vec4 blocker, float flux) {
     return glm::vec4(shape.x, band1);
 }
 
+}  // namespace
+
 // The propagation operator of one cascade, built once per geometry volume: the 4x4 transfer
 // matrix from each neighbour (occluded faces folded in) and from the cell itself (bounces).
 // Steps then cost 6 + 1 matrix-vector products per colour and cell.
-struct Operator {
+struct PropagationOperator {
     static constexpr std::int32_t kOpen = -1;  // use the unoccluded matrix of that axis
     std::vector<std::int32_t> gather;  // [cell * 6 + axis] -> index into gatherPool, or kOpen
     std::vector<glm::mat4> gatherPool;
     std::vector<std::int32_t> self;    // [cell] -> index of 3 consecutive matrices in selfPool, or -1
     std::vector<glm::mat4> selfPool;
 
-    Operator(const BlockerVolume& gv, const CascadeGrid& grid, const PropagationOptions& opt) {
+    PropagationOperator(const BlockerVolume& gv, const CascadeGrid& grid, const PropagationOptions& opt) {
         const PropagationKernel& k = propagationKernel();
         const PropagationTables& t = propagationTables();
         gather.assign(grid.cellCount() * 6, kOpen);
@@ -196,7 +198,9 @@ struct Operator {
     }
 };
 
-void gatherCell(const LightVolume& in, const Operator& op, glm::ivec3 d, glm::vec4 out[3]) {
+namespace {
+
+void gatherCell(const LightVolume& in, const PropagationOperator& op, glm::ivec3 d, glm::vec4 out[3]) {
     const PropagationKernel& k = propagationKernel();
     const PropagationTables& t = propagationTables();
     const CascadeGrid& grid = in.grid;
@@ -209,7 +213,7 @@ void gatherCell(const LightVolume& in, const Operator& op, glm::ivec3 d, glm::ve
         const glm::vec4 src[3] = {in.r[si], in.g[si], in.b[si]};
         if (src[0] == glm::vec4(0.0f) && src[1] == glm::vec4(0.0f) && src[2] == glm::vec4(0.0f)) continue;
         std::int32_t m = op.gather[di * 6 + a];
-        const glm::mat4& transfer = m == Operator::kOpen ? k.unoccluded[a] : op.gatherPool[std::size_t(m)];
+        const glm::mat4& transfer = m == PropagationOperator::kOpen ? k.unoccluded[a] : op.gatherPool[std::size_t(m)];
         for (int c = 0; c < 3; ++c) out[c] += transfer * src[c];
     }
     if (op.self[di] < 0) return;
@@ -222,6 +226,11 @@ void gatherCell(const LightVolume& in, const Operator& op, glm::ivec3 d, glm::ve
 int brickSizeFor(int resolution) { return resolution % 8 == 0 ? 8 : 4; }
 
 }  // namespace
+
+CpuPropagator::CpuPropagator() = default;
+CpuPropagator::~CpuPropagator() = default;
+CpuPropagator::CpuPropagator(CpuPropagator&&) noexcept = default;
+CpuPropagator& CpuPropagator::operator=(CpuPropagator&&) noexcept = default;
 
 const PropagationTables& propagationTables() {
     static const PropagationTables tables = buildTables();
@@ -239,7 +248,7 @@ void CpuPropagator::step(const LightVolume& in, const BlockerVolume& geometry, c
     if (out.r.size() != in.r.size()) out.reset(grid);
     out.grid = grid;
     const int n = grid.resolution;
-    const Operator op(geometry, grid, options);
+    const PropagationOperator op(geometry, grid, options);
     tbb::parallel_for(0, n, [&](int z) {
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
@@ -279,7 +288,16 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
     // Bounces make a cell's own light feed back, so a lit brick stays active.
     stats_.totalBricks = brickCount;
     auto t0 = std::chrono::steady_clock::now();
-    const Operator op(geometry, grid, options);
+    const bool sameGeometry = operator_ && operatorOptions_.occlusion == options.occlusion &&
+                              operatorOptions_.bounces == options.bounces &&
+                              operatorGeometry_.grid.resolution == geometry.grid.resolution &&
+                              operatorGeometry_.blocker == geometry.blocker && operatorGeometry_.albedo == geometry.albedo;
+    if (!sameGeometry) {
+        operator_ = std::make_unique<PropagationOperator>(geometry, grid, options);
+        operatorGeometry_ = geometry;
+        operatorOptions_ = options;
+    }
+    const PropagationOperator& op = *operator_;
     auto t1 = std::chrono::steady_clock::now();
     stats_.operatorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
     std::vector<glm::ivec3> active;

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -69,8 +70,17 @@ struct PropagationStats {
 
 // Runs `steps` iterations: accumulated = injected + sum of every iteration's output.
 // `sparse` processes only bricks holding light (dilated one brick per step).
+struct PropagationOperator;
+
 class CpuPropagator {
 public:
+    CpuPropagator();
+    ~CpuPropagator();
+    CpuPropagator(CpuPropagator&&) noexcept;
+    CpuPropagator& operator=(CpuPropagator&&) noexcept;
+
+    // The transfer operator built from `geometry` is kept and reused while the geometry
+    // volume and options stay the same (a static scene re-propagates without rebuilding it).
     void propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                    const PropagationOptions& options, LightVolume& accumulated, bool sparse = true);
     // One iteration from `in` to `out` (dense), for tests.
@@ -81,6 +91,9 @@ public:
 private:
     LightVolume ping_, pong_;
     PropagationStats stats_;
+    std::unique_ptr<PropagationOperator> operator_;
+    BlockerVolume operatorGeometry_;
+    PropagationOptions operatorOptions_;
 };
 
 }  // namespace voxgi
