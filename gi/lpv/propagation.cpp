@@ -7,6 +7,10 @@
 
 #include <tbb/parallel_for.h>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 #include "gi/sh/sh.h"
 
 namespace voxgi {
@@ -200,27 +204,46 @@ struct PropagationOperator {
 
 namespace {
 
+#if defined(__SSE2__)
+// out += m * v with SSE: the columns are loaded once, the broadcast lanes of v multiply them.
+inline void addTransfer(const glm::mat4& m, const glm::vec4& v, glm::vec4& out) {
+    const float* c = &m[0][0];
+    __m128 acc = _mm_loadu_ps(&out[0]);
+    acc = _mm_add_ps(acc, _mm_mul_ps(_mm_loadu_ps(c), _mm_set1_ps(v.x)));
+    acc = _mm_add_ps(acc, _mm_mul_ps(_mm_loadu_ps(c + 4), _mm_set1_ps(v.y)));
+    acc = _mm_add_ps(acc, _mm_mul_ps(_mm_loadu_ps(c + 8), _mm_set1_ps(v.z)));
+    acc = _mm_add_ps(acc, _mm_mul_ps(_mm_loadu_ps(c + 12), _mm_set1_ps(v.w)));
+    _mm_storeu_ps(&out[0], acc);
+}
+#else
+inline void addTransfer(const glm::mat4& m, const glm::vec4& v, glm::vec4& out) { out += m * v; }
+#endif
+
 void gatherCell(const LightVolume& in, const PropagationOperator& op, glm::ivec3 d, glm::vec4 out[3]) {
     const PropagationKernel& k = propagationKernel();
-    const PropagationTables& t = propagationTables();
     const CascadeGrid& grid = in.grid;
     out[0] = out[1] = out[2] = glm::vec4(0.0f);
     const std::size_t di = grid.index(d);
+    const std::size_t n = std::size_t(grid.resolution);
+    // The six neighbours in the order of PropagationTables::axes (+x -x +y -y +z -z): the
+    // source of light arriving along +x is the cell at -x, and so on.
+    const bool has[6] = {d.x > 0, d.x + 1 < grid.resolution, d.y > 0, d.y + 1 < grid.resolution,
+                         d.z > 0, d.z + 1 < grid.resolution};
+    const std::size_t source[6] = {di - 1, di + 1, di - n, di + n, di - n * n, di + n * n};
     for (std::size_t a = 0; a < 6; ++a) {
-        glm::ivec3 s = d - t.axes[a];
-        if (!grid.contains(s)) continue;
-        std::size_t si = grid.index(s);
-        const glm::vec4 src[3] = {in.r[si], in.g[si], in.b[si]};
-        if (src[0] == glm::vec4(0.0f) && src[1] == glm::vec4(0.0f) && src[2] == glm::vec4(0.0f)) continue;
-        std::int32_t m = op.gather[di * 6 + a];
+        if (!has[a]) continue;
+        const std::size_t si = source[a];
+        const std::int32_t m = op.gather[di * 6 + a];
         const glm::mat4& transfer = m == PropagationOperator::kOpen ? k.unoccluded[a] : op.gatherPool[std::size_t(m)];
-        for (int c = 0; c < 3; ++c) out[c] += transfer * src[c];
+        addTransfer(transfer, in.r[si], out[0]);
+        addTransfer(transfer, in.g[si], out[1]);
+        addTransfer(transfer, in.b[si], out[2]);
     }
     if (op.self[di] < 0) return;
     const glm::mat4* channel = &op.selfPool[std::size_t(op.self[di])];
-    out[0] += channel[0] * in.r[di];
-    out[1] += channel[1] * in.g[di];
-    out[2] += channel[2] * in.b[di];
+    addTransfer(channel[0], in.r[di], out[0]);
+    addTransfer(channel[1], in.g[di], out[1]);
+    addTransfer(channel[2], in.b[di], out[2]);
 }
 
 int brickSizeFor(int resolution) { return resolution % 8 == 0 ? 8 : 4; }
