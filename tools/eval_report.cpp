@@ -178,9 +178,10 @@ std::vector<std::string> plot(const std::string& dir, const SceneEval& s) {
     std::ostringstream front;
     for (std::size_t i : paretoFront(time, error))
         front << fmt(std::max(time[i], 1e-3), "%.6g") << " " << fmt(error[i], "%.6g") << "\n";
-    const std::string base = dir + "/plots/" + s.name;
-    writeTextFile(base + ".dat", data.str());
-    writeTextFile(base + "-pareto.dat", front.str());
+    // Paths relative to the report folder, where gnuplot runs, so the folder can move.
+    const std::string base = "plots/" + s.name;
+    writeTextFile(dir + "/" + base + ".dat", data.str());
+    writeTextFile(dir + "/" + base + "-pareto.dat", front.str());
     std::ostringstream gp;
     gp << "set terminal png size 900,520\nset logscale x\nset grid\nset key outside right\n"
        << "set xlabel 'frame time (ms, median)'\n"
@@ -195,8 +196,8 @@ std::vector<std::string> plot(const std::string& dir, const SceneEval& s) {
        << "     '' using 2:3:1 with labels offset 0,1 font ',8' notitle, \\\n"
        << "     '" << base << "-pareto.dat' using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \\\n"
        << "     '" << base << "-pareto.dat' using 1:2 with points pt 6 ps 2.5 lc rgb 'black' notitle\n";
-    writeTextFile(base + ".gp", gp.str());
-    if (std::system(("gnuplot '" + base + ".gp' >/dev/null 2>&1").c_str()) != 0)
+    writeTextFile(dir + "/" + base + ".gp", gp.str());
+    if (std::system(("cd '" + dir + "' && gnuplot '" + base + ".gp' >/dev/null 2>&1").c_str()) != 0)
         throw InputError(base + ".gp: gnuplot failed");
     written.push_back("plots/" + s.name + "-error-vs-time.png");
     written.push_back("plots/" + s.name + "-pareto.png");

@@ -201,10 +201,10 @@ std::vector<Case> allCases() {
     for (float k : {1e-6f, 1e6f}) {
         std::string ks = k < 1.0f ? "1e-6" : "1e6";
         c.push_back({"light-" + ks + "-pathtrace", "pathtrace", "Cornell box, light x" + ks + ", same seed",
-                     [k](StabilityResult& r) {
+                     [k, ks](StabilityResult& r) {
                          Measured m = pathTrace(brighter(cornell(16), k), 16);
                          Measured base = pathTrace(cornell(16), 16);
-                         finish(r, m, ratioOf(m.mean, double(k) * base.mean), "x" + std::to_string(k) + " the unscaled mean (linearity)", 1e-3);
+                         finish(r, m, ratioOf(m.mean, double(k) * base.mean), "x" + ks + " the unscaled mean (linearity)", 1e-3);
                      }});
         c.push_back({"light-" + ks + "-lpv", "lpv", "Cornell box, light x" + ks, [k](StabilityResult& r) {
                          Measured m = rasterize(brighter(cornell(24), k), "lpv", {}, 4);
