@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "gi/ddgi/ddgi_system.h"
+#include "gi/ddgi/occupancy_query.h"
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "scenes/errors.h"
@@ -314,4 +315,23 @@ TEST(Ddgi, OcclusionProbesReconstructShadowsLikeShadowRays) {
                 sumOcclusion, sumRays, 100.0 * sumDiff / sumRays, (long long)occlusionShadows, (long long)rayShadows);
     EXPECT_NEAR(sumOcclusion, sumRays, 0.1 * sumRays);
     EXPECT_LT(sumDiff, 0.2 * sumRays);
+}
+
+TEST(Ddgi, VoxelOccupancyPutsProbesFarFromGeometryToSleep) {
+    // A 4 m closed box with 1 m cells: the 8 inner probes are 1.5 m from every wall.
+    Scene scene = test::furnaceBox(0.5f, 1.0f, 4.0f);
+    RayTracer tracer(scene);
+    DdgiDesc desc = descFrom({{"probes", "4"}, {"rays", "32"}, {"relocate", "false"}});
+    ProbeVolume volume = layoutVolumes(desc, scene.bounds(), scene.camera.eye).front();
+    auto voxels = voxelizeForProbes(scene, volume);
+    GeometryQuery query = occupancyQuery(voxels, volume);
+    ASSERT_TRUE(query.distanceToGeometry);
+    EXPECT_EQ(query.distanceToGeometry(glm::vec3(1.5f, 1.5f, 1.5f)), 0.0f);  // next to three walls
+    EXPECT_GT(query.distanceToGeometry(glm::vec3(0.5f, 0.5f, 0.5f)), 1.0f);   // the inner probes
+    DdgiSystem ddgi(tracer, desc, query);
+    runFrames(ddgi, 2);
+    ProbeStateCounts c = countStates(ddgi.field());
+    EXPECT_EQ(c.sleeping, 8);
+    EXPECT_EQ(c.active, 56);
+    EXPECT_EQ(c.off, 0);
 }

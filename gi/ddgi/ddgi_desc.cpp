@@ -46,7 +46,7 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
     gi.requireKnown("ddgi", {"probes", "spacing", "rays", "fixed_rays", "irradiance_texels", "distance_texels",
                              "hysteresis", "distance_exponent", "normal_bias", "view_bias", "irradiance_gamma",
                              "energy", "irradiance_threshold", "brightness_threshold", "backface_threshold",
-                             "relocation_backface_threshold", "min_frontface_distance", "classify", "relocate",
+                             "relocation_backface_threshold", "min_frontface_distance", "classify", "occupancy", "relocate",
                              "sleep_interval", "cascades", "scroll", "direct", "occlusion_stride", "seed", "backend"});
     DdgiDesc d;
     glm::vec3 counts = parseTriple(gi, "ddgi.probes", glm::vec3(0.0f));
@@ -96,6 +96,7 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
     requireRange("ddgi.min_frontface_distance", d.minFrontfaceDistance, 0, 0.45);
     d.classify = gi.getBool("ddgi.classify", d.classify);
     d.relocate = gi.getBool("ddgi.relocate", d.relocate);
+    d.occupancy = gi.getBool("ddgi.occupancy", d.occupancy);
     d.sleepInterval = gi.getInt("ddgi.sleep_interval", d.sleepInterval);
     requireRange("ddgi.sleep_interval", d.sleepInterval, 1, 100000);
     d.cascades = gi.getInt("ddgi.cascades", d.cascades);

@@ -37,6 +37,7 @@ struct DdgiDesc {
     float relocationBackfaceThreshold = 0.1f;  // all-ray backface ratio that moves a probe
     float minFrontfaceDistance = 0.3f;  // in cells: relocation pushes probes this far from walls
     bool classify = true;
+    bool occupancy = false;       // also classify from the voxel occupancy (gi/ddgi/occupancy_query.h)
     bool relocate = true;
     int sleepInterval = 10;       // a sleeping probe updates every this many frames
     int cascades = 1;             // > 1: camera-centred cascades, spacing doubling outward

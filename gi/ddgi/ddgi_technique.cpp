@@ -1,6 +1,7 @@
 #include "gi/ddgi/ddgi_technique.h"
 
 #include "gi/ddgi/ddgi_gpu.h"
+#include "gi/ddgi/occupancy_query.h"
 #include "gi/raytrace/ray_tracer.h"
 
 namespace voxgi {
@@ -8,6 +9,12 @@ namespace voxgi {
 DdgiTechnique::DdgiTechnique(const Scene& scene, GeometryQuery query) {
     DdgiDesc desc = readDdgiDesc(scene.gi);
     tracer_ = std::make_unique<RayTracer>(scene);
+    if (desc.occupancy && !query.distanceToGeometry && scene.triangleCount() > 0) {
+        // The finest volume's cells decide the voxel size; coarser cascades see a finer grid.
+        ProbeVolume finest = layoutVolumes(desc, scene.bounds(), scene.camera.eye).front();
+        GeometryQuery occupancy = occupancyQuery(voxelizeForProbes(scene, finest), finest);
+        query.distanceToGeometry = std::move(occupancy.distanceToGeometry);
+    }
     system_ = std::make_unique<DdgiSystem>(*tracer_, desc, std::move(query));
     gpu_ = std::make_unique<DdgiGpu>(system_->field());
 }
