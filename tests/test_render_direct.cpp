@@ -111,3 +111,24 @@ TEST_F(DirectRender, SunIrradianceAndShadow) {
     glm::ivec2 shadow = project(s, {0.5f / std::tan(0.5235988f), 0.0f, 0.0f});
     EXPECT_LT(img.rgb("beauty", shadow.x, shadow.y).r, 0.02f);
 }
+
+TEST_F(DirectRender, SpotLightConeAndInverseSquare) {
+    // A spot of 8 W/sr pointing straight down from 2 m, cone 20..30 degrees, over albedo 1.
+    Scene s = parseSceneJson(R"({
+      "camera": {"eye": [0, 6, 0.001], "target": [0, 0, 0], "fov": 60, "resolution": [96, 96]},
+      "materials": {"m": {"albedo": 1.0}},
+      "lights": [{"type": "spot", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": 8,
+                  "inner_angle": 20, "outer_angle": 30}],
+      "meshes": [{"type": "quad", "material": "m", "corners": [[-5,0,5],[5,0,5],[5,0,-5],[-5,0,-5]]}]})",
+                             "spot.json");
+    Image img = render(s, 1);
+    // Inside the inner cone: L = (1/pi) I cos / r^2.
+    for (float x : {0.0f, 0.5f}) {
+        glm::ivec2 px = project(s, {x, 0.0f, 0.0f});
+        float r2 = 4.0f + x * x, cosTheta = 2.0f / std::sqrt(r2);
+        EXPECT_NEAR(img.rgb("beauty", px.x, px.y).r, 8.0f * cosTheta / r2 / 3.14159265f, 0.02f) << x;
+    }
+    // Outside the outer cone (tan 30 deg * 2 m = 1.15 m): dark.
+    glm::ivec2 outside = project(s, {1.6f, 0.0f, 0.0f});
+    EXPECT_EQ(img.rgb("beauty", outside.x, outside.y).r, 0.0f);
+}
