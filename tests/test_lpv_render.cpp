@@ -168,3 +168,30 @@ TEST(LpvDump, VdbPrintReadsTheDump) {
     EXPECT_EQ(test::runVoxgi("dump cornell-box --method direct -o " + dir + "/x.vdb").exitCode, 2);
     EXPECT_FALSE(test::fileExists(dir + "/x.vdb"));
 }
+
+TEST_F(LpvRender, GlossyMarchAddsReflectionsOnShinyMaterialsOnly) {
+    // The Cornell box with a metallic, fairly smooth floor: the march adds light to the floor.
+    Scene s = test::cornellBox();
+    s.camera.width = s.camera.height = 48;
+    s.gi.set("lpv.resolution", "16");
+    s.gi.set("lpv.steps", "24");
+    for (Material& m : s.materials)
+        if (m.name == "white") {
+            Material shiny = m;
+            shiny.name = "shiny";
+            shiny.metallic = 1.0f;
+            shiny.roughness = 0.2f;
+            s.materials.push_back(shiny);
+        }
+    for (Mesh& mesh : s.meshes)
+        if (mesh.name == "floor")
+            for (auto& id : mesh.materialIds) id = std::uint32_t(s.materials.size() - 1);
+    s.gi.set("lpv.glossy", "false");
+    Image off = render(s, "lpv");
+    s.gi.set("lpv.glossy", "true");
+    Image on = render(s, "lpv");
+    glm::vec3 floorOff = off.rgb("indirect", 24, 44), floorOn = on.rgb("indirect", 24, 44);
+    EXPECT_GT(floorOn.r, floorOff.r * 1.05f + 1e-6f);
+    // The diffuse back wall does not change.
+    EXPECT_NEAR(on.rgb("indirect", 24, 20).g, off.rgb("indirect", 24, 20).g, 1e-6f);
+}
