@@ -12,6 +12,8 @@ find_package(nlohmann_json 3 REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+# Dear ImGui for the viewer panel: Debian ships it with its GLFW and OpenGL 3 back ends built in.
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb REQUIRED)
 if(VOXGI_BUILD_TESTS)
   find_package(GTest REQUIRED)

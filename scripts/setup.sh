@@ -7,7 +7,7 @@ packages=(
   libopenvdb-dev libopenvdb-tools libnanovdb-dev libboost-iostreams-dev libblosc-dev
   libembree-dev libtbb-dev libopenexr-dev libimath-dev
   libglm-dev libglfw3-dev libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-utils
-  libassimp-dev nlohmann-json3-dev libstb-dev
+  libassimp-dev nlohmann-json3-dev libstb-dev libimgui-dev
   libgtest-dev xvfb xauth
   gnuplot-nox
 )

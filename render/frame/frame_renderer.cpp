@@ -362,5 +362,19 @@ int FrameRenderer::height() const { return impl_->height; }
 Image FrameRenderer::resolve() { return impl_->resolve(); }
 gl::StageTimers& FrameRenderer::timers() { return impl_->timers; }
 GiTechnique* FrameRenderer::technique() { return impl_->technique.get(); }
+void FrameRenderer::resetAccumulation() {
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(impl_->accumFbo.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(impl_->indirectFbo.id(), GL_COLOR, 0, zero);
+    impl_->frames = 0;
+}
+void FrameRenderer::setTechnique(std::unique_ptr<GiTechnique> technique) {
+    impl_->technique = std::move(technique);
+    resetAccumulation();
+}
+FrameRenderer::Textures FrameRenderer::textures() const {
+    return {impl_->accum.id(), impl_->indirectAccum.id(), impl_->gAlbedo.id(), impl_->gNormal.id(),
+            impl_->gPosition.id()};
+}
 
 }  // namespace voxgi

@@ -40,6 +40,16 @@ public:
     gl::StageTimers& timers();
     GiTechnique* technique();
 
+    // For the interactive viewer: restart the average (the camera or a light moved; the
+    // technique keeps its state), swap the GI method (null = direct only; also restarts), and
+    // the textures behind resolve(): direct and indirect are sums over framesAccumulated().
+    void resetAccumulation();
+    void setTechnique(std::unique_ptr<GiTechnique> technique);
+    struct Textures {
+        GLuint direct = 0, indirect = 0, albedo = 0, normal = 0, position = 0;
+    };
+    Textures textures() const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -1,0 +1,41 @@
+// Debug views drawn over (or instead of) the frame with the viewer's camera: the voxelized
+// geometry as cubes coloured by albedo or blocker strength, the scene bounds, and light markers.
+#pragma once
+
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "render/gl/program.h"
+#include "render/gl/resources.h"
+#include "scenes/scene.h"
+
+namespace voxgi::view {
+
+enum class VoxelColor { Albedo = 0, Blocker };
+
+struct DebugViews {
+    bool voxels = false;       // occupancy cubes of the voxelized scene (replaces the picture)
+    VoxelColor voxelColor = VoxelColor::Albedo;
+    int voxelResolution = 64;  // voxels along the scene's longest extent
+    bool bounds = false;       // scene bounding box
+    bool lights = true;        // markers at light positions / sun direction
+};
+
+// Letterbox rectangle (x, y, w, h) of a render of renderW x renderH inside the window.
+glm::ivec4 letterbox(int renderW, int renderH, int windowW, int windowH);
+
+class DebugOverlay {
+public:
+    DebugOverlay();  // compiles shaders/view/*; call again to reload
+    ~DebugOverlay();
+    // Draws into the bound default framebuffer inside `viewport`; voxelizes on first use or
+    // when the resolution changed. Returns the voxel count drawn (0 when voxels are off).
+    std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace voxgi::view

@@ -1,0 +1,313 @@
+#include "render/view/viewer.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "render/frame/techniques.h"
+#include "render/gl/context.h"
+#include "render/view/view_script.h"
+#include "render/view/viewer_state.h"
+#include "scenes/errors.h"
+#include "scenes/image.h"
+
+namespace voxgi::view {
+
+namespace {
+
+float radiusOf(const Scene& scene) {
+    Bounds b = scene.bounds();
+    return b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
+}
+
+// The screenshot's EXR sits next to its PNG: shot.png -> shot.exr.
+std::string exrPathFor(const std::string& png) {
+    return std::filesystem::path(png).replace_extension(".exr").string();
+}
+
+std::unique_ptr<GiTechnique> makeTechnique(ViewerState& s) {
+    try {
+        return createTechnique(s.method, s.scene);
+    } catch (const std::exception& e) {
+        // A setting the method refuses: keep the window alive and say why.
+        s.status = "cannot start " + s.method + ": " + e.what() + " (showing direct light)";
+        s.method = "direct";
+        return nullptr;
+    }
+}
+
+void saveScreenshot(ViewerState& s, const std::string& png) {
+    Image image = s.renderer->resolve();
+    writeExr(exrPathFor(png), image);
+    writePng(png, image, "beauty", s.exposure);
+    s.status = "wrote " + png + " and " + exrPathFor(png);
+    std::printf("%s\n", s.status.c_str());
+}
+
+std::string numberedPath(ViewerState& s, const char* extension) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "voxgi-view-%03d%s", s.screenshotCount, extension);
+    return (std::filesystem::path(s.options.outputDir) / name).string();
+}
+
+// What the window shows (back buffer, before the swap), as an 8-bit PNG rows top first.
+void captureWindow(const std::string& path, int width, int height) {
+    std::vector<std::uint8_t> bottomUp(std::size_t(width) * std::size_t(height) * 3);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, bottomUp.data());
+    std::vector<std::uint8_t> rgb(bottomUp.size());
+    std::size_t row = std::size_t(width) * 3;
+    for (int y = 0; y < height; ++y)
+        std::copy_n(&bottomUp[std::size_t(height - 1 - y) * row], row, &rgb[std::size_t(y) * row]);
+    writePngRgb8(path, width, height, rgb);
+}
+
+void serveRequests(ViewerState& s) {
+    if (s.reloadShaders) {
+        s.reloadShaders = false;
+        try {
+            // Shaders are compiled in the constructors: rebuilding them re-reads shaders/.
+            auto renderer = std::make_unique<FrameRenderer>(s.scene, FrameOptions{}, createTechnique(s.method, s.scene));
+            auto display = std::make_unique<DisplayPass>();
+            auto overlay = std::make_unique<DebugOverlay>();
+            s.renderer = std::move(renderer);
+            s.display = std::move(display);
+            s.overlay = std::move(overlay);
+            s.status = "shaders reloaded";
+        } catch (const std::exception& e) {
+            s.status = std::string("reload failed, kept the old shaders: ") + e.what();
+        }
+        std::printf("%s\n", s.status.c_str());
+    }
+    if (s.rebuildTechnique) {
+        s.rebuildTechnique = false;
+        s.renderer->setTechnique(makeTechnique(s));
+    }
+    if (s.takeScreenshot) {
+        s.takeScreenshot = false;
+        saveScreenshot(s, numberedPath(s, ".png"));
+        ++s.screenshotCount;
+    }
+    if (s.dumpVdb) {
+        s.dumpVdb = false;
+        if (GiTechnique* t = s.renderer->technique()) {
+            std::string path = numberedPath(s, ("-" + s.method + ".vdb").c_str());
+            try {
+                t->dumpVdb(path);
+                s.status = "wrote " + path;
+                ++s.screenshotCount;
+            } catch (const std::exception& e) {
+                s.status = std::string("dump failed: ") + e.what();
+            }
+        } else {
+            s.status = "direct light has no GI state to dump";
+        }
+        std::printf("%s\n", s.status.c_str());
+    }
+}
+
+void cycleMethod(ViewerState& s) {
+    std::vector<std::string> methods = builtMethods();
+    for (std::size_t i = 0; i < methods.size(); ++i)
+        if (methods[i] == s.method) {
+            s.method = methods[(i + 1) % methods.size()];
+            s.rebuildTechnique = true;
+            return;
+        }
+    s.method = methods.front();
+    s.rebuildTechnique = true;
+}
+
+void onKey(GLFWwindow* window, int key, int, int action, int mods) {
+    auto* s = static_cast<ViewerState*>(glfwGetWindowUserPointer(window));
+    if (!s || action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+    switch (key) {
+        case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
+        case GLFW_KEY_F1: s->showPanel = !s->showPanel; break;
+        case GLFW_KEY_F2:
+        case GLFW_KEY_P: s->takeScreenshot = true; break;
+        case GLFW_KEY_F5:
+        case GLFW_KEY_R: if (key == GLFW_KEY_F5 || (mods & GLFW_MOD_CONTROL)) s->reloadShaders = true; break;
+        case GLFW_KEY_V: s->dumpVdb = true; break;
+        case GLFW_KEY_M: cycleMethod(*s); break;
+        case GLFW_KEY_L: s->animateLights = !s->animateLights; break;
+        case GLFW_KEY_G: s->debug.voxels = !s->debug.voxels; break;
+        case GLFW_KEY_B: s->debug.bounds = !s->debug.bounds; break;
+        case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5:
+            s->mode = DisplayMode(key - GLFW_KEY_1);
+            break;
+        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: s->speed *= 1.5f; break;
+        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: s->speed /= 1.5f; break;
+        default: break;
+    }
+}
+
+void onScroll(GLFWwindow* window, double, double dy) {
+    auto* s = static_cast<ViewerState*>(glfwGetWindowUserPointer(window));
+    if (!s || ImGui::GetIO().WantCaptureMouse) return;
+    s->speed *= float(std::pow(1.2, dy));
+}
+
+// Mouse look with the right button; Ctrl + left button drags the main light in the view plane.
+struct PointerState {
+    double x = 0, y = 0;
+    bool tracking = false;
+};
+
+void handleInput(GLFWwindow* window, ViewerState& s, PointerState& pointer, float seconds) {
+    const ImGuiIO& io = ImGui::GetIO();
+    bool moved = false;
+    if (!io.WantCaptureKeyboard) {
+        auto key = [&](int k) { return glfwGetKey(window, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+        MoveInput in;
+        in.forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
+        in.right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
+        in.up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
+        float boost = key(GLFW_KEY_LEFT_SHIFT) > 0.0f ? 4.0f : 1.0f;
+        moved = s.camera.move(in, s.speed * boost, seconds) || moved;
+    }
+    double x, y;
+    glfwGetCursorPos(window, &x, &y);
+    bool look = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    bool drag = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS &&
+                glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS;
+    if ((look || drag) && !io.WantCaptureMouse) {
+        if (pointer.tracking) {
+            float dx = float(x - pointer.x), dy = float(y - pointer.y);
+            if (look) moved = s.camera.turn(0.003f * dx, -0.003f * dy) || moved;
+            if (drag && !s.scene.lights.empty() && (dx != 0.0f || dy != 0.0f)) {
+                glm::vec3 up = glm::cross(s.camera.right(), s.camera.forward());
+                glm::vec3 offset = (dx * s.camera.right() - dy * up) * (s.sceneRadius / 300.0f);
+                moveLight(s.scene.lights[0], offset, s.sceneRadius);
+                s.animator.setRest(s.scene.lights);
+                s.viewChanged = true;
+            }
+        }
+        pointer.tracking = true;
+    } else {
+        pointer.tracking = false;
+    }
+    pointer.x = x;
+    pointer.y = y;
+    if (moved) {
+        s.camera.applyTo(s.scene.camera);
+        s.viewChanged = true;
+    }
+}
+
+}  // namespace
+
+ViewerState::ViewerState(Scene& s, const ViewerOptions& o)
+    : scene(s), options(o), camera(s.camera), animator(s.lights, s.camera.up, radiusOf(s)),
+      sceneRadius(radiusOf(s)), method(o.method), exposure(o.exposure), showPanel(o.panel) {
+    speed = 0.5f * sceneRadius;
+    debug.lights = o.panel;  // --no-panel: the bare picture
+}
+
+bool displayAvailable() {
+    const char* x11 = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    return (x11 && *x11) || (wayland && *wayland);
+}
+
+int runViewer(Scene& scene, const ViewerOptions& options) {
+    if (!displayAvailable())
+        throw gl::GlError("no display (DISPLAY is not set): the viewer needs a window; for images use `voxgi render`");
+    std::unique_ptr<ViewScript> script;
+    if (!options.script.empty()) script = std::make_unique<ViewScript>(ViewScript::load(options.script));
+
+    gl::ContextDesc desc;
+    desc.width = options.windowWidth > 0 ? options.windowWidth : scene.camera.width;
+    desc.height = options.windowHeight > 0 ? options.windowHeight : scene.camera.height;
+    desc.title = "voxgi view";
+    desc.debugOutput = false;
+    auto context = gl::Context::createWindow(desc);
+    auto* window = static_cast<GLFWwindow*>(context->nativeWindow());
+    glfwSwapInterval(options.frames > 0 ? 0 : 1);
+    std::printf("voxgi view: %s\n", context->description().c_str());
+
+    ViewerState s(scene, options);
+    s.renderer = std::make_unique<FrameRenderer>(scene, FrameOptions{}, makeTechnique(s));
+    s.display = std::make_unique<DisplayPass>();
+    s.overlay = std::make_unique<DebugOverlay>();
+
+    glfwSetWindowUserPointer(window, &s);
+    glfwSetKeyCallback(window, onKey);
+    glfwSetScrollCallback(window, onScroll);
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
+    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the callbacks above
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+
+    PointerState pointer;
+    auto last = std::chrono::steady_clock::now();
+    while (!context->shouldClose() && (options.frames <= 0 || s.frame < options.frames)) {
+        context->pollEvents();
+        auto now = std::chrono::steady_clock::now();
+        float seconds = std::chrono::duration<float>(now - last).count();
+        last = now;
+        s.frameMs = 1000.0 * double(seconds);
+
+        if (script) {
+            Camera before = scene.camera;
+            script->apply(s.frame, scene.camera);
+            if (before.eye != scene.camera.eye || before.target != scene.camera.target) {
+                s.camera = FlyCamera(scene.camera);
+                s.viewChanged = true;
+            }
+        } else if (options.frames <= 0) {
+            handleInput(window, s, pointer, seconds);
+        }
+        if (s.animateLights) {
+            s.animationTime += double(seconds);
+            s.animator.apply(s.animationTime, scene.lights);
+            s.viewChanged = true;
+        }
+        serveRequests(s);
+        if (s.viewChanged) {
+            s.renderer->resetAccumulation();
+            s.viewChanged = false;
+        }
+        s.renderer->renderFrame();
+
+        int fbw, fbh;
+        glfwGetFramebufferSize(window, &fbw, &fbh);
+        s.display->draw(*s.renderer, s.mode, s.exposure, fbw, fbh);
+        s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh));
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        if (s.showPanel) drawPanel(s);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        bool last = options.frames > 0 && s.frame + 1 == options.frames;
+        if (!options.windowCapture.empty() && (last || context->shouldClose())) captureWindow(options.windowCapture, fbw, fbh);
+        context->swapBuffers();
+        ++s.frame;
+    }
+    if (!options.screenshot.empty()) saveScreenshot(s, options.screenshot);
+
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwSetWindowUserPointer(window, nullptr);
+    return 0;
+}
+
+}  // namespace voxgi::view

@@ -1,0 +1,53 @@
+// State shared by the viewer's loop and its panel (internal to render/view).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/frame/frame_renderer.h"
+#include "render/view/display_pass.h"
+#include "render/view/debug_overlay.h"
+#include "render/view/fly_camera.h"
+#include "render/view/light_controls.h"
+#include "render/view/viewer.h"
+
+namespace voxgi::view {
+
+struct ViewerState {
+    Scene& scene;
+    ViewerOptions options;
+    std::unique_ptr<FrameRenderer> renderer;
+    std::unique_ptr<DisplayPass> display;
+    std::unique_ptr<DebugOverlay> overlay;
+    FlyCamera camera;
+    LightAnimator animator;
+    float sceneRadius = 1.0f;
+
+    std::string method;
+    DisplayMode mode = DisplayMode::Beauty;
+    DebugViews debug;
+    float speed = 1.0f;        // world units per second
+    float exposure = 0.0f;
+    bool animateLights = false;
+    double animationTime = 0.0;
+    bool showPanel = true;
+    int frame = 0;
+    double frameMs = 0.0;
+
+    // Requests from keys or the panel, served between frames.
+    bool rebuildTechnique = false;
+    bool reloadShaders = false;
+    bool takeScreenshot = false;
+    bool dumpVdb = false;
+    bool viewChanged = false;
+    std::string status;        // last message (file written, error)
+    int screenshotCount = 0;
+
+    ViewerState(Scene& s, const ViewerOptions& o);
+};
+
+// ImGui panel; edits the state (requests are served by the loop).
+void drawPanel(ViewerState& state);
+
+}  // namespace voxgi::view

@@ -1,0 +1,309 @@
+// voxgi view: the fly camera and camera scripts (pure math), the no-display message, and the
+// window itself under X: N frames then a screenshot equal to `voxgi render` of the same view,
+// a scripted camera path whose moves restart the accumulation, and the on-screen tone mapping
+// equal to the PNG writer's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include <stb/stb_image.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "render/view/fly_camera.h"
+#include "render/view/light_controls.h"
+#include "render/view/view_script.h"
+#include "scenes/errors.h"
+#include "scenes/image.h"
+#include "support/test_support.h"
+
+namespace voxgi {
+namespace {
+
+using test::runVoxgi;
+
+// ---- fly camera ----
+
+TEST(FlyCamera, StartsLookingWhereTheSceneCameraLooks) {
+    Camera cam;
+    cam.eye = {1, 2, 3};
+    cam.target = {1, 2, 0};
+    view::FlyCamera fly(cam);
+    EXPECT_NEAR(fly.forward().z, -1.0f, 1e-6f);
+    Camera out = cam;
+    fly.applyTo(out);
+    glm::vec3 dir = glm::normalize(out.target - out.eye);
+    EXPECT_NEAR(glm::length(dir - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+    // Same view matrix as before: the target may move along the ray, nothing else.
+    glm::mat4 a = cam.view(), b = out.view();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], 1e-5f);
+}
+
+TEST(FlyCamera, MovesSpeedTimesSecondsAlongTheViewBasis) {
+    Camera cam;
+    cam.eye = {0, 0, 0};
+    cam.target = {0, 0, -1};
+    view::FlyCamera fly(cam);
+    EXPECT_TRUE(fly.move({1.0f, 0.0f, 0.0f}, 2.0f, 0.5f));  // W for 0.5 s at 2 units/s
+    EXPECT_NEAR(glm::length(fly.eye() - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+    EXPECT_TRUE(fly.move({0.0f, 1.0f, 0.0f}, 1.0f, 1.0f));  // D: right is +x looking down -z
+    EXPECT_NEAR(glm::length(fly.eye() - glm::vec3(1, 0, -1)), 0.0f, 1e-6f);
+    EXPECT_TRUE(fly.move({0.0f, 0.0f, 1.0f}, 1.0f, 1.0f));  // E: up
+    EXPECT_NEAR(fly.eye().y, 1.0f, 1e-6f);
+    EXPECT_FALSE(fly.move({}, 1.0f, 1.0f));
+}
+
+TEST(FlyCamera, TurnsRightWithPositiveYawAndClampsPitch) {
+    Camera cam;
+    cam.eye = {0, 0, 0};
+    cam.target = {0, 0, -1};
+    view::FlyCamera fly(cam);
+    fly.turn(float(M_PI / 2), 0.0f);
+    EXPECT_NEAR(glm::length(fly.forward() - glm::vec3(1, 0, 0)), 0.0f, 1e-5f);
+    fly.turn(0.0f, 10.0f);  // far past straight up
+    EXPECT_NEAR(std::asin(fly.forward().y), glm::radians(89.0f), 1e-4f);
+    EXPECT_FALSE(fly.turn(0.0f, 1.0f));  // already at the limit
+    Camera out = cam;
+    fly.applyTo(out);
+    EXPECT_TRUE(std::isfinite(out.view()[0][0]));
+}
+
+// ---- camera script ----
+
+TEST(ViewScript, InterpolatesBetweenKeysAndHoldsTheEnds) {
+    auto script = view::ViewScript::fromKeys({{10, {0, 0, 0}, {0, 0, -1}}, {20, {10, 0, 0}, {10, 0, -1}}});
+    Camera cam;
+    script.apply(0, cam);
+    EXPECT_FLOAT_EQ(cam.eye.x, 0.0f);
+    script.apply(15, cam);
+    EXPECT_FLOAT_EQ(cam.eye.x, 5.0f);
+    EXPECT_FLOAT_EQ(cam.target.x, 5.0f);
+    script.apply(20, cam);
+    EXPECT_FLOAT_EQ(cam.eye.x, 10.0f);
+    script.apply(99, cam);
+    EXPECT_FLOAT_EQ(cam.eye.x, 10.0f);
+}
+
+TEST(ViewScript, RejectsBadFilesWithTheFileName) {
+    std::string dir = test::makeTempDir("view-script");
+    auto expectError = [&](const std::string& text, const std::string& fragment) {
+        std::string path = dir + "/s.json";
+        test::writeFile(path, text);
+        try {
+            view::ViewScript::load(path);
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const InputError& e) {
+            std::string what = e.what();
+            EXPECT_NE(what.find(path), std::string::npos) << what;
+            EXPECT_NE(what.find(fragment), std::string::npos) << what;
+        }
+    };
+    expectError("{", "invalid JSON");
+    expectError("{\"keys\": []}", "no camera keys");
+    expectError("{\"keys\": [{\"frame\": 0, \"eye\": [0,0], \"target\": [0,0,1]}]}", "'eye'");
+    expectError("{\"keys\": [{\"frame\": 3, \"eye\": [0,0,0], \"target\": [0,0,1]},"
+                " {\"frame\": 3, \"eye\": [1,0,0], \"target\": [0,0,1]}]}",
+                "larger than");
+    EXPECT_THROW(view::ViewScript::load(dir + "/absent.json"), InputError);
+}
+
+// ---- light controls ----
+
+TEST(LightControls, DragMovesPositionsAndTiltsSuns) {
+    Light point;
+    point.position = {1, 2, 3};
+    view::moveLight(point, {0.5f, 0, 0}, 10.0f);
+    EXPECT_FLOAT_EQ(point.position.x, 1.5f);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = {0, -1, 0};
+    view::moveLight(sun, {1.0f, 0, 0}, 10.0f);
+    EXPECT_NEAR(glm::length(sun.direction), 1.0f, 1e-6f);
+    EXPECT_GT(sun.direction.x, 0.0f);
+}
+
+TEST(LightControls, AnimationCirclesTheRestPositionAndLoops) {
+    Light point;
+    point.position = {0, 1, 0};
+    std::vector<Light> lights{point};
+    view::LightAnimator animator(lights, {0, 1, 0}, 2.0f, 4.0f);
+    animator.apply(1.0, lights);
+    glm::vec3 offset = lights[0].position - point.position;
+    EXPECT_NEAR(glm::length(offset), 0.3f, 1e-5f);  // 15% of the scene radius
+    EXPECT_NEAR(offset.y, 0.0f, 1e-6f);             // in the plane normal to up
+    std::vector<Light> again{point};
+    animator.apply(5.0, again);                     // one period later
+    EXPECT_NEAR(glm::length(again[0].position - lights[0].position), 0.0f, 1e-5f);
+}
+
+// ---- the window ----
+
+// Gives the test process an X display: the one it has, else a private Xvfb it starts (and
+// stops at exit), so the window tests run (never skip) with or without xvfb-run.
+class XDisplay : public ::testing::Environment {
+public:
+    void SetUp() override {
+        const char* display = std::getenv("DISPLAY");
+        if (display && *display) return;
+        for (int n = 90 + int(getpid() % 200); n < 400; ++n) {
+            std::string lock = "/tmp/.X" + std::to_string(n) + "-lock";
+            if (std::filesystem::exists(lock)) continue;
+            pid_t pid = fork();
+            if (pid == 0) {
+                std::string name = ":" + std::to_string(n);
+                execlp("Xvfb", "Xvfb", name.c_str(), "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
+                       static_cast<char*>(nullptr));
+                _exit(127);
+            }
+            std::string socket = "/tmp/.X11-unix/X" + std::to_string(n);
+            for (int i = 0; i < 100 && !std::filesystem::exists(socket); ++i)
+                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+            if (std::filesystem::exists(socket)) {
+                xvfb_ = pid;
+                setenv("DISPLAY", (":" + std::to_string(n)).c_str(), 1);
+                return;
+            }
+            kill(pid, SIGTERM);
+            waitpid(pid, nullptr, 0);
+        }
+    }
+    void TearDown() override {
+        if (xvfb_ <= 0) return;
+        kill(xvfb_, SIGTERM);
+        waitpid(xvfb_, nullptr, 0);
+        unsetenv("DISPLAY");
+    }
+
+private:
+    pid_t xvfb_ = 0;
+};
+
+const auto* const kDisplay = ::testing::AddGlobalTestEnvironment(new XDisplay);
+
+double meanAbsDifference(const ImageLayer& a, const ImageLayer& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.data.size(); ++i) sum += std::abs(double(a.data[i]) - double(b.data[i]));
+    return sum / double(a.data.size());
+}
+
+double mean(const ImageLayer& a) {
+    double sum = 0.0;
+    for (float v : a.data) sum += v;
+    return sum / double(a.data.size());
+}
+
+TEST(ViewerCli, WithoutADisplayExitsNonZeroAndSuggestsRender) {
+    std::string saved = std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "";
+    unsetenv("DISPLAY");
+    std::string savedWayland = std::getenv("WAYLAND_DISPLAY") ? std::getenv("WAYLAND_DISPLAY") : "";
+    unsetenv("WAYLAND_DISPLAY");
+    auto r = runVoxgi("view cornell-box");
+    if (!saved.empty()) setenv("DISPLAY", saved.c_str(), 1);
+    if (!savedWayland.empty()) setenv("WAYLAND_DISPLAY", savedWayland.c_str(), 1);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("voxgi render"), std::string::npos) << r.output;
+    // One line: the message and nothing else.
+    EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << r.output;
+}
+
+TEST(ViewerCli, BadOptionsAreOneLineErrors) {
+    auto r = runVoxgi("view cornell-box --window 12");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("--window 12"), std::string::npos) << r.output;
+    r = runVoxgi("view cornell-box --method nosuch");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+// The screenshot after N frames is the frame renderer's average: the same as `voxgi render`.
+TEST(ViewerWindow, ScreenshotMatchesRenderOfTheSameView) {
+    std::string dir = test::makeTempDir("view-shot");
+    const std::string size = " --width 96 --height 96 --frames 4";
+    for (const char* method : {"direct", "clpv"}) {
+        std::string m = method;
+        auto v = runVoxgi("view cornell-box --method " + m + size + " --screenshot " + dir + "/" + m + "-view.png");
+        ASSERT_EQ(v.exitCode, 0) << v.output;
+        ASSERT_TRUE(test::fileExists(dir + "/" + m + "-view.png"));
+        auto r = runVoxgi("render cornell-box --method " + m + size + " -o " + dir + "/" + m + "-render.exr");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        Image shot = readExr(dir + "/" + m + "-view.exr");
+        Image ref = readExr(dir + "/" + m + "-render.exr");
+        ASSERT_EQ(shot.width(), 96);
+        ASSERT_EQ(shot.height(), 96);
+        for (const char* layer : {"beauty", "direct", "indirect", "albedo", "normal"})
+            ASSERT_NE(shot.find(layer), nullptr) << layer;
+        const ImageLayer& s = *shot.find("beauty");
+        const ImageLayer& f = *ref.find("beauty");
+        double level = mean(f);
+        EXPECT_GT(mean(s), 0.01) << "blank screenshot";
+        // Different window systems (GLX vs EGL) on the same rasterizer: equal up to rounding.
+        EXPECT_LT(meanAbsDifference(s, f), 1e-3 * level) << m;
+        if (m == "clpv") {
+            EXPECT_GT(mean(*shot.find("indirect")), 1e-3 * level) << "no indirect light";
+        }
+    }
+}
+
+// A camera path that starts elsewhere and arrives at the scene camera on frame 2: the camera
+// moves restart the average, so the last 4 frames equal a 4-frame render of the scene view.
+// Without the restart the first views would blend in and the difference would be large.
+TEST(ViewerWindow, ScriptedCameraMovesRestartTheAccumulation) {
+    std::string dir = test::makeTempDir("view-script-run");
+    Scene scene = test::cornellBox();
+    auto vec = [](glm::vec3 v) {
+        return "[" + std::to_string(v.x) + "," + std::to_string(v.y) + "," + std::to_string(v.z) + "]";
+    };
+    glm::vec3 aside = scene.camera.eye + glm::vec3(0.15f, 0.05f, 0.0f);
+    test::writeFile(dir + "/path.json", "{\"keys\": [{\"frame\": 0, \"eye\": " + vec(aside) + ", \"target\": " +
+                                            vec(scene.camera.target) + "}, {\"frame\": 2, \"eye\": " +
+                                            vec(scene.camera.eye) + ", \"target\": " + vec(scene.camera.target) + "}]}");
+    const std::string common = "cornell-box --method direct --width 96 --height 96";
+    auto v = runVoxgi("view " + common + " --frames 6 --script " + dir + "/path.json --screenshot " + dir + "/v.png");
+    ASSERT_EQ(v.exitCode, 0) << v.output;
+    auto r = runVoxgi("render " + common + " --frames 4 -o " + dir + "/r.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Image shot = readExr(dir + "/v.exr");
+    Image ref = readExr(dir + "/r.exr");
+    double level = mean(*ref.find("beauty"));
+    EXPECT_LT(meanAbsDifference(*shot.find("beauty"), *ref.find("beauty")), 1e-3 * level);
+
+    // Control: holding the side view for the first frames really changes the picture.
+    auto aside2 = runVoxgi("view " + common + " --frames 1 --script " + dir + "/path.json --screenshot " + dir + "/a.png");
+    ASSERT_EQ(aside2.exitCode, 0) << aside2.output;
+    Image side = readExr(dir + "/a.exr");
+    EXPECT_GT(meanAbsDifference(*side.find("beauty"), *ref.find("beauty")), 0.05 * level);
+}
+
+// What the window shows (no panel, window = render size) is the screenshot PNG: same ACES +
+// sRGB tone curve on the GPU as scenes/image.cpp on the CPU, within 8-bit rounding.
+TEST(ViewerWindow, OnScreenPictureIsTheToneMappedScreenshot) {
+    std::string dir = test::makeTempDir("view-window");
+    auto v = runVoxgi("view cornell-box --method direct --width 96 --height 96 --window 96x96 --frames 2 --no-panel "
+                      "--exposure 1 --screenshot " + dir + "/shot.png --capture-window " + dir + "/window.png");
+    ASSERT_EQ(v.exitCode, 0) << v.output;
+    int w1, h1, n1, w2, h2, n2;
+    unsigned char* a = stbi_load((dir + "/shot.png").c_str(), &w1, &h1, &n1, 3);
+    unsigned char* b = stbi_load((dir + "/window.png").c_str(), &w2, &h2, &n2, 3);
+    ASSERT_TRUE(a && b);
+    ASSERT_EQ(w1, w2);
+    ASSERT_EQ(h1, h2);
+    int worst = 0;
+    double sum = 0.0;
+    for (int i = 0; i < w1 * h1 * 3; ++i) {
+        worst = std::max(worst, std::abs(int(a[i]) - int(b[i])));
+        sum += a[i];
+    }
+    stbi_image_free(a);
+    stbi_image_free(b);
+    EXPECT_GT(sum / double(w1 * h1 * 3), 10.0) << "blank window";
+    EXPECT_LE(worst, 2);
+}
+
+}  // namespace
+}  // namespace voxgi

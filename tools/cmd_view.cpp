@@ -1,0 +1,66 @@
+// voxgi view: the interactive viewer (render/view/viewer.h). With --frames N it renders N
+// frames and closes, which with --screenshot makes it scriptable for tests and captures.
+#include <cstdio>
+
+#include "render/frame/techniques.h"
+#include "render/view/viewer.h"
+#include "scenes/errors.h"
+#include "tools/commands.h"
+#include "tools/scene_arg.h"
+
+namespace voxgi::cli {
+
+namespace {
+
+const char* kUsage =
+    "voxgi view SCENE [--method direct|lpv|clpv|ddgi] [--width W --height H] [--window WxH] [--exposure STOPS]\n"
+    "       [--frames N --screenshot SHOT.png] [--script CAMERA.json] [--out-dir DIR] [--no-panel]\n"
+    "       [--capture-window WINDOW.png] [--backend cpu|gl]\n"
+    "       [--set section.key=value]...\n"
+    "  opens a window (needs a display; without one use `voxgi render`). Controls: docs/viewer.md\n"
+    "  --frames N: render N frames then close; --screenshot writes SHOT.png and SHOT.exr at the end;\n"
+    "  --capture-window: PNG of what the window shows on the last frame (panel included)";
+
+int runView(const std::vector<std::string>& argv) {
+    Args args(argv, {"--method", "--width", "--height", "--window", "--exposure", "--frames", "--screenshot", "--script",
+                     "--out-dir", "--set", "--backend", "--capture-window"},
+              {"--no-panel"}, {"--set"});
+    args.requirePositional(1, kUsage);
+    if (!view::displayAvailable()) {
+        std::fprintf(stderr, "voxgi view: no display (DISPLAY is not set); for images without a display use "
+                             "`voxgi render SCENE -o out.exr --png out.png`\n");
+        return kFailure;
+    }
+    view::ViewerOptions options;
+    options.frames = args.integer("--frames", 0, 1, 1 << 20);
+    options.exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
+    options.panel = !args.flag("--no-panel");
+    if (auto shot = args.value("--screenshot")) {
+        requireWritable(*shot, "--screenshot");
+        options.screenshot = *shot;
+    }
+    options.script = args.value("--script", "");
+    if (auto capture = args.value("--capture-window")) {
+        requireWritable(*capture, "--capture-window");
+        options.windowCapture = *capture;
+    }
+    options.outputDir = args.value("--out-dir", ".");
+    if (auto window = args.value("--window")) {
+        if (std::sscanf(window->c_str(), "%dx%d", &options.windowWidth, &options.windowHeight) != 2 ||
+            options.windowWidth < 64 || options.windowHeight < 64 || options.windowWidth > 16384 ||
+            options.windowHeight > 16384)
+            throw InputError("--window " + *window + ": expected WxH, e.g. 1280x720 (64..16384)");
+    }
+
+    Scene scene = loadSceneArgument(args.positional()[0]);
+    applySceneOverrides(args, scene);
+    options.method = args.value("--method", scene.gi.getString("method", "direct"));
+    validateMethod(options.method);
+    return view::runViewer(scene, options);
+}
+
+}  // namespace
+
+VOXGI_REGISTER_COMMAND("view", kUsage, runView);
+
+}  // namespace voxgi::cli
