@@ -265,6 +265,8 @@ TEST(Ddgi, SettingsReaderRejectsTyposAndBadValues) {
     EXPECT_THROW(descFrom({{"hysteresis", "1.5"}}), InputError);
     EXPECT_THROW(descFrom({{"probes", "4,4"}}), InputError);
     EXPECT_THROW(descFrom({{"direct", "maps"}}), InputError);
+    EXPECT_THROW(descFrom({{"probes", "100"}}), InputError);                   // memory
+    EXPECT_THROW(descFrom({{"probes", "64"}, {"rays", "1024"}}), InputError);  // 268M rays
     DdgiDesc d = descFrom({{"probes", "16,8,12"}, {"spacing", "1"}});
     EXPECT_EQ(d.probeCounts, glm::ivec3(16, 8, 12));
     EXPECT_EQ(d.rays, 256);

@@ -113,6 +113,15 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
     std::string backend = gi.getString("ddgi.backend", "gpu");
     if (backend != "gpu" && backend != "cpu") throw InputError("gi.ddgi.backend: expected gpu or cpu, got '" + backend + "'");
     d.gpuBlend = backend == "gpu";
+    // The surfel buffer holds every probe's rays (52 bytes each) and the atlases 5 KiB per
+    // probe: refuse sizes that would exhaust memory rather than die allocating.
+    if (d.probeCounts.x > 0) {
+        std::size_t probes = std::size_t(d.probeCounts.x) * std::size_t(d.probeCounts.y) *
+                             std::size_t(d.probeCounts.z) * std::size_t(d.cascades);
+        if (probes > 262144) throw InputError("gi.ddgi.probes: more than 262144 probes over all cascades");
+        if (probes * std::size_t(d.raysPerProbe()) > (std::size_t(1) << 24))
+            throw InputError("gi.ddgi.rays: probes x rays above 16M rays per frame");
+    }
     return d;
 }
 
