@@ -2,38 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 
 #include <openvdb/openvdb.h>
 
 #include "scenes/errors.h"
-#include "volumes/openvdb_setup.h"
+#include "volumes/detail/vdb_file.h"
 
 namespace voxgi {
 
 namespace {
 
-struct OpenedFile {
-    openvdb::MetaMap::Ptr meta;
-    openvdb::GridPtrVec grids;
-};
+using OpenedFile = detail::VdbFileContents;
 
-OpenedFile openFile(const std::string& path) {
-    initializeOpenVdb();
-    if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not found");
-    OpenedFile f;
-    try {
-        openvdb::io::File file(path);
-        file.open(false);
-        f.meta = file.getMetadata();
-        f.grids = *file.getGrids();
-        file.close();
-    } catch (const std::exception& e) {
-        throw InputError(path + ": not a readable .vdb file (" + std::string(e.what()) + ")");
-    }
-    return f;
-}
+OpenedFile openFile(const std::string& path) { return detail::readVdbFile(path); }
 
 std::vector<std::pair<std::string, std::string>> metaText(const openvdb::MetaMap& meta) {
     std::vector<std::pair<std::string, std::string>> out;

@@ -7,6 +7,7 @@
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "volumes/detail/geometry_grids.h"
+#include "volumes/detail/vdb_file.h"
 #include "volumes/geometry_volume.h"
 #include "volumes/openvdb_setup.h"
 
@@ -113,19 +114,9 @@ std::string stringMeta(const openvdb::MetaMap& meta, const std::string& key) {
 }  // namespace
 
 SparseGeometryVolume readGeometryVolume(const std::string& path) {
-    initializeOpenVdb();
-    if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not found");
-    openvdb::GridPtrVec grids;
-    openvdb::MetaMap::Ptr meta;
-    try {
-        openvdb::io::File file(path);
-        file.open(false);
-        meta = file.getMetadata();
-        grids = *file.getGrids();
-        file.close();
-    } catch (const std::exception& e) {
-        throw InputError(path + ": not a readable .vdb file (" + std::string(e.what()) + ")");
-    }
+    detail::VdbFileContents file = detail::readVdbFile(path);
+    const openvdb::GridPtrVec& grids = file.grids;
+    const openvdb::MetaMap::Ptr& meta = file.meta;
     SparseGeometryVolume volume;
     detail::GeometryGrids& g = volume.grids();
     g.sourceHash = stringMeta(*meta, "voxgi_source_hash");
