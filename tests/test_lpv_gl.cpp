@@ -13,15 +13,14 @@
 #include "render/gl/program.h"
 #include "render/gl/resources.h"
 
+#include "support/test_support.h"
+
 using namespace voxgi;
 
 namespace {
-std::unique_ptr<gl::Context> g_context;
 class LpvGl : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        if (!g_context) g_context = gl::Context::createHeadless();
-    }
+    static void SetUpTestSuite() { test::useHeadlessContext(); }
 };
 }  // namespace
 

@@ -13,13 +13,9 @@ using namespace voxgi;
 
 namespace {
 
-std::unique_ptr<gl::Context> g_context;
-
 class DirectRender : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        if (!g_context) g_context = gl::Context::createHeadless();
-    }
+    static void SetUpTestSuite() { test::useHeadlessContext(); }
 };
 
 Image render(const Scene& scene, int frames) {

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "render/gl/context.h"
 #include "scenes/scene_loader.h"
 
 namespace voxgi::test {
@@ -53,5 +54,10 @@ std::string sharedScenesDir() {
 }
 
 Scene cornellBox() { return loadSceneFile(sourcePath("scenes/cornell-box.json")); }
+
+void useHeadlessContext() {
+    static std::unique_ptr<gl::Context> context = gl::Context::createHeadless();
+    context->makeCurrent();
+}
 
 }  // namespace voxgi::test

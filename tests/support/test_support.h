@@ -28,4 +28,7 @@ std::string sharedScenesDir();
 // The built-in Cornell box.
 Scene cornellBox();
 
+// Makes the process's one headless GL 4.5 context current (created on first use).
+void useHeadlessContext();
+
 }  // namespace voxgi::test
