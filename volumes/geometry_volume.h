@@ -64,7 +64,7 @@ struct IndexBox {
     bool empty() const { return max.x < min.x || max.y < min.y || max.z < min.z; }
 };
 
-// Named apart from gi/lpv's dense per-cascade GeometryVolume, which can be filled from this one.
+// The sparse store; gi/lpv fills its dense per-cascade BlockerVolume from it.
 class SparseGeometryVolume {
 public:
     SparseGeometryVolume();
