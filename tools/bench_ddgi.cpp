@@ -202,6 +202,14 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     double traceRate = f.rays / (f.trace * 1e-3);
     ProbeStateCounts states = countStates(culled.field());
 
+    // The same without the probe gather at hits (energy 0): what direct light alone costs.
+    DdgiDesc direct = all;
+    direct.energyPreservation = 0.0f;
+    DdgiSystem directOnly(tracer, direct);
+    runFrames(directOnly, eye, 1, nullptr);
+    StageMedians d = runFrames(directOnly, eye, frames, nullptr);
+    double directRate = d.rays / ((d.trace + d.shade) * 1e-3);
+
     int points = 0;
     double sampleNs = sampleNsPerPoint(full, &points);
 
@@ -210,6 +218,8 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     std::printf("DDGI trace only:                      %.2f Mrays/s\n", traceRate * 1e-6);
     std::printf("DDGI trace + shade:                   %.2f Mrays/s = %.0f %% of Embree alone (goal >= 70 %%)\n",
                 ddgiRate * 1e-6, 100.0 * ddgiRate / rawRate);
+    std::printf("DDGI trace + direct light only:       %.2f Mrays/s = %.0f %% (shade %.2f ms; the probe gather is the rest)\n",
+                directRate * 1e-6, 100.0 * directRate / rawRate, d.shade);
     std::printf("stage medians over %d frames [ms]      culling off   culling on\n", frames);
     auto row = [&](const char* name, double a, double b) { std::printf("  %-36s %10.2f %12.2f\n", name, a, b); };
     row("trace", f.trace, c.trace);

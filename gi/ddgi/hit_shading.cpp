@@ -112,7 +112,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                     glm::vec3 e = directIrradiance(scene, visibility, s.position, s.normal, u);
                     queries += lights;
                     glm::vec3 toProbe = -rays.blendDirection(i);
-                    e += energy * sampleIrradiance(previous, s.position, s.normal, toProbe);
+                    if (energy > 0.0f) e += energy * sampleIrradiance(previous, s.position, s.normal, toProbe);
                     radiance += s.diffuseAlbedo * kInvPi * e;
                 }
                 o = glm::vec4(radiance, s.distance);
