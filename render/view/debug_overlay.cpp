@@ -66,6 +66,9 @@ glm::ivec4 letterbox(int renderW, int renderH, int windowW, int windowH) {
 struct DebugOverlay::Impl {
     gl::Program cubes = gl::Program::graphics("view/cubes.vert", "view/flat.frag");
     gl::Program lines = gl::Program::graphics("view/lines.vert", "view/flat.frag");
+    gl::Program spheres = gl::Program::graphics("view/spheres.vert", "view/spheres.frag");
+    gl::Handle sphereBuffer;
+    std::size_t sphereCapacity = 0;
     gl::Handle emptyVao = gl::createVertexArray();
     gl::Handle lineVao = gl::createVertexArray();
     gl::Handle lineBuffer;
@@ -102,6 +105,23 @@ struct DebugOverlay::Impl {
         builtColor = views.voxelColor;
     }
 
+    void drawSpheres(const SphereSet& set, const glm::mat4& viewProjection) {
+        if (set.spheres.empty()) return;
+        std::size_t bytes = set.spheres.size() * sizeof(SphereInstance);
+        if (bytes > sphereCapacity) {
+            sphereCapacity = 2 * bytes;
+            sphereBuffer = gl::createBuffer(sphereCapacity);
+        }
+        glNamedBufferSubData(sphereBuffer.id(), 0, GLsizeiptr(bytes), set.spheres.data());
+        spheres.use();
+        spheres.set("uViewProjection", viewProjection);
+        spheres.set("uShMode", set.sh ? 1 : 0);
+        spheres.set("uScale", set.scale);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sphereBuffer.id());
+        glBindVertexArray(emptyVao.id());
+        glDrawArraysInstanced(GL_TRIANGLES, 0, 8 * 12 * 6, GLsizei(set.spheres.size()));
+    }
+
     void drawLines(const std::vector<LineVertex>& vertices, const glm::mat4& viewProjection) {
         if (vertices.empty()) return;
         std::size_t bytes = vertices.size() * sizeof(LineVertex);
@@ -127,9 +147,10 @@ struct DebugOverlay::Impl {
 DebugOverlay::DebugOverlay() : impl_(std::make_unique<Impl>()) {}
 DebugOverlay::~DebugOverlay() = default;
 
-std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport) {
+std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport,
+                               const SphereSet& spheres) {
     Bounds b = scene.bounds();
-    if (!b.valid() || (!views.voxels && !views.bounds && !views.lights)) return 0;
+    if (!b.valid() || (!views.voxels && !views.bounds && !views.lights && spheres.spheres.empty())) return 0;
     glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
     glm::mat4 viewProjection = scene.camera.projection() * scene.camera.view();
     glEnable(GL_DEPTH_TEST);
@@ -155,6 +176,8 @@ std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm:
         }
         drawn = impl_->cubeCount;
     }
+    impl_->drawSpheres(spheres, viewProjection);
+    drawn += spheres.spheres.size();
     std::vector<LineVertex> lineVertices;
     float radius = 0.5f * glm::length(b.extent());
     if (views.bounds) addBox(lineVertices, b.min, b.max, glm::vec3(0.2f, 1.0f, 0.3f));

@@ -8,6 +8,7 @@
 
 #include "render/gl/program.h"
 #include "render/gl/resources.h"
+#include "render/view/sphere_set.h"
 #include "scenes/scene.h"
 
 namespace voxgi::view {
@@ -20,6 +21,8 @@ struct DebugViews {
     int voxelResolution = 64;  // voxels along the scene's longest extent
     bool bounds = false;       // scene bounding box
     bool lights = true;        // markers at light positions / sun direction
+    bool probes = false;       // DDGI probes as spheres
+    ProbeColor probeColor = ProbeColor::Irradiance;
 };
 
 // Letterbox rectangle (x, y, w, h) of a render of renderW x renderH inside the window.
@@ -31,7 +34,9 @@ public:
     ~DebugOverlay();
     // Draws into the bound default framebuffer inside `viewport`; voxelizes on first use or
     // when the resolution changed. Returns the voxel count drawn (0 when voxels are off).
-    std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport);
+    // `spheres` (probes, light-volume cells) are drawn depth-tested against each other and
+    // the voxel cubes, over the picture.
+    std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport, const SphereSet& spheres = {});
 
 private:
     struct Impl;

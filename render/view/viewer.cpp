@@ -120,6 +120,24 @@ void serveRequests(ViewerState& s) {
     }
 }
 
+void runEvent(ViewerState& s, const ScriptEvent& e) {
+    if (e.kind == "method") {
+        validateMethod(e.value);
+        s.method = e.value;
+        s.rebuildTechnique = true;
+    } else if (e.kind == "show") {
+        applyShow(s, e.value);
+    } else if (e.value == "screenshot") {
+        s.takeScreenshot = true;
+    } else if (e.value == "dump") {
+        s.dumpVdb = true;
+    } else if (e.value == "reload") {
+        s.reloadShaders = true;
+    } else if (e.value == "animate_lights") {
+        s.animateLights = !s.animateLights;
+    }
+}
+
 void cycleMethod(ViewerState& s) {
     std::vector<std::string> methods = builtMethods();
     for (std::size_t i = 0; i < methods.size(); ++i)
@@ -147,6 +165,7 @@ void onKey(GLFWwindow* window, int key, int, int action, int mods) {
         case GLFW_KEY_L: s->animateLights = !s->animateLights; break;
         case GLFW_KEY_G: s->debug.voxels = !s->debug.voxels; break;
         case GLFW_KEY_B: s->debug.bounds = !s->debug.bounds; break;
+        case GLFW_KEY_O: s->debug.probes = !s->debug.probes; break;
         case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5:
             s->mode = DisplayMode(key - GLFW_KEY_1);
             break;
@@ -218,6 +237,26 @@ ViewerState::ViewerState(Scene& s, const ViewerOptions& o)
     debug.lights = o.panel;  // --no-panel: the bare picture
 }
 
+void applyShow(ViewerState& s, const std::string& name) {
+    for (int i = 0; i < kDisplayModeCount; ++i)
+        if (name == displayModeName(DisplayMode(i))) {
+            s.mode = DisplayMode(i);
+            return;
+        }
+    if (name == "voxels" || name == "voxels_blocker") {
+        s.debug.voxels = true;
+        s.debug.voxelColor = name == "voxels" ? VoxelColor::Albedo : VoxelColor::Blocker;
+    } else if (name == "bounds") {
+        s.debug.bounds = true;
+    } else if (name == "probes" || name == "probe_states") {
+        s.debug.probes = true;
+        s.debug.probeColor = name == "probes" ? ProbeColor::Irradiance : ProbeColor::State;
+    } else {
+        throw InputError("show '" + name + "': expected beauty, direct, indirect, albedo, normal, voxels, "
+                         "voxels_blocker, bounds, probes or probe_states");
+    }
+}
+
 bool displayAvailable() {
     const char* x11 = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
@@ -264,6 +303,7 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         s.frameMs = 1000.0 * double(seconds);
 
         if (script) {
+            for (const ScriptEvent& e : script->eventsAt(s.frame)) runEvent(s, e);
             Camera before = scene.camera;
             script->apply(s.frame, scene.camera);
             if (before.eye != scene.camera.eye || before.target != scene.camera.target) {
@@ -288,7 +328,9 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         int fbw, fbh;
         glfwGetFramebufferSize(window, &fbw, &fbh);
         s.display->draw(*s.renderer, s.mode, s.exposure, fbw, fbh);
-        s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh));
+        SphereSet spheres;
+        if (s.debug.probes) spheres = ddgiProbeSpheres(s.renderer->technique(), s.debug.probeColor, s.exposure);
+        s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh), spheres);
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();

@@ -1,5 +1,6 @@
 // The ImGui panel: frame time and per-stage GPU timings, method, its main settings, display
 // mode, exposure, debug views, lights, and buttons for the key actions.
+#include <algorithm>
 #include <string>
 
 #include <imgui.h>
@@ -34,9 +35,16 @@ void timings(ViewerState& s) {
     ImGui::Text("frame %.1f ms (%.0f fps), %d accumulated", s.frameMs, s.frameMs > 0 ? 1000.0 / s.frameMs : 0.0,
                 s.renderer->framesAccumulated());
     const auto& samples = s.renderer->timers().samples();
+    ImGui::TextUnformatted("stages run this frame:");
     for (const std::string& stage : s.renderer->timers().stageOrder()) {
         auto it = samples.find(stage);
         if (it == samples.end()) continue;
+        // Timers keep every sample: a stage ran this frame when it gained one since the last panel.
+        std::size_t count = std::max(it->second.gpuMs.size(), it->second.cpuMs.size());
+        std::size_t& seen = s.timerCounts[stage];
+        bool ran = count != seen;
+        seen = count;
+        if (!ran) continue;
         double gpu = it->second.gpuMs.empty() ? 0.0 : it->second.gpuMs.back();
         double cpu = it->second.cpuMs.empty() ? 0.0 : it->second.cpuMs.back();
         ImGui::Text("  %-22s gpu %7.2f ms  cpu %7.2f ms", stage.c_str(), gpu, cpu);
@@ -114,6 +122,13 @@ void drawPanel(ViewerState& s) {
     ImGui::RadioButton("blocker", &color, 1);
     s.debug.voxelColor = VoxelColor(color);
     ImGui::SliderInt("voxel resolution", &s.debug.voxelResolution, 8, 128);
+    ImGui::Checkbox("DDGI probes (O)", &s.debug.probes);
+    ImGui::SameLine();
+    int probeColor = int(s.debug.probeColor);
+    ImGui::RadioButton("irradiance", &probeColor, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("state", &probeColor, 1);
+    s.debug.probeColor = ProbeColor(probeColor);
     ImGui::Checkbox("scene bounds (B)", &s.debug.bounds);
     ImGui::SameLine();
     ImGui::Checkbox("light markers", &s.debug.lights);

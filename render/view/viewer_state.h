@@ -1,6 +1,7 @@
 // State shared by the viewer's loop and its panel (internal to render/view).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -42,6 +43,7 @@ struct ViewerState {
     bool dumpVdb = false;
     bool viewChanged = false;
     std::string status;        // last message (file written, error)
+    std::map<std::string, std::size_t> timerCounts;  // samples per stage at the previous panel
     int screenshotCount = 0;
 
     ViewerState(Scene& s, const ViewerOptions& o);
@@ -49,5 +51,7 @@ struct ViewerState {
 
 // ImGui panel; edits the state (requests are served by the loop).
 void drawPanel(ViewerState& state);
+// A display mode or debug view by name (script "show" events); InputError when unknown.
+void applyShow(ViewerState& state, const std::string& name);
 
 }  // namespace voxgi::view

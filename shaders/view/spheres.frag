@@ -1,0 +1,31 @@
+#version 450 core
+// Sphere colour: constant (probe irradiance or state, already display values), or the light
+// volume's 2-band SH evaluated toward the surface normal (a lobe painted on the sphere), scaled
+// by uScale and tone-mapped like the frame.
+#include "view/tone_map.glsl"
+struct Sphere {
+    vec4 centerRadius;
+    vec4 r;
+    vec4 g;
+    vec4 b;
+};
+layout(std430, binding = 1) readonly buffer Spheres { Sphere spheres[]; };
+uniform int uShMode;   // 0 constant, 1 SH
+uniform float uScale;
+in vec3 vNormal;
+flat in int vInstance;
+out vec4 outColor;
+
+void main() {
+    Sphere s = spheres[vInstance];
+    vec3 n = normalize(vNormal);
+    if (uShMode == 0) {
+        float shade = 0.6 + 0.4 * max(n.y, 0.0);
+        outColor = vec4(vec3(s.r.x, s.g.x, s.b.x) * shade, 1.0);
+        return;
+    }
+    // Basis order (Y00, Y1-1, Y10, Y11) as volumes/geometry_volume.h and gi/sh/sh.h.
+    vec4 y = vec4(0.282094792, -0.488602512 * n.y, 0.488602512 * n.z, -0.488602512 * n.x);
+    vec3 c = vec3(dot(s.r, y), dot(s.g, y), dot(s.b, y));
+    outColor = vec4(acesSrgb(c * uScale), 1.0);
+}
