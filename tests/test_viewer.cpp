@@ -280,6 +280,37 @@ TEST(ViewerWindow, ScriptedCameraMovesRestartTheAccumulation) {
     EXPECT_GT(meanAbsDifference(*side.find("beauty"), *ref.find("beauty")), 0.05 * level);
 }
 
+// Switching the method live (a script event, as the M key or the panel does) restarts the
+// average with a fresh technique: 4 frames after the switch equal a 4-frame `voxgi render` with
+// that method. A dump event writes the technique's .vdb, a reload event rebuilds the shaders,
+// and the probe and voxel views draw without disturbing the screenshot.
+TEST(ViewerWindow, LiveMethodSwitchDumpAndReload) {
+    std::string dir = test::makeTempDir("view-switch");
+    test::writeFile(dir + "/events.json",
+                    "{\"events\": [{\"frame\": 0, \"show\": \"voxels_blocker\"}, {\"frame\": 1, \"action\": \"reload\"},"
+                    " {\"frame\": 2, \"method\": \"clpv\"}, {\"frame\": 4, \"action\": \"dump\"},"
+                    " {\"frame\": 4, \"show\": \"probes\"}, {\"frame\": 4, \"show\": \"indirect\"}]}");
+    const std::string common = "cornell-box --width 96 --height 96";
+    auto v = runVoxgi("view " + common + " --method direct --frames 6 --script " + dir + "/events.json --out-dir " + dir +
+                      " --screenshot " + dir + "/v.png");
+    ASSERT_EQ(v.exitCode, 0) << v.output;
+    EXPECT_NE(v.output.find("shaders reloaded"), std::string::npos) << v.output;
+    ASSERT_TRUE(test::fileExists(dir + "/voxgi-view-000-clpv.vdb")) << v.output;
+    EXPECT_GT(std::filesystem::file_size(dir + "/voxgi-view-000-clpv.vdb"), 1000u);
+    auto r = runVoxgi("render " + common + " --method clpv --frames 4 -o " + dir + "/r.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Image shot = readExr(dir + "/v.exr");
+    Image ref = readExr(dir + "/r.exr");
+    double level = mean(*ref.find("beauty"));
+    EXPECT_GT(mean(*shot.find("indirect")), 1e-3 * level) << "the switch to clpv brought no indirect light";
+    EXPECT_LT(meanAbsDifference(*shot.find("beauty"), *ref.find("beauty")), 1e-3 * level);
+
+    test::writeFile(dir + "/bad.json", "{\"events\": [{\"frame\": 0, \"action\": \"explode\"}]}");
+    auto bad = runVoxgi("view " + common + " --frames 1 --script " + dir + "/bad.json");
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("unknown action 'explode'"), std::string::npos) << bad.output;
+}
+
 // What the window shows (no panel, window = render size) is the screenshot PNG: same ACES +
 // sRGB tone curve on the GPU as scenes/image.cpp on the CPU, within 8-bit rounding.
 TEST(ViewerWindow, OnScreenPictureIsTheToneMappedScreenshot) {
