@@ -197,10 +197,12 @@ SparseGeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& s
     g.sourceHash = geometryHash(scene, settings);
     detail::AccumLevel level = detail::voxelizeTriangles(scene, settings, g.stats);
     for (int l = 0; l < settings.levels; ++l) {
-        if (l > 0) level = detail::downsample(level);
-        g.levels.push_back(detail::buildLevelGrids(level, double(settings.voxelSize) * double(1 << l), settings.blockerFit));
+        // The coarser level reads this one's sums before they are finalized.
+        detail::AccumLevel coarser = l + 1 < settings.levels ? detail::downsample(level) : detail::AccumLevel{};
+        g.levels.push_back(detail::buildLevelGrids(std::move(level), double(settings.voxelSize) * double(1 << l),
+                                                   settings.blockerFit));
+        level = std::move(coarser);
     }
-    level.clear();
     if (settings.sdf) g.sdf = detail::buildSdf(scene, settings);
     detail::annotateGrids(g);
     g.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

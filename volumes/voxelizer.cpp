@@ -146,7 +146,7 @@ public:
     void collect(AccumLevel& out) {
         for (auto& leaf : leaves_)
             if (leaf) {
-                leaf->origin += origin_;
+                leaf->translate(origin_);
                 out.push_back(std::move(leaf));
             }
     }
@@ -155,13 +155,8 @@ private:
     void accumulate(const PreparedTriangle& t, const glm::vec3 q[3], const glm::ivec3& cell, const glm::vec3& boxLo) {
         const glm::ivec3 l = cell >> 3;
         auto& leaf = leaves_[(l.x * kLeavesPerBin + l.y) * kLeavesPerBin + l.z];
-        if (!leaf) {
-            leaf = std::make_unique<AccumLeaf>();
-            leaf->origin = l * 8;
-        }
+        if (!leaf) leaf = std::make_unique<AccumLeaf>(l * 8);
         const int offset = AccumLeaf::offset(cell.x, cell.y, cell.z);
-        leaf->touch(offset);
-        VoxelSums& s = leaf->voxels[offset];
 
         const glm::vec3 boxHi = boxLo + 1.0f;
         ClipPolygon piece = clipTriangleToBox(q[0], q[1], q[2], boxLo, boxHi);
@@ -173,13 +168,15 @@ private:
             for (int i = 0; i < piece.count && flat; ++i) flat = piece.v[i][axis] == boxHi[axis];
             if (flat) m.area = 0.0f;
         }
-        s.area += m.area;
-        s.vectorArea += m.area * t.unitNormal;
+        VoxelSums s;
+        s.area = m.area;
+        s.vectorArea = m.area * t.unitNormal;
         glm::vec3 albedo = t.albedo;
         if (t.texture) albedo *= t.texture->at(uvAt(t, q, m.area > 0.0f ? m.centroid : piece.count ? piece.v[0] : q[0]));
         const float w = m.area + kTouchWeight;
-        s.albedoSum += w * albedo;
-        s.albedoWeight += w;
+        s.albedoSum = w * albedo;
+        s.albedoWeight = w;
+        leaf->add(offset, s);
     }
 
     static glm::vec2 uvAt(const PreparedTriangle& t, const glm::vec3 q[3], const glm::vec3& x) {

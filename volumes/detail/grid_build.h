@@ -6,6 +6,7 @@
 
 namespace voxgi::detail {
 
-LevelGrids buildLevelGrids(const AccumLevel& level, double voxelSize, BlockerFit fit);
+// Finalizes the sums and moves the leaves into new grids (the level is consumed).
+LevelGrids buildLevelGrids(AccumLevel&& level, double voxelSize, BlockerFit fit);
 
 }  // namespace voxgi::detail
