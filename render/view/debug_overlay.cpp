@@ -148,9 +148,10 @@ DebugOverlay::DebugOverlay() : impl_(std::make_unique<Impl>()) {}
 DebugOverlay::~DebugOverlay() = default;
 
 std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport,
-                               const SphereSet& spheres) {
+                               const SphereSet& spheres, const std::vector<DebugBox>& boxes) {
     Bounds b = scene.bounds();
-    if (!b.valid() || (!views.voxels && !views.bounds && !views.lights && spheres.spheres.empty())) return 0;
+    if (!b.valid() || (!views.voxels && !views.bounds && !views.lights && spheres.spheres.empty() && boxes.empty()))
+        return 0;
     glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
     glm::mat4 viewProjection = scene.camera.projection() * scene.camera.view();
     glEnable(GL_DEPTH_TEST);
@@ -181,6 +182,7 @@ std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm:
     std::vector<LineVertex> lineVertices;
     float radius = 0.5f * glm::length(b.extent());
     if (views.bounds) addBox(lineVertices, b.min, b.max, glm::vec3(0.2f, 1.0f, 0.3f));
+    for (const DebugBox& box : boxes) addBox(lineVertices, box.min, box.max, box.color);
     if (views.lights)
         for (const Light& light : scene.lights) {
             glm::vec3 color(1.0f, 0.85f, 0.2f);

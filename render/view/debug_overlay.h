@@ -21,6 +21,10 @@ struct DebugViews {
     int voxelResolution = 64;  // voxels along the scene's longest extent
     bool bounds = false;       // scene bounding box
     bool lights = true;        // markers at light positions / sun direction
+    bool cascades = false;     // cascade bounds of lpv/clpv light volumes and ddgi probe volumes
+    bool lpvCells = false;     // LPV SH per cell as spheres, one cascade
+    int lpvCascade = 0;
+    int lpvStride = 2;         // every n-th cell per axis
     bool probes = false;       // DDGI probes as spheres
     ProbeColor probeColor = ProbeColor::Irradiance;
 };
@@ -36,7 +40,8 @@ public:
     // when the resolution changed. Returns the voxel count drawn (0 when voxels are off).
     // `spheres` (probes, light-volume cells) are drawn depth-tested against each other and
     // the voxel cubes, over the picture.
-    std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport, const SphereSet& spheres = {});
+    std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport, const SphereSet& spheres = {},
+                     const std::vector<DebugBox>& boxes = {});
 
 private:
     struct Impl;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <unistd.h>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -120,6 +121,25 @@ void serveRequests(ViewerState& s) {
     }
 }
 
+SphereSet debugSpheres(ViewerState& s) {
+    SphereSet spheres;
+    if (s.debug.probes) spheres = ddgiProbeSpheres(s.renderer->technique(), s.debug.probeColor, s.exposure);
+    if (!s.debug.lpvCells) return spheres;
+    // Reading the light volume back costs a dump: every 8 frames is enough to watch it settle.
+    if (s.frame - s.lpvSpheresFrame >= 8 || s.lpvSpheresFrame > s.frame) {
+        try {
+            std::string scratch = (std::filesystem::temp_directory_path() /
+                                   ("voxgi-view-lpv-" + std::to_string(::getpid()) + ".vdb")).string();
+            s.lpvSpheres = lpvCellSpheres(s.renderer->technique(), s.debug.lpvCascade, s.debug.lpvStride, s.exposure, scratch);
+        } catch (const std::exception& e) {
+            s.lpvSpheres = {};
+            s.status = std::string("light volume view: ") + e.what();
+        }
+        s.lpvSpheresFrame = s.frame;
+    }
+    return spheres.spheres.empty() ? s.lpvSpheres : spheres;
+}
+
 void runEvent(ViewerState& s, const ScriptEvent& e) {
     if (e.kind == "method") {
         validateMethod(e.value);
@@ -166,6 +186,8 @@ void onKey(GLFWwindow* window, int key, int, int action, int mods) {
         case GLFW_KEY_G: s->debug.voxels = !s->debug.voxels; break;
         case GLFW_KEY_B: s->debug.bounds = !s->debug.bounds; break;
         case GLFW_KEY_O: s->debug.probes = !s->debug.probes; break;
+        case GLFW_KEY_C: s->debug.cascades = !s->debug.cascades; break;
+        case GLFW_KEY_H: s->debug.lpvCells = !s->debug.lpvCells; s->lpvSpheresFrame = -1000; break;
         case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5:
             s->mode = DisplayMode(key - GLFW_KEY_1);
             break;
@@ -248,12 +270,19 @@ void applyShow(ViewerState& s, const std::string& name) {
         s.debug.voxelColor = name == "voxels" ? VoxelColor::Albedo : VoxelColor::Blocker;
     } else if (name == "bounds") {
         s.debug.bounds = true;
+    } else if (name == "cascades") {
+        s.debug.cascades = true;
+    } else if (name.rfind("lpv_cells", 0) == 0) {
+        // lpv_cells or lpv_cells_N (cascade N)
+        s.debug.lpvCells = true;
+        s.debug.lpvCascade = name.size() > 10 ? std::atoi(name.c_str() + 10) : 0;
+        s.lpvSpheresFrame = -1000;
     } else if (name == "probes" || name == "probe_states") {
         s.debug.probes = true;
         s.debug.probeColor = name == "probes" ? ProbeColor::Irradiance : ProbeColor::State;
     } else {
         throw InputError("show '" + name + "': expected beauty, direct, indirect, albedo, normal, voxels, "
-                         "voxels_blocker, bounds, probes or probe_states");
+                         "voxels_blocker, bounds, cascades, lpv_cells[_N], probes or probe_states");
     }
 }
 
@@ -328,9 +357,9 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         int fbw, fbh;
         glfwGetFramebufferSize(window, &fbw, &fbh);
         s.display->draw(*s.renderer, s.mode, s.exposure, fbw, fbh);
-        SphereSet spheres;
-        if (s.debug.probes) spheres = ddgiProbeSpheres(s.renderer->technique(), s.debug.probeColor, s.exposure);
-        s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh), spheres);
+        s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh),
+                        debugSpheres(s), s.debug.cascades ? cascadeBoxes(s.renderer->technique(), scene.bounds(), scene.camera)
+                                                          : std::vector<DebugBox>{});
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();

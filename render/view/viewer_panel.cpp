@@ -122,6 +122,14 @@ void drawPanel(ViewerState& s) {
     ImGui::RadioButton("blocker", &color, 1);
     s.debug.voxelColor = VoxelColor(color);
     ImGui::SliderInt("voxel resolution", &s.debug.voxelResolution, 8, 128);
+    if (ImGui::Checkbox("LPV cells (H)", &s.debug.lpvCells)) s.lpvSpheresFrame = -1000;
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(80);
+    if (ImGui::SliderInt("cascade", &s.debug.lpvCascade, 0, 5)) s.lpvSpheresFrame = -1000;
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(80);
+    if (ImGui::SliderInt("stride", &s.debug.lpvStride, 1, 8)) s.lpvSpheresFrame = -1000;
+    ImGui::Checkbox("cascade bounds (C)", &s.debug.cascades);
     ImGui::Checkbox("DDGI probes (O)", &s.debug.probes);
     ImGui::SameLine();
     int probeColor = int(s.debug.probeColor);

@@ -43,7 +43,9 @@ struct ViewerState {
     bool dumpVdb = false;
     bool viewChanged = false;
     std::string status;        // last message (file written, error)
-    std::map<std::string, std::size_t> timerCounts;  // samples per stage at the previous panel
+    std::map<std::string, std::size_t> timerCounts;
+    SphereSet lpvSpheres;      // refreshed every few frames while shown (a dump + read-back)
+    int lpvSpheresFrame = -1000;  // samples per stage at the previous panel
     int screenshotCount = 0;
 
     ViewerState(Scene& s, const ViewerOptions& o);
