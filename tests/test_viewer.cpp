@@ -15,7 +15,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "render/frame/frame_renderer.h"
+#include "render/frame/techniques.h"
+#include "render/gl/context.h"
 #include "render/view/fly_camera.h"
+#include "render/view/sphere_set.h"
 #include "render/view/light_controls.h"
 #include "render/view/view_script.h"
 #include "scenes/errors.h"
@@ -140,6 +144,91 @@ TEST(LightControls, AnimationCirclesTheRestPositionAndLoops) {
     std::vector<Light> again{point};
     animator.apply(5.0, again);                     // one period later
     EXPECT_NEAR(glm::length(again[0].position - lights[0].position), 0.0f, 1e-5f);
+}
+
+// ---- debug-view data (headless GL) ----
+
+bool inside(glm::vec3 p, const view::DebugBox& box, float slack) {
+    return glm::all(glm::greaterThanEqual(p, box.min - slack)) && glm::all(glm::lessThanEqual(p, box.max + slack));
+}
+
+// The LPV cell spheres come from the technique's light volume: inside the cascade box, and the
+// colour bleeding is on the right side (more red than green near the red wall at x = 0.55,
+// the reverse near the green wall at x = 0).
+TEST(DebugViewData, LpvCellsSitInTheCascadeAndCarryColourBleeding) {
+    auto context = gl::Context::createHeadless();
+    Scene scene = test::cornellBox();
+    scene.camera.width = scene.camera.height = 64;
+    FrameRenderer renderer(scene, FrameOptions{}, createTechnique("lpv", scene));
+    renderer.renderFrame();
+    std::vector<view::DebugBox> boxes = view::cascadeBoxes(renderer.technique(), scene.bounds(), scene.camera);
+    ASSERT_EQ(boxes.size(), 1u);
+    std::string scratch = test::makeTempDir("view-lpv") + "/lpv.vdb";
+    view::SphereSet set = view::lpvCellSpheres(renderer.technique(), 0, 1, 0.0f, scratch);
+    ASSERT_FALSE(set.spheres.empty());
+    EXPECT_TRUE(set.sh);
+    EXPECT_FALSE(test::fileExists(scratch)) << "scratch dump left behind";
+    glm::vec3 nearRed(0.0f), nearGreen(0.0f);
+    for (const view::SphereInstance& s : set.spheres) {
+        glm::vec3 c(s.centerRadius);
+        EXPECT_TRUE(inside(c, boxes[0], 1e-4f)) << c.x << " " << c.y << " " << c.z;
+        glm::vec3 mean(s.r.x, s.g.x, s.b.x);
+        if (c.x > 0.45f && c.y > 0.1f && c.y < 0.45f) nearRed += mean;
+        if (c.x < 0.1f && c.y > 0.1f && c.y < 0.45f) nearGreen += mean;
+    }
+    EXPECT_GT(nearRed.r / nearRed.g, nearGreen.r / nearGreen.g);
+    EXPECT_GT(nearGreen.g / nearGreen.r, nearRed.g / nearRed.r);
+    // Other methods have no light volume.
+    EXPECT_TRUE(view::lpvCellSpheres(nullptr, 0, 1, 0.0f, scratch).spheres.empty());
+}
+
+TEST(DebugViewData, ClpvShowsNestedCascades) {
+    auto context = gl::Context::createHeadless();
+    Scene scene = test::cornellBox();
+    scene.camera.width = scene.camera.height = 64;
+    FrameRenderer renderer(scene, FrameOptions{}, createTechnique("clpv", scene));
+    renderer.renderFrame();
+    std::vector<view::DebugBox> boxes = view::cascadeBoxes(renderer.technique(), scene.bounds(), scene.camera);
+    ASSERT_GE(boxes.size(), 2u);
+    for (std::size_t i = 1; i < boxes.size(); ++i) {
+        glm::vec3 fine = boxes[i - 1].max - boxes[i - 1].min, coarse = boxes[i].max - boxes[i].min;
+        EXPECT_NEAR(coarse.x / fine.x, 2.0f, 1e-3f) << "cascade " << i;  // cell size doubles per cascade
+    }
+    // Every cascade's dumped cells lie in its box.
+    std::string scratch = test::makeTempDir("view-clpv") + "/lpv.vdb";
+    for (std::size_t c = 0; c < boxes.size(); ++c) {
+        view::SphereSet set = view::lpvCellSpheres(renderer.technique(), int(c), 2, 0.0f, scratch);
+        for (const view::SphereInstance& s : set.spheres)
+            EXPECT_TRUE(inside(glm::vec3(s.centerRadius), boxes[c], 1e-4f)) << "cascade " << c;
+    }
+}
+
+// One sphere per DDGI probe, inside its probe volume (relocation moves a probe < 0.45 cells);
+// state colours are the three fixed ones.
+TEST(DebugViewData, DdgiProbesOnePerProbeInsideTheVolume) {
+    auto context = gl::Context::createHeadless();
+    Scene scene = test::cornellBox();
+    scene.camera.width = scene.camera.height = 64;
+    scene.gi.set("ddgi.rays", "32");
+    FrameRenderer renderer(scene, FrameOptions{}, createTechnique("ddgi", scene));
+    renderer.renderFrame();
+    std::vector<view::DebugBox> boxes = view::cascadeBoxes(renderer.technique(), scene.bounds(), scene.camera);
+    ASSERT_EQ(boxes.size(), 1u);
+    view::SphereSet lit = view::ddgiProbeSpheres(renderer.technique(), view::ProbeColor::Irradiance, 0.0f);
+    view::SphereSet states = view::ddgiProbeSpheres(renderer.technique(), view::ProbeColor::State, 0.0f);
+    ASSERT_FALSE(lit.spheres.empty());
+    ASSERT_EQ(lit.spheres.size(), states.spheres.size());
+    float slack = 0.5f * glm::length(boxes[0].max - boxes[0].min);  // generous: relocation only
+    double brightness = 0.0;
+    for (std::size_t i = 0; i < lit.spheres.size(); ++i) {
+        EXPECT_TRUE(inside(glm::vec3(lit.spheres[i].centerRadius), boxes[0], slack));
+        brightness += lit.spheres[i].r.x + lit.spheres[i].g.x + lit.spheres[i].b.x;
+        glm::vec3 c(states.spheres[i].r.x, states.spheres[i].g.x, states.spheres[i].b.x);
+        bool known = c == glm::vec3(0.2f, 0.9f, 0.2f) || c == glm::vec3(0.2f, 0.4f, 1.0f) || c == glm::vec3(0.9f, 0.15f, 0.1f);
+        EXPECT_TRUE(known);
+    }
+    EXPECT_GT(brightness, 0.0) << "all probes black after a frame";
+    EXPECT_TRUE(view::ddgiProbeSpheres(nullptr, view::ProbeColor::State, 0.0f).spheres.empty());
 }
 
 // ---- the window ----
