@@ -105,7 +105,8 @@ struct DebugOverlay::Impl {
         builtColor = views.voxelColor;
     }
 
-    void drawSpheres(const SphereSet& set, const glm::mat4& viewProjection) {
+    void drawSpheres(const SphereSet& set, const glm::mat4& viewProjection, GLuint scenePosition, glm::ivec4 viewport,
+                     glm::vec3 eye) {
         if (set.spheres.empty()) return;
         std::size_t bytes = set.spheres.size() * sizeof(SphereInstance);
         if (bytes > sphereCapacity) {
@@ -117,6 +118,11 @@ struct DebugOverlay::Impl {
         spheres.set("uViewProjection", viewProjection);
         spheres.set("uShMode", set.sh ? 1 : 0);
         spheres.set("uScale", set.scale);
+        spheres.set("uOccludeByScene", scenePosition != 0 ? 1 : 0);
+        spheres.set("uViewport", glm::vec4(viewport));
+        spheres.set("uEye", eye);
+        spheres.set("uScenePosition", 0);
+        if (scenePosition != 0) glBindTextureUnit(0, scenePosition);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sphereBuffer.id());
         glBindVertexArray(emptyVao.id());
         glDrawArraysInstanced(GL_TRIANGLES, 0, 8 * 12 * 6, GLsizei(set.spheres.size()));
@@ -148,7 +154,7 @@ DebugOverlay::DebugOverlay() : impl_(std::make_unique<Impl>()) {}
 DebugOverlay::~DebugOverlay() = default;
 
 std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport,
-                               const SphereSet& spheres, const std::vector<DebugBox>& boxes) {
+                               const SphereSet& spheres, const std::vector<DebugBox>& boxes, GLuint scenePosition) {
     Bounds b = scene.bounds();
     if (!b.valid() || (!views.voxels && !views.bounds && !views.lights && spheres.spheres.empty() && boxes.empty()))
         return 0;
@@ -177,7 +183,8 @@ std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm:
         }
         drawn = impl_->cubeCount;
     }
-    impl_->drawSpheres(spheres, viewProjection);
+    bool occlude = views.occludeSpheres && !views.voxels;  // over voxels the picture is gone
+    impl_->drawSpheres(spheres, viewProjection, occlude ? scenePosition : 0, viewport, scene.camera.eye);
     drawn += spheres.spheres.size();
     std::vector<LineVertex> lineVertices;
     float radius = 0.5f * glm::length(b.extent());

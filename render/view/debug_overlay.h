@@ -25,6 +25,7 @@ struct DebugViews {
     bool lpvCells = false;     // LPV SH per cell as spheres, one cascade
     int lpvCascade = 0;
     int lpvStride = 2;         // every n-th cell per axis
+    bool occludeSpheres = true; // spheres hidden behind the scene's surfaces (G-buffer test)
     bool probes = false;       // DDGI probes as spheres
     ProbeColor probeColor = ProbeColor::Irradiance;
 };
@@ -39,9 +40,10 @@ public:
     // Draws into the bound default framebuffer inside `viewport`; voxelizes on first use or
     // when the resolution changed. Returns the voxel count drawn (0 when voxels are off).
     // `spheres` (probes, light-volume cells) are drawn depth-tested against each other and
-    // the voxel cubes, over the picture.
+    // the voxel cubes, and (occludeSpheres, not over voxels) against the frame's surfaces.
+    // `scenePosition`: the frame's G-buffer position texture (0: no occlusion by the scene).
     std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport, const SphereSet& spheres = {},
-                     const std::vector<DebugBox>& boxes = {});
+                     const std::vector<DebugBox>& boxes = {}, GLuint scenePosition = 0);
 
 private:
     struct Impl;

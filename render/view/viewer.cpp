@@ -359,7 +359,8 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         s.display->draw(*s.renderer, s.mode, s.exposure, fbw, fbh);
         s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh),
                         debugSpheres(s), s.debug.cascades ? cascadeBoxes(s.renderer->technique(), scene.bounds(), scene.camera)
-                                                          : std::vector<DebugBox>{});
+                                                          : std::vector<DebugBox>{},
+                        s.renderer->textures().position);
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();

@@ -130,6 +130,8 @@ void drawPanel(ViewerState& s) {
     ImGui::SetNextItemWidth(80);
     if (ImGui::SliderInt("stride", &s.debug.lpvStride, 1, 8)) s.lpvSpheresFrame = -1000;
     ImGui::Checkbox("cascade bounds (C)", &s.debug.cascades);
+    ImGui::SameLine();
+    ImGui::Checkbox("spheres hidden by scene", &s.debug.occludeSpheres);
     ImGui::Checkbox("DDGI probes (O)", &s.debug.probes);
     ImGui::SameLine();
     int probeColor = int(s.debug.probeColor);

@@ -12,11 +12,21 @@ struct Sphere {
 layout(std430, binding = 1) readonly buffer Spheres { Sphere spheres[]; };
 uniform int uShMode;   // 0 constant, 1 SH
 uniform float uScale;
+// Hidden by the scene: the frame's G-buffer positions (w = 1 on a surface) over the viewport.
+layout(binding = 0) uniform sampler2D uScenePosition;
+uniform vec4 uViewport;  // x, y, w, h of the picture in the window
+uniform vec3 uEye;
+uniform int uOccludeByScene;
 in vec3 vNormal;
+in vec3 vWorld;
 flat in int vInstance;
 out vec4 outColor;
 
 void main() {
+    if (uOccludeByScene != 0) {
+        vec4 surface = texture(uScenePosition, (gl_FragCoord.xy - uViewport.xy) / uViewport.zw);
+        if (surface.w > 0.0 && distance(surface.xyz, uEye) < distance(vWorld, uEye)) discard;
+    }
     Sphere s = spheres[vInstance];
     vec3 n = normalize(vNormal);
     if (uShMode == 0) {

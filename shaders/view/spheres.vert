@@ -10,6 +10,7 @@ struct Sphere {
 layout(std430, binding = 1) readonly buffer Spheres { Sphere spheres[]; };
 uniform mat4 uViewProjection;
 out vec3 vNormal;
+out vec3 vWorld;
 flat out int vInstance;
 
 const int kRings = 8;
@@ -31,5 +32,6 @@ void main() {
     Sphere s = spheres[gl_InstanceID];
     vNormal = n;
     vInstance = gl_InstanceID;
-    gl_Position = uViewProjection * vec4(s.centerRadius.xyz + s.centerRadius.w * n, 1.0);
+    vWorld = s.centerRadius.xyz + s.centerRadius.w * n;
+    gl_Position = uViewProjection * vec4(vWorld, 1.0);
 }
