@@ -111,4 +111,7 @@ TEST(Eval, BadOptionsAreOneLineErrors) {
     EXPECT_EQ(runVoxgi("eval cornell-box --methods direct").exitCode, 2);
     EXPECT_EQ(runVoxgi("eval --stability --cases no-such-case -o " + dir).exitCode, 2);
     EXPECT_FALSE(fileExists(dir + "/report.json"));
+    // Bad input leaves no output folder.
+    EXPECT_EQ(runVoxgi("eval no-such-scene.json -o " + dir + "/new").exitCode, 2);
+    EXPECT_FALSE(fileExists(dir + "/new"));
 }

@@ -78,6 +78,12 @@ void writeCrops(const std::string& path, const std::vector<const Image*>& images
     writePngRgb8(path, total, h, rgb);
 }
 
+void makeOutputFolder(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir)) throw InputError("-o " + dir + ": cannot create the folder");
+}
+
 std::string settingsText(const EvalPreset& p) {
     std::string s;
     for (const auto& [k, v] : p.settings) s += (s.empty() ? "" : " ") + k + "=" + v;
@@ -125,6 +131,8 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
         scenes.push_back(loadSceneArgument(s));
         applySceneOverrides(args, scenes.back());
     }
+    // Only once every input has been read, so bad input leaves no folder behind.
+    makeOutputFolder(dir);
     auto context = gl::Context::createHeadless();
     ReportInfo info;
     info.device = context->description();
@@ -204,10 +212,8 @@ int runEval(const std::vector<std::string>& argv) {
               {"--stability"}, {"--set"});
     auto out = args.value("-o");
     if (!out) throw InputError("-o DIR is required; usage: " + std::string(kUsage));
-    std::error_code ec;
-    std::filesystem::create_directories(*out, ec);
-    if (ec || !std::filesystem::is_directory(*out)) throw InputError("-o " + *out + ": cannot create the folder");
     if (args.flag("--stability")) {
+        makeOutputFolder(*out);
         if (!args.positional().empty()) throw InputError("--stability takes no SCENE (its scenes are built in)");
         auto cases = args.value("--cases");
         return runStabilitySuite(*out, cases ? splitList(*cases) : std::vector<std::string>{}) ? kOk : kFailure;
