@@ -22,6 +22,9 @@
 #include "render/view/sphere_set.h"
 #include "render/view/light_controls.h"
 #include "render/view/view_script.h"
+#include "render/view/viewer_state.h"
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "support/test_support.h"
@@ -115,6 +118,39 @@ TEST(ViewScript, RejectsBadFilesWithTheFileName) {
                 " {\"frame\": 3, \"eye\": [1,0,0], \"target\": [0,0,1]}]}",
                 "larger than");
     EXPECT_THROW(view::ViewScript::load(dir + "/absent.json"), InputError);
+}
+
+// ---- keys ----
+
+TEST(ViewerKeys, KeysRequestTheDocumentedActions) {
+    Scene scene = test::cornellBox();
+    view::ViewerOptions options;
+    options.method = "direct";
+    view::ViewerState s(scene, options);
+    view::handleKey(s, GLFW_KEY_M, 0);
+    EXPECT_EQ(s.method, builtMethods()[1]);
+    EXPECT_TRUE(s.rebuildTechnique);
+    for (std::size_t i = 1; i < builtMethods().size(); ++i) view::handleKey(s, GLFW_KEY_M, 0);
+    EXPECT_EQ(s.method, "direct");  // M cycles through every built method
+    view::handleKey(s, GLFW_KEY_3, 0);
+    EXPECT_EQ(s.mode, view::DisplayMode::Indirect);
+    view::handleKey(s, GLFW_KEY_5, 0);
+    EXPECT_EQ(s.mode, view::DisplayMode::Normal);
+    view::handleKey(s, GLFW_KEY_P, 0);
+    EXPECT_TRUE(s.takeScreenshot);
+    view::handleKey(s, GLFW_KEY_V, 0);
+    EXPECT_TRUE(s.dumpVdb);
+    view::handleKey(s, GLFW_KEY_R, 0);
+    EXPECT_FALSE(s.reloadShaders);  // plain R is nothing (close to the movement keys)
+    view::handleKey(s, GLFW_KEY_R, GLFW_MOD_CONTROL);
+    EXPECT_TRUE(s.reloadShaders);
+    view::handleKey(s, GLFW_KEY_L, 0);
+    EXPECT_TRUE(s.animateLights);
+    float speed = s.speed;
+    view::handleKey(s, GLFW_KEY_EQUAL, 0);
+    EXPECT_FLOAT_EQ(s.speed, 1.5f * speed);
+    for (int key : {GLFW_KEY_G, GLFW_KEY_B, GLFW_KEY_O, GLFW_KEY_C, GLFW_KEY_H}) view::handleKey(s, key, 0);
+    EXPECT_TRUE(s.debug.voxels && s.debug.bounds && s.debug.probes && s.debug.cascades && s.debug.lpvCells);
 }
 
 // ---- light controls ----

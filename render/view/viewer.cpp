@@ -55,6 +55,7 @@ void saveScreenshot(ViewerState& s, const std::string& png) {
     writePng(png, image, "beauty", s.exposure);
     s.status = "wrote " + png + " and " + exrPathFor(png);
     std::printf("%s\n", s.status.c_str());
+    std::fflush(stdout);
 }
 
 std::string numberedPath(ViewerState& s, const char* extension) {
@@ -173,28 +174,8 @@ void cycleMethod(ViewerState& s) {
 void onKey(GLFWwindow* window, int key, int, int action, int mods) {
     auto* s = static_cast<ViewerState*>(glfwGetWindowUserPointer(window));
     if (!s || action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
-    switch (key) {
-        case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
-        case GLFW_KEY_F1: s->showPanel = !s->showPanel; break;
-        case GLFW_KEY_F2:
-        case GLFW_KEY_P: s->takeScreenshot = true; break;
-        case GLFW_KEY_F5:
-        case GLFW_KEY_R: if (key == GLFW_KEY_F5 || (mods & GLFW_MOD_CONTROL)) s->reloadShaders = true; break;
-        case GLFW_KEY_V: s->dumpVdb = true; break;
-        case GLFW_KEY_M: cycleMethod(*s); break;
-        case GLFW_KEY_L: s->animateLights = !s->animateLights; break;
-        case GLFW_KEY_G: s->debug.voxels = !s->debug.voxels; break;
-        case GLFW_KEY_B: s->debug.bounds = !s->debug.bounds; break;
-        case GLFW_KEY_O: s->debug.probes = !s->debug.probes; break;
-        case GLFW_KEY_C: s->debug.cascades = !s->debug.cascades; break;
-        case GLFW_KEY_H: s->debug.lpvCells = !s->debug.lpvCells; s->lpvSpheresFrame = -1000; break;
-        case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5:
-            s->mode = DisplayMode(key - GLFW_KEY_1);
-            break;
-        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: s->speed *= 1.5f; break;
-        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: s->speed /= 1.5f; break;
-        default: break;
-    }
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    handleKey(*s, key, mods);
 }
 
 void onScroll(GLFWwindow* window, double, double dy) {
@@ -259,6 +240,35 @@ ViewerState::ViewerState(Scene& s, const ViewerOptions& o)
     debug.lights = o.panel;  // --no-panel: the bare picture
 }
 
+void handleKey(ViewerState& s, int key, int mods) {
+    switch (key) {
+        case GLFW_KEY_F1: s.showPanel = !s.showPanel; break;
+        case GLFW_KEY_F2:
+        case GLFW_KEY_P: s.takeScreenshot = true; break;
+        case GLFW_KEY_F5: s.reloadShaders = true; break;
+        case GLFW_KEY_R:
+            if (mods & GLFW_MOD_CONTROL) s.reloadShaders = true;
+            break;
+        case GLFW_KEY_V: s.dumpVdb = true; break;
+        case GLFW_KEY_M: cycleMethod(s); break;
+        case GLFW_KEY_L: s.animateLights = !s.animateLights; break;
+        case GLFW_KEY_G: s.debug.voxels = !s.debug.voxels; break;
+        case GLFW_KEY_B: s.debug.bounds = !s.debug.bounds; break;
+        case GLFW_KEY_O: s.debug.probes = !s.debug.probes; break;
+        case GLFW_KEY_C: s.debug.cascades = !s.debug.cascades; break;
+        case GLFW_KEY_H:
+            s.debug.lpvCells = !s.debug.lpvCells;
+            s.lpvSpheresFrame = -1000;
+            break;
+        case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5:
+            s.mode = DisplayMode(key - GLFW_KEY_1);
+            break;
+        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: s.speed *= 1.5f; break;
+        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: s.speed /= 1.5f; break;
+        default: break;
+    }
+}
+
 void applyShow(ViewerState& s, const std::string& name) {
     for (int i = 0; i < kDisplayModeCount; ++i)
         if (name == displayModeName(DisplayMode(i))) {
@@ -307,6 +317,7 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
     auto* window = static_cast<GLFWwindow*>(context->nativeWindow());
     glfwSwapInterval(options.frames > 0 ? 0 : 1);
     std::printf("voxgi view: %s\n", context->description().c_str());
+    std::fflush(stdout);
 
     ViewerState s(scene, options);
     s.renderer = std::make_unique<FrameRenderer>(scene, FrameOptions{}, makeTechnique(s));

@@ -53,6 +53,9 @@ struct ViewerState {
 
 // ImGui panel; edits the state (requests are served by the loop).
 void drawPanel(ViewerState& state);
+// One key press (GLFW key code and modifier bits), as docs/viewer.md lists them; Esc is the
+// window's business. Requests are served by the loop.
+void handleKey(ViewerState& state, int glfwKey, int mods);
 // A display mode or debug view by name (script "show" events); InputError when unknown.
 void applyShow(ViewerState& state, const std::string& name);
 
