@@ -202,7 +202,9 @@ TEST(Ddgi, RelocationMovesProbesOutOfAThinWall) {
         const ProbeVolume& v = ddgi.field().volumes()[0];
         EXPECT_TRUE(glm::all(glm::lessThanEqual(glm::abs(offset), 0.45f * v.spacing + 1e-6f)));
         glm::vec3 pos = ddgi.field().probePosition(p);
-        if (ddgi.field().probes[std::size_t(p)].state != ProbeState::Off) EXPECT_GT(std::abs(pos.x), 0.05f) << p;
+        if (ddgi.field().probes[std::size_t(p)].state != ProbeState::Off) {
+            EXPECT_GT(std::abs(pos.x), 0.05f) << p;
+        }
     }
 }
 

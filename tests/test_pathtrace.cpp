@@ -343,7 +343,8 @@ TEST(PathTracer, NanAndInfSamplesAreDroppedAndCounted) {
     PathTracer t(s, PathTracerOptions{});
     t.render(2);
     EXPECT_GT(t.droppedSamples(), 0u);
-    for (const ImageLayer& layer : t.image().layers())
+    const Image image = t.image();  // a copy: iterating the temporary's layers would dangle
+    for (const ImageLayer& layer : image.layers())
         for (float v : layer.data) ASSERT_TRUE(std::isfinite(v)) << layer.name;
 }
 
