@@ -76,7 +76,7 @@ std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& inf
     md << "# voxgi eval report\n\n";
     md << "Command: `" << info.command << "`  \nDevice: " << info.device << "\n\n";
     md << "Time is the median wall clock of one frame after the warm-up frames (`renderFrame`, which waits for "
-          "the GPU); the image is the average of all frames. Errors are against the path-traced reference on the "
+          "the GPU); the image is the average of the frames after the warm-up. Errors are against the path-traced reference on the "
           "full image (beauty) and on the indirect-only layer. FLIP is the mean HDR-FLIP.\n\n";
     if (!info.gnuplot) md << "**Plots skipped: gnuplot was not found** (install `gnuplot-nox`).\n\n";
     for (const SceneEval& s : scenes) {

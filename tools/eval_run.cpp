@@ -69,12 +69,15 @@ MethodRun renderMethod(const Scene& base, const EvalPreset& preset, const Render
     run.timedFrames = settings.frames - run.warmupFrames;
     std::map<std::string, std::size_t> gpuStart, cpuStart;
     std::vector<double> frameMs;
+    Image warm;
     for (int f = 0; f < settings.frames; ++f) {
-        if (f == run.warmupFrames)
+        if (f == run.warmupFrames) {
             for (const auto& [stage, s] : renderer.timers().samples()) {
                 gpuStart[stage] = s.gpuMs.size();
                 cpuStart[stage] = s.cpuMs.size();
             }
+            if (f > 0) warm = renderer.resolve();
+        }
         auto start = Clock::now();
         renderer.renderFrame();
         double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -91,6 +94,16 @@ MethodRun renderMethod(const Scene& base, const EvalPreset& preset, const Render
         run.stages.emplace_back(stage, t);
     }
     run.image = renderer.resolve();
+    // The renderer only keeps the mean of all frames; the mean of the frames after the warm-up
+    // (a converging DDGI or LPV is not part of the result) is (n A_n - w A_w) / (n - w).
+    const int n = settings.frames, w = run.warmupFrames;
+    if (w > 0)
+        for (const char* name : {"beauty", "direct", "indirect"}) {
+            ImageLayer& all = run.image.layer(name);
+            const ImageLayer& early = *warm.find(name);
+            for (std::size_t i = 0; i < all.data.size(); ++i)
+                all.data[i] = (float(n) * all.data[i] - float(w) * early.data[i]) / float(n - w);
+        }
     return run;
 }
 

@@ -19,7 +19,7 @@ struct StageTiming {
 };
 
 struct MethodRun {
-    Image image;
+    Image image;           // the mean of the frames after the warm-up
     double frameMs = 0.0;  // median wall clock of one frame (renderFrame, which waits for the GPU)
     int warmupFrames = 0;
     int timedFrames = 0;
@@ -29,7 +29,7 @@ struct MethodRun {
 struct RenderSettings {
     int width = 0, height = 0;  // the scene camera's size already overridden
     int frames = 0;             // frames accumulated into the image, warm-up included
-    int warmup = 0;             // first frames left out of the timing
+    int warmup = 0;             // first frames left out of the timing and of the image
 };
 
 // Needs a current GL context. `extra` gi settings are applied over the scene's.
