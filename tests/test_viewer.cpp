@@ -289,13 +289,19 @@ public:
             std::string socket = "/tmp/.X11-unix/X" + std::to_string(n);
             for (int i = 0; i < 100 && !std::filesystem::exists(socket); ++i)
                 std::this_thread::sleep_for(std::chrono::milliseconds(50));
-            if (std::filesystem::exists(socket)) {
+            // Two tests may race for one display number: the loser's Xvfb exits at once, so
+            // ours must still be running once the socket is there.
+            std::this_thread::sleep_for(std::chrono::milliseconds(150));
+            bool ours = waitpid(pid, nullptr, WNOHANG) == 0;
+            if (std::filesystem::exists(socket) && ours) {
                 xvfb_ = pid;
                 setenv("DISPLAY", (":" + std::to_string(n)).c_str(), 1);
                 return;
             }
-            kill(pid, SIGTERM);
-            waitpid(pid, nullptr, 0);
+            if (ours) {
+                kill(pid, SIGTERM);
+                waitpid(pid, nullptr, 0);
+            }
         }
     }
     void TearDown() override {
