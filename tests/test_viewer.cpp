@@ -442,6 +442,32 @@ TEST(ViewerWindow, LiveMethodSwitchDumpAndReload) {
     EXPECT_NE(bad.output.find("unknown action 'explode'"), std::string::npos) << bad.output;
 }
 
+// Animated lights reach both the direct light and the GI method. The animation restarts the
+// average every frame, so the moving run's picture is one frame with the first frame's sample
+// pattern (no jitter, the first area-light sample): exactly what a 1-frame still run renders,
+// except for where the light is. Both layers must differ by more than a few percent.
+TEST(ViewerWindow, AnimatedLightsMoveDirectAndIndirectLight) {
+    std::string dir = test::makeTempDir("view-animate");
+    test::writeFile(dir + "/animate.json", "{\"events\": [{\"frame\": 0, \"action\": \"animate_lights\"}]}");
+    const std::string common = "view cornell-box --method lpv --width 96 --height 96 --no-panel";
+    auto moving = runVoxgi(common + " --frames 8 --script " + dir + "/animate.json --screenshot " + dir + "/moving.png");
+    ASSERT_EQ(moving.exitCode, 0) << moving.output;
+    auto still = runVoxgi(common + " --frames 1 --screenshot " + dir + "/still.png");
+    ASSERT_EQ(still.exitCode, 0) << still.output;
+    auto again = runVoxgi(common + " --frames 1 --screenshot " + dir + "/again.png");
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    Image a = readExr(dir + "/moving.exr");
+    Image b = readExr(dir + "/still.exr");
+    Image c = readExr(dir + "/again.exr");
+    double direct = mean(*b.find("direct")), indirect = mean(*b.find("indirect"));
+    ASSERT_GT(indirect, 0.0);
+    // Control: two still runs agree, so any difference below is the light's motion.
+    EXPECT_LT(meanAbsDifference(*c.find("beauty"), *b.find("beauty")), 1e-4 * direct);
+    // 8/30 of a turn on a circle of radius 15% of the scene radius.
+    EXPECT_GT(meanAbsDifference(*a.find("direct"), *b.find("direct")), 0.02 * direct);
+    EXPECT_GT(meanAbsDifference(*a.find("indirect"), *b.find("indirect")), 0.02 * indirect);
+}
+
 // What the window shows (no panel, window = render size) is the screenshot PNG: same ACES +
 // sRGB tone curve on the GPU as scenes/image.cpp on the CPU, within 8-bit rounding.
 TEST(ViewerWindow, OnScreenPictureIsTheToneMappedScreenshot) {

@@ -309,8 +309,9 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
     if (!options.script.empty()) script = std::make_unique<ViewScript>(ViewScript::load(options.script));
 
     gl::ContextDesc desc;
-    desc.width = options.windowWidth > 0 ? options.windowWidth : scene.camera.width;
-    desc.height = options.windowHeight > 0 ? options.windowHeight : scene.camera.height;
+    // Room for the panel beside a small render; the render is letterboxed.
+    desc.width = options.windowWidth > 0 ? options.windowWidth : std::max(scene.camera.width, 1280);
+    desc.height = options.windowHeight > 0 ? options.windowHeight : std::max(scene.camera.height, 720);
     desc.title = "voxgi view";
     desc.debugOutput = false;
     auto context = gl::Context::createWindow(desc);
@@ -354,7 +355,8 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
             handleInput(window, s, pointer, seconds);
         }
         if (s.animateLights) {
-            s.animationTime += double(seconds);
+            // Fixed steps in --frames runs, so scripted captures and tests repeat exactly.
+            s.animationTime += options.frames > 0 ? 1.0 / 30.0 : double(seconds);
             s.animator.apply(s.animationTime, scene.lights);
             s.viewChanged = true;
         }

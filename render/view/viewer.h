@@ -17,7 +17,7 @@ struct ViewerOptions {
     std::string windowCapture; // PNG of the last frame's window contents (panel included)
     std::string outputDir = ".";  // where the screenshot and dump keys write
     float exposure = 0.0f;     // stops
-    int windowWidth = 0;       // 0: the render size
+    int windowWidth = 0;       // 0: the render size, at least 1280 x 720
     int windowHeight = 0;
     bool panel = true;
 };
