@@ -56,6 +56,7 @@ glm::vec3 heat(float t) {
 
 }  // namespace
 
+// Largest rectangle of the render's aspect that fits the window, centred.
 glm::ivec4 letterbox(int renderW, int renderH, int windowW, int windowH) {
     float scale = std::min(float(windowW) / float(renderW), float(windowH) / float(renderH));
     int w = std::max(1, int(std::lround(scale * float(renderW))));

@@ -1,5 +1,7 @@
 #include "render/view/display_pass.h"
 
+#include "render/view/debug_overlay.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,11 +23,8 @@ void DisplayPass::draw(FrameRenderer& renderer, DisplayMode mode, float exposure
     glClearColor(0.08f, 0.08f, 0.08f, 1.0f);
     glViewport(0, 0, windowWidth, windowHeight);
     glClear(GL_COLOR_BUFFER_BIT);
-    // Largest rectangle of the render's aspect that fits, centred.
-    float scale = std::min(float(windowWidth) / float(renderer.width()), float(windowHeight) / float(renderer.height()));
-    int w = std::max(1, int(std::lround(scale * float(renderer.width()))));
-    int h = std::max(1, int(std::lround(scale * float(renderer.height()))));
-    glViewport((windowWidth - w) / 2, (windowHeight - h) / 2, w, h);
+    glm::ivec4 box = letterbox(renderer.width(), renderer.height(), windowWidth, windowHeight);
+    glViewport(box.x, box.y, box.z, box.w);
 
     FrameRenderer::Textures t = renderer.textures();
     glBindTextureUnit(0, t.direct);

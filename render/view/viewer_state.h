@@ -13,7 +13,14 @@
 #include "render/view/light_controls.h"
 #include "render/view/viewer.h"
 
+struct GLFWwindow;
+
 namespace voxgi::view {
+
+struct PointerState {
+    double x = 0, y = 0;
+    bool tracking = false;  // a look or drag button was down at the last poll
+};
 
 struct ViewerState {
     Scene& scene;
@@ -45,7 +52,8 @@ struct ViewerState {
     std::string status;        // last message (file written, error)
     std::map<std::string, std::size_t> timerCounts;
     SphereSet lpvSpheres;      // refreshed every few frames while shown (a dump + read-back)
-    int lpvSpheresFrame = -1000;  // samples per stage at the previous panel
+    int lpvSpheresFrame = -1000;
+    PointerState pointer;  // samples per stage at the previous panel
     int screenshotCount = 0;
 
     ViewerState(Scene& s, const ViewerOptions& o);
@@ -53,6 +61,10 @@ struct ViewerState {
 
 // ImGui panel; edits the state (requests are served by the loop).
 void drawPanel(ViewerState& state);
+// Key and scroll callbacks (the window's user pointer becomes `state`); ImGui chains to them.
+void installInputCallbacks(GLFWwindow* window, ViewerState& state);
+// Per frame: WASD/QE movement, right-button look, Ctrl+left-button light drag.
+void handleInput(GLFWwindow* window, ViewerState& state, float seconds);
 // One key press (GLFW key code and modifier bits), as docs/viewer.md lists them; Esc is the
 // window's business. Requests are served by the loop.
 void handleKey(ViewerState& state, int glfwKey, int mods);
