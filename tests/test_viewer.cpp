@@ -350,6 +350,10 @@ TEST(ViewerCli, BadOptionsAreOneLineErrors) {
     EXPECT_NE(r.output.find("--window 12"), std::string::npos) << r.output;
     r = runVoxgi("view cornell-box --method nosuch");
     EXPECT_EQ(r.exitCode, 2) << r.output;
+    // A setting the method refuses: refused at start like `voxgi render` does, no window loop.
+    r = runVoxgi("view cornell-box --method ddgi --set ddgi.rays=-5 --frames 1");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("ddgi.rays"), std::string::npos) << r.output;
 }
 
 // The screenshot after N frames is the frame renderer's average: the same as `voxgi render`.

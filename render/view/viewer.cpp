@@ -44,6 +44,7 @@ std::unique_ptr<GiTechnique> makeTechnique(ViewerState& s) {
     } catch (const std::exception& e) {
         // A setting the method refuses: keep the window alive and say why.
         s.status = "cannot start " + s.method + ": " + e.what() + " (showing direct light)";
+        std::fprintf(stderr, "voxgi view: %s\n", s.status.c_str());
         s.method = "direct";
         return nullptr;
     }
@@ -65,6 +66,30 @@ std::string numberedPath(ViewerState& s, const char* extension) {
 }
 
 // What the window shows (back buffer, before the swap), as an 8-bit PNG rows top first.
+// Dear ImGui for the window's lifetime, shut down on every exit path (its GLFW back end restores
+// the callbacks it chained).
+class ImGuiSession {
+public:
+    explicit ImGuiSession(GLFWwindow* window) : window_(window) {
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
+        ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the callbacks installed before
+        ImGui_ImplOpenGL3_Init("#version 450 core");
+    }
+    ~ImGuiSession() {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+        glfwSetWindowUserPointer(window_, nullptr);
+    }
+    ImGuiSession(const ImGuiSession&) = delete;
+    ImGuiSession& operator=(const ImGuiSession&) = delete;
+
+private:
+    GLFWwindow* window_;
+};
+
 void captureWindow(const std::string& path, int width, int height) {
     std::vector<std::uint8_t> bottomUp(std::size_t(width) * std::size_t(height) * 3);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -101,8 +126,14 @@ void serveRequests(ViewerState& s) {
     }
     if (s.takeScreenshot) {
         s.takeScreenshot = false;
-        saveScreenshot(s, numberedPath(s, ".png"));
-        ++s.screenshotCount;
+        try {
+            saveScreenshot(s, numberedPath(s, ".png"));
+            ++s.screenshotCount;
+        } catch (const std::exception& e) {
+            // A key press must not end the session (e.g. --out-dir not writable).
+            s.status = std::string("screenshot failed: ") + e.what();
+            std::fprintf(stderr, "voxgi view: %s\n", s.status.c_str());
+        }
     }
     if (s.dumpVdb) {
         s.dumpVdb = false;
@@ -220,16 +251,13 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
     std::fflush(stdout);
 
     ViewerState s(scene, options);
-    s.renderer = std::make_unique<FrameRenderer>(scene, FrameOptions{}, makeTechnique(s));
+    // A setting the method refuses at start is an input error (exit 2), as in `voxgi render`.
+    s.renderer = std::make_unique<FrameRenderer>(scene, FrameOptions{}, createTechnique(s.method, scene));
     s.display = std::make_unique<DisplayPass>();
     s.overlay = std::make_unique<DebugOverlay>();
 
     installInputCallbacks(window, s);
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's folder
-    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the callbacks above
-    ImGui_ImplOpenGL3_Init("#version 450 core");
+    ImGuiSession imgui(window);
 
     auto last = std::chrono::steady_clock::now();
     while (!context->shouldClose() && (options.frames <= 0 || s.frame < options.frames)) {
@@ -283,11 +311,6 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         ++s.frame;
     }
     if (!options.screenshot.empty()) saveScreenshot(s, options.screenshot);
-
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
-    glfwSetWindowUserPointer(window, nullptr);
     return 0;
 }
 
