@@ -18,11 +18,12 @@ out=docs/results
 rm -rf "$out"
 mkdir -p "$out"
 
-# The Cornell box at 256^2 (1024 spp reference, 32 frames: its area light is sampled once per
-# frame) in docs/results/, then Sibenik and Sponza, when their meshes are beside the checkout, in
-# one report at 128^2 (llvmpipe on 2 cores) with 512 spp and 9 frames in docs/results/large-scenes/.
+# The Cornell box at 256^2 (1024 spp reference, 8 warm-up + 32 frames: its area light is sampled
+# once per frame) in docs/results/, then Sibenik and Sponza, when their meshes are beside the
+# checkout, in one report at 128^2 (llvmpipe on 2 cores) with 512 spp and 4 warm-up + 8 frames in
+# docs/results/large-scenes/.
 "$voxgi" eval cornell-box --methods "$methods" --presets low,medium,high --width 256 --height 256 \
-  --spp 1024 --frames 32 --cache "$cache" -o "$out"
+  --spp 1024 --frames 40 --warmup 8 --cache "$cache" -o "$out"
 big=()
 for scene in sibenik sponza; do
   mesh=$(grep -o '"path": *"[^"]*"' "scenes/$scene.json" | head -1 | sed 's/.*"\(.*\)"$/\1/')
@@ -34,7 +35,7 @@ for scene in sibenik sponza; do
 done
 if [ ${#big[@]} -gt 0 ]; then
   "$voxgi" eval "${big[@]}" --methods "$methods" --presets low,medium,high --width 128 --height 128 \
-    --spp 512 --frames 9 --cache "$cache" -o "$out/large-scenes"
+    --spp 512 --frames 12 --warmup 4 --cache "$cache" -o "$out/large-scenes"
 fi
 
 # The stability table; a failing case is a finding to read, not a reason to stop.
