@@ -305,8 +305,8 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         if (s.showPanel) drawPanel(s);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        bool last = options.frames > 0 && s.frame + 1 == options.frames;
-        if (!options.windowCapture.empty() && (last || context->shouldClose())) captureWindow(options.windowCapture, fbw, fbh);
+        bool lastFrame = options.frames > 0 && s.frame + 1 == options.frames;
+        if (!options.windowCapture.empty() && (lastFrame || context->shouldClose())) captureWindow(options.windowCapture, fbw, fbh);
         context->swapBuffers();
         ++s.frame;
     }
