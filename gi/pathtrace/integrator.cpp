@@ -16,8 +16,10 @@ float powerHeuristic(float a, float b) {
 float maxComponent(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 }  // namespace
 
-glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction) {
-    float scale = 1.0f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
+glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, float sceneScale) {
+    // Relative to the scene's size and the coordinates' magnitude, never an absolute length, so
+    // a scene scaled to 1e-4 m is not lifted off its own surfaces.
+    float scale = sceneScale + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
     float side = glm::dot(geometric, direction) >= 0.0f ? 1.0f : -1.0f;
     return p + geometric * (side * 2e-5f * scale);
 }
@@ -36,7 +38,7 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, 
         if (maxComponent(ls.radiance) <= 0.0f) continue;
         glm::vec3 f = bsdf.eval(ls.direction);
         if (maxComponent(f) <= 0.0f) continue;
-        glm::vec3 o = offsetOrigin(p, ng, ls.direction);
+        glm::vec3 o = offsetOrigin(p, ng, ls.direction, sceneScale_);
         float tMax = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
                                              : ls.distance * (1.0f - 1e-5f);
         ++rays;
@@ -49,9 +51,9 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, 
             float bsdfPdf;
             glm::vec3 f = bsdf.evalPdf(ls.direction, &bsdfPdf);
             if (maxComponent(f) > 0.0f) {
-                glm::vec3 o = offsetOrigin(p, ng, ls.direction);
+                glm::vec3 o = offsetOrigin(p, ng, ls.direction, sceneScale_);
                 // Stop short of the emitter so its own triangle does not count as a blocker.
-                float tMax = ls.distance - 2e-5f * (1.0f + sceneScale_);
+                float tMax = ls.distance - 2e-5f * (2.0f * sceneScale_);
                 ++rays;
                 if (tMax > 0.0f && !tracer_.occluded(o, ls.direction, 0.0f, tMax))
                     sum += f * ls.radiance * powerHeuristic(ls.pdf, bsdfPdf);
@@ -124,7 +126,7 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) co
             }
         }
         if (maxComponent(throughput) <= 0.0f) break;
-        origin = offsetOrigin(hit.position, hit.geometricNormal, s.direction);
+        origin = offsetOrigin(hit.position, hit.geometricNormal, s.direction, sceneScale_);
         direction = s.direction;
     }
     return out;

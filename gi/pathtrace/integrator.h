@@ -33,7 +33,7 @@ private:
 };
 
 // Origin offset so a ray leaving a surface does not hit it again: along the geometric normal,
-// on the side the ray leaves to, relative to the coordinates' magnitude.
-glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction);
+// on the side the ray leaves to, relative to the scene size and the coordinates' magnitude.
+glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, float sceneScale);
 
 }  // namespace voxgi::pt
