@@ -26,16 +26,8 @@ struct RsmRenderer::Impl {
         flux = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
         albedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
         depth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size);
-        fbo = gl::createFramebuffer();
-        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, position.id(), 0);
-        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT1, normal.id(), 0);
-        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT2, flux.id(), 0);
-        glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT3, albedo.id(), 0);
-        glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
-        const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                   GL_COLOR_ATTACHMENT3};
-        glNamedFramebufferDrawBuffers(fbo.id(), 4, buffers);
-        gl::checkFramebuffer(fbo.id(), "reflective shadow map");
+        fbo = gl::createFramebuffer({position.id(), normal.id(), flux.id(), albedo.id()}, depth.id(),
+                                    "reflective shadow map");
     }
 
     // kind: 0 perspective point-like (point, spot, quad), 2 orthographic (directional)

@@ -70,26 +70,13 @@ struct FrameRenderer::Impl {
         gAlbedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
         gEmission = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
         gDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, width, height);
-        gbufferFbo = gl::createFramebuffer();
-        GLuint fbo = gbufferFbo.id();
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, gPosition.id(), 0);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, gNormal.id(), 0);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, gAlbedo.id(), 0);
-        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT3, gEmission.id(), 0);
-        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, gDepth.id(), 0);
-        const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                   GL_COLOR_ATTACHMENT3};
-        glNamedFramebufferDrawBuffers(fbo, 4, buffers);
-        gl::checkFramebuffer(fbo, "G-buffer");
+        gbufferFbo = gl::createFramebuffer({gPosition.id(), gNormal.id(), gAlbedo.id(), gEmission.id()}, gDepth.id(),
+                                           "G-buffer");
 
         accum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        accumFbo = gl::createFramebuffer();
-        glNamedFramebufferTexture(accumFbo.id(), GL_COLOR_ATTACHMENT0, accum.id(), 0);
-        gl::checkFramebuffer(accumFbo.id(), "accumulation");
+        accumFbo = gl::createFramebuffer({accum.id()}, 0, "accumulation");
         indirectAccum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        indirectFbo = gl::createFramebuffer();
-        glNamedFramebufferTexture(indirectFbo.id(), GL_COLOR_ATTACHMENT0, indirectAccum.id(), 0);
-        gl::checkFramebuffer(indirectFbo.id(), "indirect accumulation");
+        indirectFbo = gl::createFramebuffer({indirectAccum.id()}, 0, "indirect accumulation");
         const float zero[4] = {0, 0, 0, 0};
         glClearNamedFramebufferfv(accumFbo.id(), GL_COLOR, 0, zero);
         glClearNamedFramebufferfv(indirectFbo.id(), GL_COLOR, 0, zero);
@@ -98,10 +85,7 @@ struct FrameRenderer::Impl {
                                         options.shadowMapSize);
         glTextureParameteri(shadowDepth.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
         glTextureParameteri(shadowDepth.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-        shadowFbo = gl::createFramebuffer();
-        glNamedFramebufferTexture(shadowFbo.id(), GL_DEPTH_ATTACHMENT, shadowDepth.id(), 0);
-        glNamedFramebufferDrawBuffer(shadowFbo.id(), GL_NONE);
-        gl::checkFramebuffer(shadowFbo.id(), "shadow map");
+        shadowFbo = gl::createFramebuffer({}, shadowDepth.id(), "shadow map");
 
         cubeDistance = gl::createTexture(GL_TEXTURE_CUBE_MAP, GL_R32F, options.cubeShadowSize, options.cubeShadowSize);
         glTextureParameteri(cubeDistance.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);

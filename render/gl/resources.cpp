@@ -40,6 +40,21 @@ Handle createVertexArray() {
     return Handle(id, [](GLuint i) { glDeleteVertexArrays(1, &i); });
 }
 
+Handle createFramebuffer(std::initializer_list<GLuint> colors, GLuint depth, const char* what) {
+    Handle fbo = createFramebuffer();
+    std::vector<GLenum> buffers;
+    for (GLuint texture : colors) {
+        GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(buffers.size());
+        glNamedFramebufferTexture(fbo.id(), attachment, texture, 0);
+        buffers.push_back(attachment);
+    }
+    if (depth) glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth, 0);
+    if (buffers.empty()) glNamedFramebufferDrawBuffer(fbo.id(), GL_NONE);
+    else glNamedFramebufferDrawBuffers(fbo.id(), GLsizei(buffers.size()), buffers.data());
+    checkFramebuffer(fbo.id(), what);
+    return fbo;
+}
+
 void checkFramebuffer(GLuint framebuffer, const char* what) {
     GLenum status = glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
 #include <utility>
 #include <vector>
 
@@ -44,6 +45,9 @@ Handle createTexture(GLenum target, GLenum internalFormat, int width, int height
 Handle createBuffer(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
 Handle createFramebuffer();
 Handle createVertexArray();
+// A framebuffer drawing to `colors` (attachments 0.., all enabled as draw buffers) with an
+// optional `depth` texture (0 = none); throws GlError naming `what` if incomplete.
+Handle createFramebuffer(std::initializer_list<GLuint> colors, GLuint depth, const char* what);
 // Throws GlError naming `what` unless the framebuffer is complete.
 void checkFramebuffer(GLuint framebuffer, const char* what);
 
