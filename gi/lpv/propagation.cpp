@@ -251,17 +251,20 @@ void gatherCell(const LightVolume& in, const PropagationOperator& op, glm::ivec3
 __attribute__((target("avx2,fma"), always_inline)) inline void addTransferAvx2(const float* c, const float* r,
                                                                                const float* g, const float* bIn,
                                                                                __m256& rg, __m128& b) {
+    // Columns are broadcast into both lanes straight from memory; the blue components too.
     const __m256 v = _mm256_set_m128(_mm_loadu_ps(g), _mm_loadu_ps(r));
-    const __m128 vb = _mm_loadu_ps(bIn);
-    const __m128 c0 = _mm_loadu_ps(c), c1 = _mm_loadu_ps(c + 4), c2 = _mm_loadu_ps(c + 8), c3 = _mm_loadu_ps(c + 12);
-    rg = _mm256_fmadd_ps(_mm256_set_m128(c0, c0), _mm256_permute_ps(v, 0x00), rg);
-    rg = _mm256_fmadd_ps(_mm256_set_m128(c1, c1), _mm256_permute_ps(v, 0x55), rg);
-    rg = _mm256_fmadd_ps(_mm256_set_m128(c2, c2), _mm256_permute_ps(v, 0xAA), rg);
-    rg = _mm256_fmadd_ps(_mm256_set_m128(c3, c3), _mm256_permute_ps(v, 0xFF), rg);
-    b = _mm_fmadd_ps(c0, _mm_permute_ps(vb, 0x00), b);
-    b = _mm_fmadd_ps(c1, _mm_permute_ps(vb, 0x55), b);
-    b = _mm_fmadd_ps(c2, _mm_permute_ps(vb, 0xAA), b);
-    b = _mm_fmadd_ps(c3, _mm_permute_ps(vb, 0xFF), b);
+    const __m256 c0 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(c));
+    const __m256 c1 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(c + 4));
+    const __m256 c2 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(c + 8));
+    const __m256 c3 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(c + 12));
+    rg = _mm256_fmadd_ps(c0, _mm256_permute_ps(v, 0x00), rg);
+    rg = _mm256_fmadd_ps(c1, _mm256_permute_ps(v, 0x55), rg);
+    rg = _mm256_fmadd_ps(c2, _mm256_permute_ps(v, 0xAA), rg);
+    rg = _mm256_fmadd_ps(c3, _mm256_permute_ps(v, 0xFF), rg);
+    b = _mm_fmadd_ps(_mm256_castps256_ps128(c0), _mm_broadcast_ss(bIn), b);
+    b = _mm_fmadd_ps(_mm256_castps256_ps128(c1), _mm_broadcast_ss(bIn + 1), b);
+    b = _mm_fmadd_ps(_mm256_castps256_ps128(c2), _mm_broadcast_ss(bIn + 2), b);
+    b = _mm_fmadd_ps(_mm256_castps256_ps128(c3), _mm_broadcast_ss(bIn + 3), b);
 }
 
 // The same gather with AVX2 + FMA (chosen at run time when the CPU has them): red and green
