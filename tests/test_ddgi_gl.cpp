@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gi/gbuffer_upload.h"
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/ddgi_system.h"
 #include "gi/ddgi/ddgi_technique.h"
@@ -88,30 +89,10 @@ TEST_F(DdgiGl, ApplyMatchesCpuSamplingWithCascadesAndScrolling) {
         ++k;
     }
     ASSERT_GT(k, 100);
-    auto texture = [&](const std::vector<glm::vec4>& data) {
-        gl::Handle t = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
-        glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, data.data());
-        return t;
-    };
-    gl::Handle tp = texture(pos), tn = texture(nrm), ta = texture(alb), te = texture(emi);
-    gl::Handle out = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
-    gl::Handle fbo = gl::createFramebuffer();
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, out.id(), 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, w, h);
-    const float zero[4] = {0, 0, 0, 0};
-    glClearBufferfv(GL_COLOR, 0, zero);
-    GBufferView g;
-    g.position = tp.id();
-    g.normal = tn.id();
-    g.albedo = ta.id();
-    g.emission = te.id();
-    g.width = w;
-    g.height = h;
-    g.eye = eye;
+    UploadedGBuffer g = uploadGBuffer(pos, nrm, alb, emi, w, h, eye);
     DdgiGpu gpu(field);
-    gpu.apply(field, g);
-    std::vector<float> result = gl::readTexture(out.id(), w, h, 4);
+    gpu.apply(field, g.view);
+    std::vector<float> result = g.readTarget();
 
     float worst = 0.0f;
     double total = 0.0;

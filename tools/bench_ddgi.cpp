@@ -13,6 +13,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include "gi/gbuffer_upload.h"
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/ddgi_system.h"
 #include "gi/ddgi/probe_sampling.h"
@@ -120,31 +121,13 @@ double glApplyMs(DdgiSystem& ddgi, int width, int height, int frames) {
         pos[k] = glm::vec4(s.position, 1.0f);
         nrm[k++] = glm::vec4(s.normal, 1.0f);
     }
-    auto tex = [&](const std::vector<glm::vec4>& d) {
-        gl::Handle t = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, d.data());
-        return t;
-    };
-    gl::Handle tp = tex(pos), tn = tex(nrm), ta = tex(alb), te = tex(emi);
-    gl::Handle out = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-    gl::Handle fbo = gl::createFramebuffer();
-    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, out.id(), 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-    glViewport(0, 0, width, height);
-    GBufferView g;
-    g.position = tp.id();
-    g.normal = tn.id();
-    g.albedo = ta.id();
-    g.emission = te.id();
-    g.width = width;
-    g.height = height;
-    g.eye = ddgi.tracer().scene().camera.eye;
+    UploadedGBuffer g = uploadGBuffer(pos, nrm, alb, emi, width, height, ddgi.tracer().scene().camera.eye);
     DdgiGpu gpu(ddgi.field());
     std::vector<double> ms;
     for (int f = 0; f < frames; ++f) {
         glFinish();
         auto t0 = Clock::now();
-        gpu.apply(ddgi.field(), g);
+        gpu.apply(ddgi.field(), g.view);
         glFinish();
         ms.push_back(msSince(t0));
     }
