@@ -23,6 +23,23 @@ void errorHandler(void*, RTCError code, const char* message) {
     if (code != RTC_ERROR_NONE) std::fprintf(stderr, "voxgi: embree error %d: %s\n", int(code), message ? message : "");
 }
 
+RTCRay makeRay(glm::vec3 o, glm::vec3 d, float tMin, float tMax) {
+    RTCRay ray;
+    ray.org_x = o.x;
+    ray.org_y = o.y;
+    ray.org_z = o.z;
+    ray.dir_x = d.x;
+    ray.dir_y = d.y;
+    ray.dir_z = d.z;
+    ray.tnear = tMin;
+    ray.tfar = tMax;
+    ray.time = 0.0f;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    return ray;
+}
+
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 }  // namespace
 
@@ -72,18 +89,7 @@ RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) co
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
-    rh.ray.dir_x = d.x;
-    rh.ray.dir_y = d.y;
-    rh.ray.dir_z = d.z;
-    rh.ray.tnear = tMin;
-    rh.ray.tfar = tMax;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
+    rh.ray = makeRay(o, d, tMin, tMax);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
@@ -114,19 +120,7 @@ RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) co
 bool RayTracer::occluded(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray;
-    ray.org_x = o.x;
-    ray.org_y = o.y;
-    ray.org_z = o.z;
-    ray.dir_x = d.x;
-    ray.dir_y = d.y;
-    ray.dir_z = d.z;
-    ray.tnear = tMin;
-    ray.tfar = tMax;
-    ray.time = 0.0f;
-    ray.mask = 0xFFFFFFFFu;
-    ray.id = 0;
-    ray.flags = 0;
+    RTCRay ray = makeRay(o, d, tMin, tMax);
     rtcOccluded1(impl_->scene, &context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();
 }
