@@ -15,15 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<glm::ivec3> occupiedVoxels(const SparseGeometryVolume& v, int level) {
-    std::vector<glm::ivec3> out;
-    IndexBox b = v.indexBounds(level);
-    for (int z = b.min.z; z <= b.max.z; ++z)
-        for (int y = b.min.y; y <= b.max.y; ++y)
-            for (int x = b.min.x; x <= b.max.x; ++x)
-                if (v.occupied({x, y, z}, level)) out.push_back({x, y, z});
-    return out;
-}
 
 void expectSameVolume(const SparseGeometryVolume& a, const SparseGeometryVolume& b) {
     ASSERT_EQ(a.levelCount(), b.levelCount());
@@ -32,7 +23,7 @@ void expectSameVolume(const SparseGeometryVolume& a, const SparseGeometryVolume&
     for (int l = 0; l < a.levelCount(); ++l) {
         EXPECT_FLOAT_EQ(a.voxelSize(l), b.voxelSize(l));
         ASSERT_EQ(a.activeVoxelCount(l), b.activeVoxelCount(l));
-        for (const glm::ivec3& c : occupiedVoxels(a, l)) {
+        for (const glm::ivec3& c : test::occupiedVoxels(a, l)) {
             ASSERT_TRUE(b.occupied(c, l));
             EXPECT_EQ(a.blockerSH(c, l), b.blockerSH(c, l));
             EXPECT_EQ(a.albedo(c, l), b.albedo(c, l));

@@ -35,20 +35,11 @@ SparseGeometryVolume voxelize(const Scene& scene, float voxelSize, BlockerFit fi
     return voxelizeScene(scene, settings);
 }
 
-std::vector<glm::ivec3> occupiedVoxels(const SparseGeometryVolume& v, int level = 0) {
-    std::vector<glm::ivec3> out;
-    IndexBox b = v.indexBounds(level);
-    for (int z = b.min.z; z <= b.max.z; ++z)
-        for (int y = b.min.y; y <= b.max.y; ++y)
-            for (int x = b.min.x; x <= b.max.x; ++x)
-                if (v.occupied({x, y, z}, level)) out.push_back({x, y, z});
-    return out;
-}
 
 // Clipped area summed over voxels, recovered from the Projection fit's constant term.
 double totalArea(const SparseGeometryVolume& v) {
     double h = v.voxelSize(), sum = 0.0;
-    for (const glm::ivec3& c : occupiedVoxels(v)) sum += 4.0 * kShY00 * v.blockerSH(c)[0] * h * h;
+    for (const glm::ivec3& c : test::occupiedVoxels(v)) sum += 4.0 * kShY00 * v.blockerSH(c)[0] * h * h;
     return sum;
 }
 
@@ -105,7 +96,7 @@ TEST(Voxelize, AxisAlignedBoxShellIsExactAndClosed) {
     glm::mat4 t = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)), glm::vec3(0.9f));
     SparseGeometryVolume v = voxelize(sceneWith({makeBox(t, 0)}), 0.1f);
     EXPECT_EQ(v.activeVoxelCount(), 488u);
-    for (const glm::ivec3& c : occupiedVoxels(v)) {
+    for (const glm::ivec3& c : test::occupiedVoxels(v)) {
         EXPECT_TRUE(glm::all(glm::greaterThanEqual(c, glm::ivec3(0))) && glm::all(glm::lessThanEqual(c, glm::ivec3(9))));
         EXPECT_TRUE(c.x == 0 || c.x == 9 || c.y == 0 || c.y == 9 || c.z == 0 || c.z == 9);
     }
@@ -123,7 +114,7 @@ TEST(Voxelize, SphereStaysWithinTheShellBoundsAndClosed) {
     // The mesh lies between the sphere and the sphere shrunk by the faces' sagitta.
     const float inner = r * std::cos(3.14159265f / 16.0f), slack = 1e-4f * h;
     std::set<std::tuple<int, int, int>> occupied;
-    for (const glm::ivec3& c : occupiedVoxels(v)) occupied.insert({c.x, c.y, c.z});
+    for (const glm::ivec3& c : test::occupiedVoxels(v)) occupied.insert({c.x, c.y, c.z});
     int required = 0;
     for (int z = -2; z < 42; ++z)
         for (int y = -2; y < 42; ++y)
@@ -219,7 +210,7 @@ TEST(Voxelize, BadTrianglesAreSkippedAndCounted) {
     good.indices = {0, 1, 2};
     good.materialIds = {0};
     EXPECT_EQ(v.activeVoxelCount(), voxelizeScene(sceneWith({good}), settings).activeVoxelCount());
-    for (const glm::ivec3& c : occupiedVoxels(v)) {
+    for (const glm::ivec3& c : test::occupiedVoxels(v)) {
         glm::vec4 sh = v.blockerSH(c);
         for (int i = 0; i < 4; ++i) EXPECT_TRUE(std::isfinite(sh[i]));
     }

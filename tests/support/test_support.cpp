@@ -55,6 +55,16 @@ std::string sharedScenesDir() {
 
 Scene cornellBox() { return loadSceneFile(sourcePath("scenes/cornell-box.json")); }
 
+std::vector<glm::ivec3> occupiedVoxels(const SparseGeometryVolume& v, int level) {
+    std::vector<glm::ivec3> out;
+    IndexBox b = v.indexBounds(level);
+    for (int z = b.min.z; z <= b.max.z; ++z)
+        for (int y = b.min.y; y <= b.max.y; ++y)
+            for (int x = b.min.x; x <= b.max.x; ++x)
+                if (v.occupied({x, y, z}, level)) out.push_back({x, y, z});
+    return out;
+}
+
 void useHeadlessContext() {
     static std::unique_ptr<gl::Context> context = gl::Context::createHeadless();
     context->makeCurrent();

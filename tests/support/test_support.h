@@ -3,7 +3,10 @@
 
 #include <string>
 
+#include <vector>
+
 #include "scenes/scene.h"
+#include "volumes/geometry_volume.h"
 
 namespace voxgi::test {
 
@@ -27,6 +30,9 @@ std::string sharedScenesDir();
 
 // The built-in Cornell box.
 Scene cornellBox();
+
+// Every occupied voxel of one level, in z, y, x order.
+std::vector<glm::ivec3> occupiedVoxels(const SparseGeometryVolume& volume, int level = 0);
 
 // Makes the process's one headless GL 4.5 context current (created on first use).
 void useHeadlessContext();
