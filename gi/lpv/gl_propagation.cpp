@@ -11,11 +11,12 @@ namespace voxgi {
 struct GlPropagator::Impl {
     int n;
     gl::Program program;
-    std::array<gl::Handle, 3> ping, pong, acc;
+    std::array<gl::Handle, 3> injected, ping, pong, acc;
     gl::Handle blocker, albedo;
 
     explicit Impl(int resolution) : n(resolution), program(gl::Program::compute("lpv/propagate.comp")) {
         for (int c = 0; c < 3; ++c) {
+            injected[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
             ping[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
             pong[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
             acc[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
@@ -43,23 +44,45 @@ struct GlPropagator::Impl {
     void upload(GLuint texture, const std::vector<glm::vec4>& data, int size) {
         glTextureSubImage3D(texture, 0, 0, 0, 0, size, size, size, GL_RGBA, GL_FLOAT, data.data());
     }
+
+    void copy(GLuint from, GLuint to) const {
+        glCopyImageSubData(from, GL_TEXTURE_3D, 0, 0, 0, 0, to, GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    }
 };
+
+namespace {
+void readVolume(GLuint texture, int size, std::vector<glm::vec4>& out) {
+    out.resize(std::size_t(size) * std::size_t(size) * std::size_t(size));
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec4)), out.data());
+}
+}  // namespace
 
 GlPropagator::GlPropagator(int resolution) : impl_(std::make_unique<Impl>(resolution)) {}
 GlPropagator::~GlPropagator() = default;
+
+int GlPropagator::resolution() const { return impl_->n; }
 
 void GlPropagator::propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                              const PropagationOptions& options) {
     Impl& m = *impl_;
     const std::vector<glm::vec4>* channels[3] = {&injected.r, &injected.g, &injected.b};
-    for (std::size_t c = 0; c < 3; ++c) {
-        m.upload(m.ping[c].id(), *channels[c], m.n);
-        m.upload(m.acc[c].id(), *channels[c], m.n);
-    }
+    for (std::size_t c = 0; c < 3; ++c) m.upload(m.injected[c].id(), *channels[c], m.n);
     m.upload(m.blocker.id(), geometry.blocker, m.n + 1);
     std::vector<glm::vec4> albedo4(geometry.albedo.size());
     for (std::size_t i = 0; i < albedo4.size(); ++i) albedo4[i] = glm::vec4(geometry.albedo[i], 0.0f);
     m.upload(m.albedo.id(), albedo4, m.n + 1);
+    propagateInjected(steps, options);
+}
+
+void GlPropagator::propagateInjected(int steps, const PropagationOptions& options) {
+    Impl& m = *impl_;
+    // Writes through framebuffers or images (GlInjector) must land before the copies read them.
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
+    for (std::size_t c = 0; c < 3; ++c) {
+        m.copy(m.injected[c].id(), m.ping[c].id());
+        m.copy(m.injected[c].id(), m.acc[c].id());
+    }
     m.program.use();
     m.program.set("uOcclusion", options.occlusion ? 1 : 0);
     m.program.set("uBounces", options.bounces ? 1 : 0);
@@ -81,16 +104,30 @@ void GlPropagator::propagate(const LightVolume& injected, const BlockerVolume& g
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
+GLuint GlPropagator::injected(int channel) const { return impl_->injected[std::size_t(channel)].id(); }
+GLuint GlPropagator::blocker() const { return impl_->blocker.id(); }
+GLuint GlPropagator::albedo() const { return impl_->albedo.id(); }
+
 GLuint GlPropagator::accumulated(int channel) const { return impl_->acc[std::size_t(channel)].id(); }
 
 void GlPropagator::readBack(LightVolume& out) const {
-    const int n = impl_->n;
-    std::vector<glm::vec4>* channels[3] = {&out.r, &out.g, &out.b};
-    for (int c = 0; c < 3; ++c) {
-        channels[c]->resize(std::size_t(n) * std::size_t(n) * std::size_t(n));
-        glGetTextureImage(impl_->acc[std::size_t(c)].id(), 0, GL_RGBA, GL_FLOAT,
-                          GLsizei(channels[c]->size() * sizeof(glm::vec4)), channels[c]->data());
-    }
+    for (std::size_t c = 0; c < 3; ++c)
+        readVolume(impl_->acc[c].id(), impl_->n, c == 0 ? out.r : (c == 1 ? out.g : out.b));
+}
+
+void GlPropagator::readBackInjected(LightVolume& out) const {
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    for (std::size_t c = 0; c < 3; ++c)
+        readVolume(impl_->injected[c].id(), impl_->n, c == 0 ? out.r : (c == 1 ? out.g : out.b));
+}
+
+void GlPropagator::readBackGeometry(BlockerVolume& out) const {
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    readVolume(impl_->blocker.id(), impl_->n + 1, out.blocker);
+    std::vector<glm::vec4> albedo4;
+    readVolume(impl_->albedo.id(), impl_->n + 1, albedo4);
+    out.albedo.resize(albedo4.size());
+    for (std::size_t i = 0; i < albedo4.size(); ++i) out.albedo[i] = glm::vec3(albedo4[i]);
 }
 
 }  // namespace voxgi

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gi/lpv/cascades.h"
+#include "gi/lpv/gl_injection.h"
 #include "gi/lpv/gl_propagation.h"
 #include "gi/lpv/injection.h"
 #include "gi/lpv/lpv_dump.h"
@@ -26,17 +27,18 @@ double millisecondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
-// Blocker surfels from the G-buffer, downsampled so the larger side has at most `target` samples.
+}  // namespace
+
 SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int target) {
     SurfelSource source;
-    if (target <= 0) return source;
+    const GBufferSampling sampling = GBufferSampling::of(g, camera, target);
+    if (sampling.count() <= 0) return source;
     std::vector<float> pos = gl::readTexture(g.position, g.width, g.height, 4);
     std::vector<float> nrm = gl::readTexture(g.normal, g.width, g.height, 4);
     std::vector<float> alb = gl::readTexture(g.albedo, g.width, g.height, 4);
-    int stride = 1;
-    while (std::max(g.width, g.height) / stride > target) stride *= 2;
-    const float pixel = 2.0f * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / float(g.height);
-    const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+    const int stride = sampling.stride;
+    const float pixel = sampling.pixel;
+    const glm::vec3 forward = sampling.forward;
     for (int y = stride / 2; y < g.height; y += stride)
         for (int x = stride / 2; x < g.width; x += stride) {
             std::size_t i = (std::size_t(y) * std::size_t(g.width) + std::size_t(x)) * 4;
@@ -57,8 +59,6 @@ SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int targ
     return source;
 }
 
-}  // namespace
-
 struct LpvTechnique::Impl {
     const Scene& scene;
     LpvDesc desc;
@@ -70,6 +70,9 @@ struct LpvTechnique::Impl {
     std::vector<BlockerVolume> geometry;
     std::vector<CpuPropagator> propagators;
     std::vector<std::unique_ptr<GlPropagator>> glPropagators;
+    std::unique_ptr<GlInjector> glInjector;                 // gl back end: injection on the GPU
+    std::vector<std::unique_ptr<GlBlockerVolume>> glStatic;  // static blockers per cascade
+    std::vector<glm::ivec3> glStaticOrigins;                 // placement glStatic was made for
     std::vector<gl::Handle> textures;  // 3 per cascade: r, g, b
     std::vector<glm::ivec3> lastOrigins;
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
@@ -97,8 +100,10 @@ struct LpvTechnique::Impl {
         accumulated.resize(std::size_t(desc.cascades));
         geometry.resize(std::size_t(desc.cascades));
         propagators.resize(std::size_t(desc.cascades));
-        if (desc.backend == "gl")
+        if (desc.backend == "gl") {
             for (int c = 0; c < desc.cascades; ++c) glPropagators.push_back(std::make_unique<GlPropagator>(desc.resolution));
+            glInjector = std::make_unique<GlInjector>(desc.resolution);
+        }
         for (int i = 0; i < 3 * desc.cascades; ++i)
             textures.push_back(gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, desc.resolution, desc.resolution,
                                                  desc.resolution));
@@ -122,6 +127,10 @@ struct LpvTechnique::Impl {
         if (desc.reuse && valid && !placementChanged()) return;
         lastOrigins.clear();
         for (const auto& p : placements) lastOrigins.push_back(p.grid.origin);
+        if (glInjector) {
+            updateOnGpu(input, g);
+            return;
+        }
 
         auto t0 = std::chrono::steady_clock::now();
         std::vector<SurfelSource> sources;
@@ -158,16 +167,6 @@ struct LpvTechnique::Impl {
         input.timers.addCpu("lpv.blockers", millisecondsSince(t0));
 
         PropagationOptions options{desc.occlusion, desc.bounces};
-        if (!glPropagators.empty()) {
-            input.timers.begin("lpv.propagate");
-            for (std::size_t c = 0; c < placements.size(); ++c) {
-                glPropagators[c]->propagate(injected[c], geometry[c], desc.steps, options);
-                accumulated[c].grid = placements[c].grid;
-            }
-            input.timers.end();
-            valid = true;
-            return;
-        }
         t0 = std::chrono::steady_clock::now();
         double operatorMs = 0.0;
         for (std::size_t c = 0; c < placements.size(); ++c) {
@@ -186,6 +185,74 @@ struct LpvTechnique::Impl {
                                     channels[k]->data());
         }
         input.timers.addCpu("lpv.upload", millisecondsSince(t0));
+        valid = true;
+    }
+
+    GlCascadeTargets glTargets(std::size_t c) const {
+        GlCascadeTargets t;
+        t.grid = placements[c].grid;
+        for (int k = 0; k < 3; ++k) t.light[k] = glPropagators[c]->injected(k);
+        t.blocker = glPropagators[c]->blocker();
+        t.albedo = glPropagators[c]->albedo();
+        return t;
+    }
+
+    // The voxelized static blockers of each cascade, made on the CPU and uploaded once per
+    // placement (for `lpv` once; for `clpv` when a cascade's snapped origin moves).
+    void refreshStaticBlockers(const FrameInput& input) {
+        if (!voxels) return;
+        auto t0 = std::chrono::steady_clock::now();
+        bool changed = false;
+        glStatic.resize(placements.size());
+        glStaticOrigins.resize(placements.size());
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            if (glStatic[c] && glStaticOrigins[c] == placements[c].grid.origin) continue;
+            if (!glStatic[c]) glStatic[c] = std::make_unique<GlBlockerVolume>(desc.resolution);
+            BlockerVolume v;
+            v.reset(placements[c].grid);
+            staticBlockers(*voxels, int(c), v);
+            glStatic[c]->upload(v);
+            glStaticOrigins[c] = placements[c].grid.origin;
+            changed = true;
+        }
+        if (changed) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
+    }
+
+    // The gl back end: RSM, injection and propagation without leaving the GPU.
+    void updateOnGpu(const FrameInput& input, const GBufferView& g) {
+        input.timers.begin("lpv.rsm");
+        const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu);
+        input.timers.end();
+        refreshStaticBlockers(input);
+
+        input.timers.begin("lpv.inject");
+        InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            GlCascadeTargets t = glTargets(c);
+            glInjector->clearLight(t);
+            for (const RsmFace& face : faces) glInjector->injectLight(face, offsets, t);
+        }
+        input.timers.end();
+
+        input.timers.begin("lpv.blockers");
+        GBufferSampling sampling = GBufferSampling::of(g, scene.camera, desc.gbufferBlockerSize);
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            GlCascadeTargets t = glTargets(c);
+            glInjector->clearGeometry(t);
+            for (const RsmFace& face : faces) glInjector->injectBlockers(face, t);
+            glInjector->injectBlockers(g, sampling, t);
+            if (voxels) glInjector->mergeBlockers(*glStatic[c], t);
+        }
+        input.timers.end();
+
+        input.timers.begin("lpv.propagate");
+        PropagationOptions options{desc.occlusion, desc.bounces};
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            glPropagators[c]->propagateInjected(desc.steps, options);
+            accumulated[c].grid = placements[c].grid;
+            geometry[c].grid = placements[c].grid;
+        }
+        input.timers.end();
         valid = true;
     }
 
@@ -241,8 +308,12 @@ void LpvTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) 
 void LpvTechnique::dumpVdb(const std::string& path) const {
     if (!impl_->valid) throw NotImplementedError("lpv: nothing to dump before the first frame");
     std::vector<LightVolume> light = impl_->accumulated;
-    for (std::size_t c = 0; c < impl_->glPropagators.size(); ++c) impl_->glPropagators[c]->readBack(light[c]);
-    writeLpvVdb(path, light, impl_->geometry);
+    std::vector<BlockerVolume> geometry = impl_->geometry;
+    for (std::size_t c = 0; c < impl_->glPropagators.size(); ++c) {
+        impl_->glPropagators[c]->readBack(light[c]);
+        impl_->glPropagators[c]->readBackGeometry(geometry[c]);
+    }
+    writeLpvVdb(path, light, geometry);
 }
 
 std::unique_ptr<GiTechnique> createLpv(const Scene& scene) {

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "gi/lpv/lpv_desc.h"
+#include "gi/lpv/surfels.h"
 #include "gi/technique.h"
 
 namespace voxgi {
@@ -27,6 +28,10 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+// The camera's blocker source on the CPU back end: the G-buffer read back and sampled as
+// GBufferSampling (gi/lpv/gl_injection.h) says, each pixel a surfel of its footprint's area.
+SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int target);
 
 std::unique_ptr<GiTechnique> createLpv(const Scene& scene);
 std::unique_ptr<GiTechnique> createClpv(const Scene& scene);

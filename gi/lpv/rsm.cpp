@@ -11,90 +11,29 @@
 namespace voxgi {
 
 namespace {
+
 glm::vec3 anyUp(glm::vec3 d) { return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0); }
-}  // namespace
 
-struct RsmRenderer::Impl {
-    int size;
-    gl::Program program;
-    gl::Handle fbo, position, normal, flux, albedo, depth;
-
-    explicit Impl(int s) : size(s) {
-        program = gl::Program::graphics("lpv/rsm.vert", "lpv/rsm.frag");
-        position = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        normal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        flux = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        albedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        depth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size);
-        fbo = gl::createFramebuffer({position.id(), normal.id(), flux.id(), albedo.id()}, depth.id(),
-                                    "reflective shadow map");
-    }
-
-    // kind: 0 perspective point-like (point, spot, quad), 2 orthographic (directional)
-    SurfelSource renderFace(const SceneGpu& gpu, const glm::mat4& viewProjection, int kind, const Light& light,
-                            glm::vec3 origin, glm::vec3 forward, float tanHalf, float orthoTexelArea) {
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-        glViewport(0, 0, size, size);
-        const float zero[4] = {0, 0, 0, 0};
-        for (int i = 0; i < 4; ++i) glClearBufferfv(GL_COLOR, i, zero);
-        glClear(GL_DEPTH_BUFFER_BIT);
-        glEnable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        program.use();
-        program.set("uViewProjection", viewProjection);
-        program.set("uKind", kind);
-        program.set("uLightPosition", origin);
-        program.set("uLightForward", forward);
-        program.set("uLightDirection", light.direction);
-        program.set("uLightColor", light.type == LightType::Quad ? light.color * light.area() : light.color);
-        program.set("uEmitterNormal", light.type == LightType::Quad ? light.quadNormal() : glm::vec3(0.0f));
-        float outer = glm::radians(light.outerConeDegrees), inner = glm::radians(light.innerConeDegrees);
-        program.set("uSpotCos", light.type == LightType::Spot ? glm::vec2(std::cos(outer), std::cos(inner))
-                                                               : glm::vec2(-2.0f, -1.0f));
-        // Solid angle of one texel on the unit-distance image plane, before the cos^3 factor.
-        float texel = 2.0f * tanHalf / float(size);
-        program.set("uTexelSolidAngle", texel * texel);
-        program.set("uOrthoTexelArea", orthoTexelArea);
-        program.set("uTextures", 0);
-        gpu.bind(0);
-        gpu.draw();
-
-        std::vector<float> p = gl::readTexture(position.id(), size, size, 4);
-        std::vector<float> n = gl::readTexture(normal.id(), size, size, 4);
-        std::vector<float> f = gl::readTexture(flux.id(), size, size, 4);
-        std::vector<float> a = gl::readTexture(albedo.id(), size, size, 4);
-        SurfelSource source;
-        for (std::size_t i = 0; i < std::size_t(size) * std::size_t(size); ++i) {
-            if (n[4 * i + 3] <= 0.0f) continue;  // no surface in this texel
-            Surfel s;
-            s.position = {p[4 * i], p[4 * i + 1], p[4 * i + 2]};
-            s.area = p[4 * i + 3];
-            s.normal = {n[4 * i], n[4 * i + 1], n[4 * i + 2]};
-            s.flux = {f[4 * i], f[4 * i + 1], f[4 * i + 2]};
-            s.albedo = {a[4 * i], a[4 * i + 1], a[4 * i + 2]};
-            s.toLight = kind == 2 ? -light.direction : glm::normalize(origin - s.position);
-            source.surfels.push_back(s);
-        }
-        return source;
-    }
+// How one face of a light is rasterized.
+struct FaceView {
+    glm::mat4 viewProjection;
+    int kind;  // 0 perspective point-like (point, spot, quad), 2 orthographic (directional)
+    glm::vec3 origin, forward;
+    float tanHalf, orthoTexelArea;
 };
 
-RsmRenderer::RsmRenderer(int size) : impl_(std::make_unique<Impl>(size)) {}
-RsmRenderer::~RsmRenderer() = default;
-
-std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu& gpu, const Light& light) {
+std::vector<FaceView> faceViews(const Scene& scene, const Light& light, int size) {
     Bounds b = scene.bounds();
     glm::vec3 center = b.valid() ? b.center() : glm::vec3(0.0f);
     float radius = b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
-    std::vector<SurfelSource> sources;
+    std::vector<FaceView> views;
     if (light.type == LightType::Directional) {
         glm::vec3 eye = center - light.direction * (2.0f * radius);
         glm::mat4 view = glm::lookAt(eye, center, anyUp(light.direction));
         glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, 0.0f, 4.0f * radius);
-        float texel = 2.0f * radius / float(impl_->size);
-        sources.push_back(impl_->renderFace(gpu, proj * view, 2, light, eye, light.direction, 0.0f, texel * texel));
-        return sources;
+        float texel = 2.0f * radius / float(size);
+        views.push_back({proj * view, 2, eye, light.direction, 0.0f, texel * texel});
+        return views;
     }
     glm::vec3 origin = light.type == LightType::Quad ? light.quadCenter() + light.quadNormal() * (1e-4f * radius)
                                                      : light.position;
@@ -103,8 +42,8 @@ std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu
         float half = glm::radians(light.outerConeDegrees) + 0.02f;
         glm::mat4 view = glm::lookAt(origin, origin + light.direction, anyUp(light.direction));
         glm::mat4 proj = glm::perspective(2.0f * half, 1.0f, nearPlane, farPlane);
-        sources.push_back(impl_->renderFace(gpu, proj * view, 0, light, origin, light.direction, std::tan(half), 0.0f));
-        return sources;
+        views.push_back({proj * view, 0, origin, light.direction, std::tan(half), 0.0f});
+        return views;
     }
     // Point lights and quad lights: six 90-degree faces (a quad's back faces receive nothing).
     static const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -112,9 +51,117 @@ std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu
     for (const glm::vec3& d : dirs) {
         if (light.type == LightType::Quad && glm::dot(d, light.quadNormal()) < -0.99f) continue;
         glm::mat4 view = glm::lookAt(origin, origin + d, anyUp(d));
-        sources.push_back(impl_->renderFace(gpu, proj * view, 0, light, origin, d, 1.0f, 0.0f));
+        views.push_back({proj * view, 0, origin, d, 1.0f, 0.0f});
     }
+    return views;
+}
+
+// The render targets of one face.
+struct FaceTargets {
+    gl::Handle fbo, position, normal, flux, albedo, depth;
+
+    explicit FaceTargets(int size) {
+        position = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+        normal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+        flux = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+        albedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+        depth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size);
+        fbo = gl::createFramebuffer({position.id(), normal.id(), flux.id(), albedo.id()}, depth.id(),
+                                    "reflective shadow map");
+    }
+};
+
+}  // namespace
+
+SurfelSource readSurfels(const RsmFace& face) {
+    const int size = face.size;
+    std::vector<float> p = gl::readTexture(face.position, size, size, 4);
+    std::vector<float> n = gl::readTexture(face.normal, size, size, 4);
+    std::vector<float> f = gl::readTexture(face.flux, size, size, 4);
+    std::vector<float> a = gl::readTexture(face.albedo, size, size, 4);
+    SurfelSource source;
+    for (std::size_t i = 0; i < std::size_t(size) * std::size_t(size); ++i) {
+        if (n[4 * i + 3] <= 0.0f) continue;  // no surface in this texel
+        Surfel s;
+        s.position = {p[4 * i], p[4 * i + 1], p[4 * i + 2]};
+        s.area = p[4 * i + 3];
+        s.normal = {n[4 * i], n[4 * i + 1], n[4 * i + 2]};
+        s.flux = {f[4 * i], f[4 * i + 1], f[4 * i + 2]};
+        s.albedo = {a[4 * i], a[4 * i + 1], a[4 * i + 2]};
+        s.toLight = face.orthographic ? face.toLight : glm::normalize(face.origin - s.position);
+        source.surfels.push_back(s);
+    }
+    return source;
+}
+
+struct RsmRenderer::Impl {
+    int size;
+    gl::Program program;
+    std::vector<std::unique_ptr<FaceTargets>> targets;  // grown to the most faces seen in one frame
+    std::vector<RsmFace> faces;
+
+    explicit Impl(int s) : size(s) { program = gl::Program::graphics("lpv/rsm.vert", "lpv/rsm.frag"); }
+
+    RsmFace renderFace(std::size_t slot, const SceneGpu& gpu, const FaceView& v, const Light& light) {
+        while (targets.size() <= slot) targets.push_back(std::make_unique<FaceTargets>(size));
+        const FaceTargets& t = *targets[slot];
+        glBindFramebuffer(GL_FRAMEBUFFER, t.fbo.id());
+        glViewport(0, 0, size, size);
+        const float zero[4] = {0, 0, 0, 0};
+        for (int i = 0; i < 4; ++i) glClearBufferfv(GL_COLOR, i, zero);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        program.use();
+        program.set("uViewProjection", v.viewProjection);
+        program.set("uKind", v.kind);
+        program.set("uLightPosition", v.origin);
+        program.set("uLightForward", v.forward);
+        program.set("uLightDirection", light.direction);
+        program.set("uLightColor", light.type == LightType::Quad ? light.color * light.area() : light.color);
+        program.set("uEmitterNormal", light.type == LightType::Quad ? light.quadNormal() : glm::vec3(0.0f));
+        float outer = glm::radians(light.outerConeDegrees), inner = glm::radians(light.innerConeDegrees);
+        program.set("uSpotCos", light.type == LightType::Spot ? glm::vec2(std::cos(outer), std::cos(inner))
+                                                               : glm::vec2(-2.0f, -1.0f));
+        // Solid angle of one texel on the unit-distance image plane, before the cos^3 factor.
+        float texel = 2.0f * v.tanHalf / float(size);
+        program.set("uTexelSolidAngle", texel * texel);
+        program.set("uOrthoTexelArea", v.orthoTexelArea);
+        program.set("uTextures", 0);
+        gpu.bind(0);
+        gpu.draw();
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+
+        RsmFace face;
+        face.position = t.position.id();
+        face.normal = t.normal.id();
+        face.flux = t.flux.id();
+        face.albedo = t.albedo.id();
+        face.size = size;
+        face.orthographic = v.kind == 2;
+        face.origin = v.origin;
+        face.toLight = -light.direction;
+        return face;
+    }
+};
+
+RsmRenderer::RsmRenderer(int size) : impl_(std::make_unique<Impl>(size)) {}
+RsmRenderer::~RsmRenderer() = default;
+
+std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu& gpu, const Light& light) {
+    std::vector<SurfelSource> sources;
+    for (const FaceView& v : faceViews(scene, light, impl_->size))
+        sources.push_back(readSurfels(impl_->renderFace(0, gpu, v, light)));
     return sources;
+}
+
+const std::vector<RsmFace>& RsmRenderer::renderToTextures(const Scene& scene, const SceneGpu& gpu) {
+    impl_->faces.clear();
+    for (const Light& light : scene.lights)
+        for (const FaceView& v : faceViews(scene, light, impl_->size))
+            impl_->faces.push_back(impl_->renderFace(impl_->faces.size(), gpu, v, light));
+    return impl_->faces;
 }
 
 }  // namespace voxgi

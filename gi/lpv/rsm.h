@@ -7,12 +7,27 @@
 #include <memory>
 #include <vector>
 
+#include <epoxy/gl.h>
+
 #include "gi/lpv/surfels.h"
 #include "scenes/scene.h"
 
 namespace voxgi {
 
 class SceneGpu;
+
+// One rendered face, as GL textures (RGBA32F, size x size; see shaders/lpv/rsm.frag):
+// position (w = surfel area), normal (w = 1 where a surface was hit), flux, albedo.
+struct RsmFace {
+    GLuint position = 0, normal = 0, flux = 0, albedo = 0;
+    int size = 0;
+    bool orthographic = false;   // a sun's map: every surfel's direction to the light is toLight
+    glm::vec3 origin{0.0f};      // perspective maps: the light position the surfels look at
+    glm::vec3 toLight{0.0f};     // orthographic maps: minus the light's travel direction
+};
+
+// The surfels of one face read back to the CPU, in texel order (row-major from texel 0).
+SurfelSource readSurfels(const RsmFace& face);
 
 class RsmRenderer {
 public:
@@ -21,8 +36,11 @@ public:
     RsmRenderer(const RsmRenderer&) = delete;
     RsmRenderer& operator=(const RsmRenderer&) = delete;
 
-    // One source per rendered face. Needs a current GL context.
+    // One source per rendered face, read back to the CPU. Needs a current GL context.
     std::vector<SurfelSource> render(const Scene& scene, const SceneGpu& gpu, const Light& light);
+    // Every face of every light of the scene, kept on the GPU: the textures stay valid until
+    // the next call of either function.
+    const std::vector<RsmFace>& renderToTextures(const Scene& scene, const SceneGpu& gpu);
 
 private:
     struct Impl;

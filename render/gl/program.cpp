@@ -128,6 +128,23 @@ Program Program::graphics(const std::string& vertexPath, const std::string& frag
     return p;
 }
 
+Program Program::withGeometry(const std::string& vertexPath, const std::string& geometryPath,
+                              const std::string& fragmentPath, const Defines& defines) {
+    Program p;
+    p.name_ = vertexPath + " + " + geometryPath + " + " + fragmentPath;
+    std::vector<GLuint> stages;
+    try {
+        stages.push_back(compileStage(GL_VERTEX_SHADER, vertexPath, defines));
+        stages.push_back(compileStage(GL_GEOMETRY_SHADER, geometryPath, defines));
+        stages.push_back(compileStage(GL_FRAGMENT_SHADER, fragmentPath, defines));
+    } catch (...) {
+        for (GLuint s : stages) glDeleteShader(s);
+        throw;
+    }
+    p.id_ = link(stages, p.name_);
+    return p;
+}
+
 Program Program::compute(const std::string& path, const Defines& defines) {
     Program p;
     p.name_ = path;

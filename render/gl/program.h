@@ -32,6 +32,9 @@ public:
     // Graphics program from a vertex and a fragment shader file.
     static Program graphics(const std::string& vertexPath, const std::string& fragmentPath,
                             const Defines& defines = {});
+    // Graphics program with a geometry shader between the vertex and fragment shaders.
+    static Program withGeometry(const std::string& vertexPath, const std::string& geometryPath,
+                                const std::string& fragmentPath, const Defines& defines = {});
     // Compute program from one file.
     static Program compute(const std::string& path, const Defines& defines = {});
 
