@@ -128,14 +128,12 @@ GlCascadeTargets targetsOf(const GlPropagator& p, const CascadeGrid& grid) {
     return t;
 }
 
-}  // namespace
-
-TEST_F(LpvGlInjection, LightAndBlockersMatchCpuInjection) {
-    Scene scene = test::cornellBox();
+// Injects every face of every light of `scene` and a synthetic G-buffer into 3 cascades both ways.
+void expectGpuInjectionMatchesCpu(const Scene& scene, std::size_t expectedFaces) {
     SceneGpu gpu(scene);
     RsmRenderer rsm(96);
     const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, gpu);
-    ASSERT_EQ(faces.size(), 5u);  // the quad light's hemicube
+    ASSERT_EQ(faces.size(), expectedFaces);
     std::vector<SurfelSource> sources;
     for (const RsmFace& f : faces) sources.push_back(readSurfels(f));
 
@@ -193,6 +191,33 @@ TEST_F(LpvGlInjection, LightAndBlockersMatchCpuInjection) {
                 ++albedoMismatches;
         EXPECT_EQ(albedoMismatches, 0u);
     }
+}
+
+}  // namespace
+
+TEST_F(LpvGlInjection, QuadLightMatchesCpuInjection) {
+    expectGpuInjectionMatchesCpu(test::cornellBox(), 5);  // the quad light's hemicube
+}
+
+// Orthographic (sun through the open front), single perspective (spot) and cube (point) maps.
+TEST_F(LpvGlInjection, SunSpotAndPointLightsMatchCpuInjection) {
+    Scene scene = test::cornellBox();
+    scene.lights.clear();
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -0.5f, 1.0f));
+    sun.color = glm::vec3(3.0f, 2.5f, 2.0f);
+    Light spot;
+    spot.type = LightType::Spot;
+    spot.position = glm::vec3(0.4f, 0.5f, 0.35f);
+    spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.1f));
+    spot.color = glm::vec3(0.5f, 0.8f, 1.0f);
+    Light point;
+    point.type = LightType::Point;
+    point.position = glm::vec3(0.15f, 0.3f, 0.25f);
+    point.color = glm::vec3(0.2f, 0.1f, 0.05f);
+    scene.lights = {sun, spot, point};
+    expectGpuInjectionMatchesCpu(scene, 8);
 }
 
 // Same scene twice through the CLI: the GL back end (RSM, injection, propagation on the GPU)
