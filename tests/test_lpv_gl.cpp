@@ -53,8 +53,11 @@ TEST_F(LpvGl, ShConstantsAgreeBetweenGlslAndCpp) {
     }
 }
 
-TEST_F(LpvGl, PropagationMatchesCpuReference) {
-    const int n = 16;
+// Resolutions that are and are not whole 8-cell runs of the CPU propagator's SIMD layout.
+class LpvGlParity : public LpvGl, public ::testing::WithParamInterface<int> {};
+
+TEST_P(LpvGlParity, PropagationMatchesCpuReference) {
+    const int n = GetParam();
     CascadeGrid grid;
     grid.resolution = n;
     grid.cellSize = 0.1f;
@@ -64,7 +67,7 @@ TEST_F(LpvGl, PropagationMatchesCpuReference) {
     geometry.reset(grid);
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    for (int k = 0; k < 30; ++k) {
+    for (int k = 0; k < 2 * n; ++k) {
         std::size_t i = std::size_t(rng() % grid.cellCount());
         glm::vec3 nrm = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
         sh::Sh4 lobe = sh::cosineLobe(nrm);
@@ -98,3 +101,5 @@ TEST_F(LpvGl, PropagationMatchesCpuReference) {
                 ASSERT_NEAR(got, want, 1e-4f * (std::abs(want) + 1e-3f * scale)) << "channel " << c << " cell " << i;
             }
 }
+
+INSTANTIATE_TEST_SUITE_P(Resolutions, LpvGlParity, ::testing::Values(16, 12, 20));

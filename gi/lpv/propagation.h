@@ -70,7 +70,6 @@ struct PropagationStats {
 
 // Runs `steps` iterations: accumulated = injected + sum of every iteration's output.
 // `sparse` processes only bricks holding light (dilated one brick per step).
-struct PropagationOperator;
 
 class CpuPropagator {
 public:
@@ -89,11 +88,9 @@ public:
     const PropagationStats& stats() const { return stats_; }
 
 private:
-    LightVolume ping_, pong_;
+    struct Work;  // the operator and the working volumes, kept between calls
+    std::unique_ptr<Work> work_;
     PropagationStats stats_;
-    std::unique_ptr<PropagationOperator> operator_;
-    BlockerVolume operatorGeometry_;
-    PropagationOptions operatorOptions_;
 };
 
 }  // namespace voxgi

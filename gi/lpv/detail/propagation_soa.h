@@ -1,0 +1,86 @@
+// The CPU propagator's working form (internal to gi/lpv): light in structure-of-arrays layout
+// and the transfer operator stored per run of 8 cells along x, so one SIMD lane is one cell.
+//
+// Why this shape: with one 4x4 matrix per occluded (cell, neighbour) and one cell at a time,
+// the steps streamed 64 B per occluded face and ran memory-bound on Sibenik and Sponza. The
+// transfer through a face is rank one (flux = pass * sample . I, re-emitted as a fixed lobe),
+// so an occluded neighbour needs only its 5 pass factors (20 B); open neighbours use the axis's
+// unoccluded matrix (6 non-zeros, from the symmetry of the 5 faces). Storing the 12 non-zeros
+// of each occluded transfer instead measured no faster steps and a 2.4x slower build.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gi/lpv/light_volume.h"
+#include "gi/lpv/propagation.h"
+
+namespace voxgi {
+
+namespace lpv_detail {
+
+constexpr int kLanes = 8;       // cells per run (one AVX register of floats)
+constexpr int kChannels = 12;   // colour * 4 + SH coefficient
+constexpr int kBounceFloats = 3 * 16 * kLanes;  // per run: a 4x4 matrix per colour per lane
+
+// SH coefficient that carries dimension d (x, y, z): (Y00, Y1-1 ~ y, Y10 ~ z, Y11 ~ x).
+constexpr int shOf(int d) { return d == 0 ? 3 : d == 1 ? 1 : 2; }
+// The two dimensions other than k, in increasing order (the side faces' normals, see
+// propagationTables: faces 1, 2 lie along the first, 3, 4 along the second).
+constexpr int otherDim(int k, int i) { return i == 0 ? (k == 0 ? 1 : 0) : (k == 2 ? 1 : 2); }
+
+// Cells (x, y, z) of an n^3 cascade in arrays padded by one zero cell on every side and with
+// x rounded up to whole runs: neighbours outside the grid read zero without a branch.
+struct SoaLayout {
+    int n = 0;
+    int runsX = 0;
+    std::size_t sx = 0, sy = 0, channelSize = 0;
+
+    SoaLayout() = default;
+    explicit SoaLayout(int resolution);
+    std::size_t index(int x, int y, int z) const {
+        return ((std::size_t(z) + 1) * sy + std::size_t(y) + 1) * sx + std::size_t(x) + 1;
+    }
+    std::size_t runCount() const { return std::size_t(runsX) * std::size_t(n) * std::size_t(n); }
+    std::size_t run(int rx, int y, int z) const {
+        return (std::size_t(z) * std::size_t(n) + std::size_t(y)) * std::size_t(runsX) + std::size_t(rx);
+    }
+    bool operator==(const SoaLayout& o) const { return n == o.n; }
+};
+
+struct SoaLight {
+    SoaLayout layout;
+    std::vector<float> data;  // kChannels * channelSize
+
+    void reset(const SoaLayout& l);
+    float* channel(int c) { return data.data() + std::size_t(c) * layout.channelSize; }
+    const float* channel(int c) const { return data.data() + std::size_t(c) * layout.channelSize; }
+    void fromVolume(const LightVolume& v);
+    void toVolume(LightVolume& v) const;
+};
+
+struct PropagationOperator {
+    static constexpr std::int32_t kOpen = -1;
+    SoaLayout layout;
+    // [run * 6 + axis] -> offset in passPool of 5 faces x kLanes pass factors 1 - beta_f, or
+    // kOpen when no lane of the run has a blocker on that side.
+    std::vector<std::int32_t> occluded;
+    std::vector<float> passPool;
+    // [run] -> offset in bouncePool of kBounceFloats (colour, column, row, lane), or -1.
+    std::vector<std::int32_t> bounce;
+    std::vector<float> bouncePool;
+
+    PropagationOperator(const BlockerVolume& geometry, const CascadeGrid& grid, const PropagationOptions& options);
+};
+
+// One step for the cells of the 8^3 brick `brick` (in bricks): out = transfer(in), acc += out.
+// Returns whether any output is non-zero.
+bool propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+                    glm::ivec3 brick);
+
+}  // namespace lpv_detail
+
+}  // namespace voxgi

@@ -1,0 +1,249 @@
+// Building the CPU propagator's transfer operator from a cascade's geometry volume, and the
+// conversions between LightVolume and the structure-of-arrays layout the steps run on.
+#include <algorithm>
+#include <cstring>
+
+#include <tbb/parallel_for.h>
+
+#include "gi/lpv/detail/propagation_soa.h"
+#include "gi/sh/sh.h"
+
+namespace voxgi::lpv_detail {
+
+SoaLayout::SoaLayout(int resolution)
+    : n(resolution), runsX((resolution + kLanes - 1) / kLanes), sx(std::size_t(runsX) * kLanes + 2),
+      sy(std::size_t(resolution) + 2), channelSize(sx * sy * sy) {}
+
+void SoaLight::reset(const SoaLayout& l) {
+    layout = l;
+    data.assign(std::size_t(kChannels) * l.channelSize, 0.0f);
+}
+
+void SoaLight::fromVolume(const LightVolume& v) {
+    const int n = layout.n;
+    const std::vector<glm::vec4>* colours[3] = {&v.r, &v.g, &v.b};
+    tbb::parallel_for(0, n, [&](int z) {
+        for (int y = 0; y < n; ++y) {
+            const std::size_t from = v.grid.index({0, y, z}), to = layout.index(0, y, z);
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 4; ++k) {
+                    float* dst = channel(c * 4 + k) + to;
+                    const glm::vec4* src = colours[c]->data() + from;
+                    for (int x = 0; x < n; ++x) dst[x] = src[x][k];
+                }
+        }
+    });
+}
+
+void SoaLight::toVolume(LightVolume& v) const {
+    const int n = layout.n;
+    std::vector<glm::vec4>* colours[3] = {&v.r, &v.g, &v.b};
+    tbb::parallel_for(0, n, [&](int z) {
+        for (int y = 0; y < n; ++y) {
+            const std::size_t to = v.grid.index({0, y, z}), from = layout.index(0, y, z);
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 4; ++k) {
+                    const float* src = channel(c * 4 + k) + from;
+                    glm::vec4* dst = colours[c]->data() + to;
+                    for (int x = 0; x < n; ++x) dst[x][k] = src[x];
+                }
+        }
+    });
+}
+
+namespace {
+
+float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
+
+// The reflected light's lobe: the blocker's SH with unit flux, its band-1 part limited to
+// that of a clamped cosine (|c1| <= 2/sqrt(3) c0). Blockers fitted or merged from several
+// surfaces can have a stronger band 1, and such a lobe, re-emitted step after step, would let
+// the directional terms grow without bound while the flux stays put.
+glm::vec4 reflectionShape(glm::vec4 blocker, float flux) {
+    glm::vec4 shape = blocker / flux;
+    glm::vec3 band1(shape.y, shape.z, shape.w);
+    float limit = 1.1547005f * shape.x, length = glm::length(band1);
+    if (length > limit) band1 *= limit / length;
+    return glm::vec4(shape.x, band1);
+}
+
+// What the steps need from the geometry at one face of the grid, for light crossing it in
+// each direction along its axis (0: toward +k, 1: toward -k): the fractions beta_f of the flux
+// stopped on its way to each of the 5 faces beyond, the SH whose dot with the sending cell's
+// light gives the total flux stopped (for bounces), and the reflected lobe and albedo.
+struct FaceRecord {
+    float beta[2][5];
+    glm::vec4 blocked[2];
+    glm::vec4 shape;   // unit-flux reflection lobe
+    glm::vec3 albedo;
+    bool reflects;     // has flux and a non-black albedo
+};
+
+// For each axis k, the face on the low-k side of cell c (c_k in [0, n]) samples the geometry
+// volume at its centre: the mean of its 4 corner samples (one trilinear fetch on the GPU).
+class FaceTable {
+public:
+    FaceTable(const BlockerVolume& gv, bool bounces) : n_(gv.grid.resolution) {
+        const PropagationKernel& kernel = propagationKernel();
+        const std::size_t count = std::size_t(n_ + 1) * std::size_t(n_ + 1) * std::size_t(n_ + 1);
+        std::vector<std::vector<FaceRecord>> slices(std::size_t(n_ + 1));
+        for (int k = 0; k < 3; ++k) index_[k].assign(count, -1);
+        tbb::parallel_for(0, n_ + 1, [&](int z) {
+            auto& local = slices[std::size_t(z)];
+            for (int y = 0; y <= n_; ++y)
+                for (int x = 0; x <= n_; ++x) {
+                    const glm::ivec3 c(x, y, z);
+                    for (int k = 0; k < 3; ++k) {
+                        const int u = (k + 1) % 3, v = (k + 2) % 3;
+                        if (c[u] == n_ || c[v] == n_) continue;  // not a face of the grid
+                        glm::vec4 b(0.0f);
+                        glm::vec3 a(0.0f);
+                        for (int du = 0; du < 2; ++du)
+                            for (int dv = 0; dv < 2; ++dv) {
+                                glm::ivec3 corner = c;
+                                corner[u] += du;
+                                corner[v] += dv;
+                                const std::size_t i = gv.cornerIndex(corner);
+                                b += gv.blocker[i];
+                                a += gv.albedo[i];
+                            }
+                        if (b == glm::vec4(0.0f)) continue;
+                        b *= 0.25f;
+                        FaceRecord r{};
+                        for (int dir = 0; dir < 2; ++dir) {
+                            const auto& faces = kernel.faces[std::size_t(2 * k + dir)];
+                            for (int f = 0; f < 5; ++f) {
+                                r.beta[dir][f] = clamp01(glm::dot(b, faces[std::size_t(f)].block));
+                                r.blocked[dir] += r.beta[dir][f] * faces[std::size_t(f)].sample;
+                            }
+                        }
+                        r.albedo = 0.25f * a;
+                        const float flux = b.x * (4.0f * sh::kPi * sh::kY00);
+                        r.reflects = bounces && flux > 1e-12f && r.albedo != glm::vec3(0.0f);
+                        if (r.reflects) r.shape = reflectionShape(b, flux);
+                        index_[k][indexOf(c)] = std::int32_t(local.size());  // slice-local for now
+                        local.push_back(r);
+                    }
+                }
+        });
+        std::vector<std::int32_t> base(slices.size());
+        std::size_t total = 0;
+        for (std::size_t z = 0; z < slices.size(); ++z) {
+            base[z] = std::int32_t(total);
+            total += slices[z].size();
+        }
+        records_.reserve(total);
+        for (auto& slice : slices) records_.insert(records_.end(), slice.begin(), slice.end());
+        tbb::parallel_for(0, n_ + 1, [&](int z) {
+            const std::size_t from = indexOf({0, 0, z}), to = indexOf({0, 0, z + 1});
+            for (int k = 0; k < 3; ++k)
+                for (std::size_t i = from; i < to; ++i)
+                    if (index_[k][i] >= 0) index_[k][i] += base[std::size_t(z)];
+        });
+    }
+
+    // The face between `cell` and `cell + sign * e_k`, or null where nothing blocks.
+    const FaceRecord* between(glm::ivec3 cell, int k, int sign) const {
+        if (sign > 0) cell[k] += 1;
+        const std::int32_t i = index_[k][indexOf(cell)];
+        return i < 0 ? nullptr : &records_[std::size_t(i)];
+    }
+
+private:
+    std::size_t indexOf(glm::ivec3 c) const {
+        return (std::size_t(c.z) * std::size_t(n_ + 1) + std::size_t(c.y)) * std::size_t(n_ + 1) + std::size_t(c.x);
+    }
+    int n_;
+    std::vector<std::int32_t> index_[3];
+    std::vector<FaceRecord> records_;
+};
+
+}  // namespace
+
+PropagationOperator::PropagationOperator(const BlockerVolume& gv, const CascadeGrid& grid,
+                                         const PropagationOptions& opt)
+    : layout(grid.resolution) {
+    occluded.assign(layout.runCount() * 6, kOpen);
+    bounce.assign(layout.runCount(), -1);
+    if (!opt.occlusion || gv.blocker.empty()) return;
+    const FaceTable faces(gv, opt.bounces);
+    const int n = grid.resolution;
+    // Rows of runs are built in parallel into their own pools, then concatenated.
+    std::vector<std::vector<float>> passSlices(std::size_t(n) * std::size_t(n)), bounceSlices(passSlices.size());
+    tbb::parallel_for(0, n * n, [&](int yz) {
+        const int y = yz % n, z = yz / n;
+        auto& passLocal = passSlices[std::size_t(yz)];
+        auto& bounceLocal = bounceSlices[std::size_t(yz)];
+        for (int rx = 0; rx < layout.runsX; ++rx) {
+            const std::size_t run = layout.run(rx, y, z);
+            const FaceRecord* gatherFace[6][kLanes] = {};
+            glm::vec4 matrices[kLanes][3][4];  // [lane][colour][column]
+            bool anyOccluded[6] = {false, false, false, false, false, false}, anyBounce = false;
+            bool bounces[kLanes] = {};
+            for (int lane = 0; lane < kLanes; ++lane) {
+                const int x = rx * kLanes + lane;
+                if (x >= n) break;
+                const glm::ivec3 d(x, y, z);
+                for (int a = 0; a < 6; ++a) {
+                    const int k = a / 2, sign = a % 2 == 0 ? 1 : -1, dir = a % 2;
+                    // Light arriving along axis a crosses the face between d - axis and d.
+                    glm::ivec3 source = d;
+                    source[k] -= sign;
+                    if ((gatherFace[a][lane] = faces.between(sign > 0 ? source : d, k, 1))) anyOccluded[a] = true;
+                    // This cell's light stopped at its face toward axis a bounces back into it,
+                    // shaped like the blocker's lobe normalized to unit flux.
+                    const FaceRecord* r = faces.between(d, k, sign);
+                    if (!r || !r->reflects) continue;
+                    if (!bounces[lane])
+                        for (auto& colour : matrices[lane])
+                            for (auto& column : colour) column = glm::vec4(0.0f);
+                    bounces[lane] = anyBounce = true;
+                    for (int c = 0; c < 3; ++c)
+                        for (int col = 0; col < 4; ++col)
+                            matrices[lane][c][col] += (r->albedo[c] * r->blocked[dir][col]) * r->shape;
+                }
+            }
+            for (int a = 0; a < 6; ++a) {
+                if (!anyOccluded[a]) continue;
+                occluded[run * 6 + std::size_t(a)] = std::int32_t(passLocal.size());
+                const std::size_t at = passLocal.size();
+                passLocal.resize(at + 5 * kLanes, 0.0f);
+                for (int lane = 0; lane < kLanes; ++lane)
+                    for (int f = 0; f < 5; ++f)
+                        passLocal[at + f * kLanes + lane] = gatherFace[a][lane] ? 1.0f - gatherFace[a][lane]->beta[a % 2][f] : 1.0f;
+            }
+            if (!anyBounce) continue;
+            bounce[run] = std::int32_t(bounceLocal.size());
+            const std::size_t at = bounceLocal.size();
+            bounceLocal.resize(at + kBounceFloats, 0.0f);
+            for (int lane = 0; lane < kLanes; ++lane) {
+                if (!bounces[lane]) continue;
+                for (int c = 0; c < 3; ++c)
+                    for (int col = 0; col < 4; ++col)
+                        for (int row = 0; row < 4; ++row)
+                            bounceLocal[at + std::size_t(((c * 4 + col) * 4 + row) * kLanes + lane)] = matrices[lane][c][col][row];
+            }
+        }
+    });
+    // Rebase the row-local offsets onto the concatenated pools.
+    std::size_t passTotal = 0, bounceTotal = 0;
+    for (std::size_t s = 0; s < passSlices.size(); ++s) {
+        passTotal += passSlices[s].size();
+        bounceTotal += bounceSlices[s].size();
+    }
+    passPool.reserve(passTotal);
+    bouncePool.reserve(bounceTotal);
+    for (int yz = 0; yz < n * n; ++yz) {
+        const auto passBase = std::int32_t(passPool.size()), bounceBase = std::int32_t(bouncePool.size());
+        for (int rx = 0; rx < layout.runsX; ++rx) {
+            const std::size_t run = layout.run(rx, yz % n, yz / n);
+            for (std::size_t a = 0; a < 6; ++a)
+                if (occluded[run * 6 + a] != kOpen) occluded[run * 6 + a] += passBase;
+            if (bounce[run] >= 0) bounce[run] += bounceBase;
+        }
+        passPool.insert(passPool.end(), passSlices[std::size_t(yz)].begin(), passSlices[std::size_t(yz)].end());
+        bouncePool.insert(bouncePool.end(), bounceSlices[std::size_t(yz)].begin(), bounceSlices[std::size_t(yz)].end());
+    }
+}
+
+}  // namespace voxgi::lpv_detail
