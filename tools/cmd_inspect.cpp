@@ -10,6 +10,7 @@
 #include "scenes/image.h"
 #include "tools/commands.h"
 #include "tools/scene_arg.h"
+#include "volumes/geometry_volume.h"
 #include "volumes/vdb_inspect.h"
 
 namespace voxgi::cli {
@@ -50,6 +51,24 @@ void printGrids(const std::string& path, const VdbFileInfo& info, bool metadata)
         std::printf("  memory %s\n", formatBytes(g.memoryBytes).c_str());
         if (metadata)
             for (const auto& [key, value] : g.metadata) std::printf("    %s = %s\n", key.c_str(), value.c_str());
+    }
+}
+
+// voxgi keeps a geometry volume compact in memory (attributes for active voxels only), unlike
+// the dense per-attribute grids the file lists; both sizes, so neither is mistaken for the other.
+void printInMemorySize(const std::string& path, const VdbFileInfo& info) {
+    const bool geometry = std::any_of(info.metadata.begin(), info.metadata.end(),
+                                      [](const auto& m) { return m.first == "voxgi_levels"; });
+    if (!geometry) return;
+    std::uint64_t dense = 0;
+    for (const VdbGridInfo& g : info.grids) dense += g.memoryBytes;
+    try {
+        SparseGeometryVolume volume = readGeometryVolume(path);
+        std::printf("as a voxgi geometry volume: %s in memory (occupancy trees + compact attribute arrays), "
+                    "%s as the dense grids above\n",
+                    formatBytes(volume.memoryBytes()).c_str(), formatBytes(dense).c_str());
+    } catch (const InputError& e) {
+        std::printf("not loadable as a voxgi geometry volume: %s\n", e.what());
     }
 }
 
@@ -94,6 +113,7 @@ int runInspect(const std::vector<std::string>& argv) {
 
     VdbFileInfo info = inspectVdbFile(path);
     printGrids(path, info, args.flag("--metadata"));
+    printInMemorySize(path, info);
     if (args.flag("--stats")) printHistograms(vdbHistograms(path, bins));
     if (sliceSpec) {
         VdbSlice slice = sliceVdbFile(path, args.value("--grid", ""), axis, world);

@@ -29,17 +29,15 @@
 namespace voxgi {
 
 glm::vec4 blockerFromCoverage(float coverage, const glm::vec3& vectorCoverage, BlockerFit fit) {
-    float constant;
-    glm::vec3 linear;
-    if (fit == BlockerFit::Projection) {
-        constant = 0.25f * coverage;
-        linear = 0.5f * vectorCoverage;
-    } else {
-        // |m| <= S holds exactly; rounding may break it by an ulp.
-        constant = 0.25f * std::max(0.0f, coverage - glm::length(vectorCoverage));
-        linear = vectorCoverage;
-    }
-    return glm::vec4(constant / kShY00, -linear.y / kShY1, linear.z / kShY1, -linear.x / kShY1);
+    // |m| <= S holds exactly; rounding may break it by an ulp.
+    const float constant = fit == BlockerFit::Projection ? 0.25f * coverage
+                                                         : 0.25f * std::max(0.0f, coverage - glm::length(vectorCoverage));
+    return blockerSH(constant / kShY00, vectorCoverage, fit);
+}
+
+glm::vec4 blockerSH(float c0, const glm::vec3& vectorCoverage, BlockerFit fit) {
+    const glm::vec3 linear = fit == BlockerFit::Projection ? 0.5f * vectorCoverage : vectorCoverage;
+    return glm::vec4(c0, -linear.y / kShY1, linear.z / kShY1, -linear.x / kShY1);
 }
 
 float evaluateBlocker(const glm::vec4& sh, const glm::vec3& w) {

@@ -28,6 +28,11 @@ enum class BlockerFit {
 // `vectorCoverage` = sum of clipped area * unit normal / voxel face area.
 glm::vec4 blockerFromCoverage(float coverage, const glm::vec3& vectorCoverage, BlockerFit fit);
 
+// The full coefficient vector from c0 and the vector coverage: c1..c3 depend on the vector
+// coverage alone, which is why the geometry volumes store only c0 and the normal.
+// blockerFromCoverage(S, m, fit) == blockerSH(blockerFromCoverage(S, m, fit)[0], m, fit) exactly.
+glm::vec4 blockerSH(float c0, const glm::vec3& vectorCoverage, BlockerFit fit);
+
 // B(w) with the convention above, clamped to [0, 1].
 float evaluateBlocker(const glm::vec4& sh, const glm::vec3& w);
 

@@ -16,64 +16,10 @@ namespace voxgi {
 
 namespace detail {
 
-openvdb::GridPtrVec GeometryGrids::all() const {
-    openvdb::GridPtrVec grids;
-    for (const LevelGrids& l : levels) {
-        grids.push_back(l.occupancy);
-        grids.push_back(l.albedo);
-        grids.push_back(l.normal);
-        for (const auto& b : l.blocker) grids.push_back(b);
-    }
-    if (sdf) grids.push_back(sdf);
-    return grids;
-}
-
 openvdb::math::Transform::Ptr voxelTransform(double voxelSize) {
     auto xform = openvdb::math::Transform::createLinearTransform(voxelSize);
     xform->postTranslate(openvdb::Vec3d(0.5 * voxelSize));
     return xform;
-}
-
-namespace {
-void annotate(openvdb::GridBase& grid, const std::string& name, const char* role, int level, double voxelSize,
-              const GeometryGrids& g) {
-    grid.setName(name);
-    grid.insertMeta("voxgi_class", openvdb::StringMetadata(role));
-    grid.insertMeta("voxgi_level", openvdb::Int32Metadata(level));
-    grid.insertMeta("voxgi_voxel_size", openvdb::DoubleMetadata(voxelSize));
-    grid.insertMeta("voxgi_source_hash", openvdb::StringMetadata(g.sourceHash));
-    grid.insertMeta("voxgi_version", openvdb::StringMetadata(VOXGI_VERSION));
-}
-}  // namespace
-
-void annotateGrids(GeometryGrids& g) {
-    for (std::size_t i = 0; i < g.levels.size(); ++i) {
-        LevelGrids& l = g.levels[i];
-        const int level = int(i);
-        annotate(*l.occupancy, gridName("occupancy", level), "occupancy", level, l.voxelSize, g);
-        l.occupancy->setGridClass(openvdb::GRID_FOG_VOLUME);
-        annotate(*l.albedo, gridName("albedo", level), "albedo", level, l.voxelSize, g);
-        l.albedo->setGridClass(openvdb::GRID_UNKNOWN);
-        l.albedo->setVectorType(openvdb::VEC_INVARIANT);
-        annotate(*l.normal, gridName("normal", level), "normal", level, l.voxelSize, g);
-        l.normal->setGridClass(openvdb::GRID_UNKNOWN);
-        l.normal->setVectorType(openvdb::VEC_COVARIANT);
-        for (int c = 0; c < 4; ++c) {
-            openvdb::FloatGrid& b = *l.blocker[c];
-            annotate(b, gridName("blocker_sh" + std::to_string(c), level), "blocker", level, l.voxelSize, g);
-            b.setGridClass(openvdb::GRID_UNKNOWN);
-            b.insertMeta("voxgi_sh_index", openvdb::Int32Metadata(c));
-            b.insertMeta("voxgi_sh_convention",
-                         openvdb::StringMetadata("B(w)=clamp(sum c_i Y_i(w),0,1); (c0,c1,c2,c3)=(Y00,Y1-1,Y10,Y11); "
-                                                 "Y00=0.282094792, Y1-1=-0.488602512*y, Y10=0.488602512*z, "
-                                                 "Y11=-0.488602512*x"));
-            b.insertMeta("voxgi_blocker_fit", openvdb::StringMetadata(blockerFitName(g.blockerFit)));
-        }
-    }
-    if (g.sdf) {
-        annotate(*g.sdf, "sdf", "sdf", 0, g.levels.empty() ? 0.0 : g.levels[0].voxelSize, g);
-        g.sdf->setGridClass(openvdb::GRID_LEVEL_SET);
-    }
 }
 
 }  // namespace detail
@@ -107,24 +53,27 @@ openvdb::Coord coord(const glm::ivec3& v) { return openvdb::Coord(v.x, v.y, v.z)
 float SparseGeometryVolume::voxelSize(int level) const { return float(levelOf(*grids_, level).voxelSize); }
 
 bool SparseGeometryVolume::occupied(const glm::ivec3& ijk, int level) const {
-    return levelOf(*grids_, level).occupancy->tree().isValueOn(coord(ijk));
+    return levelOf(*grids_, level).occupancy->constTree().isValueOn(coord(ijk));
 }
 
 glm::vec4 SparseGeometryVolume::blockerSH(const glm::ivec3& ijk, int level) const {
     const auto& l = levelOf(*grids_, level);
-    glm::vec4 sh;
-    for (int c = 0; c < 4; ++c) sh[c] = l.blocker[c]->tree().getValue(coord(ijk));
-    return sh;
+    const std::int64_t i = l.attributeIndex(coord(ijk));
+    if (i < 0) return glm::vec4(0.0f);
+    const glm::vec4& n = l.normalC0[std::size_t(i)];
+    return voxgi::blockerSH(n.w, glm::vec3(n), grids_->blockerFit);
 }
 
 glm::vec3 SparseGeometryVolume::albedo(const glm::ivec3& ijk, int level) const {
-    auto v = levelOf(*grids_, level).albedo->tree().getValue(coord(ijk));
-    return {v.x(), v.y(), v.z()};
+    const auto& l = levelOf(*grids_, level);
+    const std::int64_t i = l.attributeIndex(coord(ijk));
+    return i < 0 ? glm::vec3(0.0f) : detail::dequantizeAlbedo(l.albedo[std::size_t(i)]);
 }
 
 glm::vec3 SparseGeometryVolume::normal(const glm::ivec3& ijk, int level) const {
-    auto v = levelOf(*grids_, level).normal->tree().getValue(coord(ijk));
-    return {v.x(), v.y(), v.z()};
+    const auto& l = levelOf(*grids_, level);
+    const std::int64_t i = l.attributeIndex(coord(ijk));
+    return i < 0 ? glm::vec3(0.0f) : glm::vec3(l.normalC0[std::size_t(i)]);
 }
 
 float SparseGeometryVolume::sdf(const glm::ivec3& ijk) const {
@@ -176,8 +125,9 @@ std::vector<Brick> SparseGeometryVolume::activeBricks(int level, int dilateVoxel
 }
 
 std::uint64_t SparseGeometryVolume::memoryBytes() const {
-    std::uint64_t bytes = 0;
-    for (const auto& grid : grids_->all()) bytes += grid->memUsage();
+    std::uint64_t bytes = sizeof(detail::GeometryGrids);
+    for (const detail::LevelGrids& l : grids_->levels) bytes += sizeof(detail::LevelGrids) + l.memoryBytes();
+    if (grids_->sdf) bytes += grids_->sdf->memUsage();
     return bytes;
 }
 
@@ -204,7 +154,6 @@ SparseGeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& s
         level = std::move(coarser);
     }
     if (settings.sdf) g.sdf = detail::buildSdf(scene, settings);
-    detail::annotateGrids(g);
     g.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return volume;
 }

@@ -1,6 +1,8 @@
-// Sparse geometry volumes: a scene's triangles voxelized into OpenVDB grids (occupancy, albedo,
-// normal, blocker SH), one set per cascade level, with .vdb I/O and a cache. The OpenVDB grids
-// stay behind a pimpl; .cpp files that need them include volumes/detail/geometry_grids.h.
+// Sparse geometry volumes: a scene's triangles voxelized into occupancy, albedo, normal and
+// blocker SH, one set per cascade level, with .vdb I/O and a cache. In memory the occupancy is an
+// OpenVDB tree and the attributes are compact arrays over its active voxels (albedo as halves,
+// see docs/volumes.md for the layout and error bounds); files hold one standard OpenVDB grid per
+// attribute. The storage stays behind a pimpl: volumes/detail/geometry_grids.h.
 //
 // Voxel (i, j, k) of level L is the closed box [i, i+1] x [j, j+1] x [k, k+1] * h_L in world
 // space with h_L = voxelSize * 2^L, so voxel (i, j, k) of level L+1 holds voxels (2i..2i+1, ...)
@@ -9,7 +11,7 @@
 // Blocker SH convention (gi/lpv reads it): B(w) = sum_i c_i Y_i(w) clamped to [0, 1],
 // (c0, c1, c2, c3) = (Y00, Y1-1, Y10, Y11) with Y00 = 0.282094792, Y1-1 = -0.488602512 * y,
 // Y10 = 0.488602512 * z, Y11 = -0.488602512 * x; w points from the voxel toward where the
-// blocked light comes from (front faces block light arriving on their front). Stored as the
+// blocked light comes from (front faces block light arriving on their front). Files hold the
 // four float grids blocker_sh0 .. blocker_sh3. See volumes/blocker_sh.{h,cpp} for the derivation.
 #pragma once
 
@@ -80,7 +82,8 @@ public:
 
     bool occupied(const glm::ivec3& ijk, int level = 0) const;
     glm::vec4 blockerSH(const glm::ivec3& ijk, int level = 0) const;  // zero where empty
-    glm::vec3 albedo(const glm::ivec3& ijk, int level = 0) const;     // area-weighted mean, linear
+    // Area-weighted mean, linear; stored as halves: |error| <= 2^-11 |albedo| (2^-25 below 2^-14).
+    glm::vec3 albedo(const glm::ivec3& ijk, int level = 0) const;
     // Sum of clipped area * unit normal / voxel face area: direction = mean normal, length =
     // projected coverage (1 for a wall crossing the voxel along an axis).
     glm::vec3 normal(const glm::ivec3& ijk, int level = 0) const;
@@ -95,7 +98,8 @@ public:
     // `dilateVoxels` (face-, edge- and vertex-neighbours), sorted by origin (z, then y, then x).
     std::vector<Brick> activeBricks(int level = 0, int dilateVoxels = 0) const;
 
-    // Total bytes held by the grids (OpenVDB memUsage).
+    // Total bytes held in memory: occupancy trees (OpenVDB memUsage, leaf offsets included),
+    // attribute arrays by capacity, the optional sdf grid.
     std::uint64_t memoryBytes() const;
 
     detail::GeometryGrids& grids();

@@ -1,5 +1,6 @@
-// Voxel sums -> coarser levels and finished OpenVDB grids. Leaves are finalized in parallel,
-// then linked into the trees serially (addLeaf is cheap next to filling 512 voxels).
+// Voxel sums -> coarser levels and finished compact levels. The occupancy leaves are linked into
+// the tree serially (addLeaf is cheap), indexed in tree order, then every leaf writes its
+// attributes in parallel, so a built level has the same layout as one read back from a file.
 #include <map>
 #include <tuple>
 
@@ -10,64 +11,52 @@
 
 namespace voxgi::detail {
 
-AccumLeaf::AccumLeaf(const glm::ivec3& origin) : origin_(origin) {
-    openvdb::Coord o(origin.x, origin.y, origin.z);
-    occupancy_ = std::make_unique<openvdb::BoolTree::LeafNodeType>(o, false);
-    albedo_ = std::make_unique<openvdb::Vec3fTree::LeafNodeType>(o, openvdb::Vec3f(0.0f));
-    normal_ = std::make_unique<openvdb::Vec3fTree::LeafNodeType>(o, openvdb::Vec3f(0.0f));
-    for (auto& b : blocker_) b = std::make_unique<openvdb::FloatTree::LeafNodeType>(o, 0.0f);
+AccumLeaf::AccumLeaf(const glm::ivec3& origin)
+    : origin_(origin),
+      leaf_(new OccupancyLeaf(openvdb::Coord(origin.x, origin.y, origin.z), false)),
+      sums_(std::make_unique<DenseSums>()) {}
+
+AccumLeaf::~AccumLeaf() {
+    if (ownsLeaf_) delete leaf_;
 }
 
 void AccumLeaf::translate(const glm::ivec3& delta) {
     origin_ += delta;
-    openvdb::Coord o(origin_.x, origin_.y, origin_.z);
-    occupancy_->setOrigin(o);
-    albedo_->setOrigin(o);
-    normal_->setOrigin(o);
-    for (auto& b : blocker_) b->setOrigin(o);
+    leaf_->setOrigin(openvdb::Coord(origin_.x, origin_.y, origin_.z));
 }
 
 void AccumLeaf::add(int offset, const VoxelSums& s) {
-    const auto i = openvdb::Index(offset);
-    occupancy_->setValueOn(i, true);
-    blocker_[0]->buffer().data()[i] += s.area;
-    blocker_[1]->buffer().data()[i] += s.albedoWeight;
-    normal_->buffer().data()[i] += openvdb::Vec3f(s.vectorArea.x, s.vectorArea.y, s.vectorArea.z);
-    albedo_->buffer().data()[i] += openvdb::Vec3f(s.albedoSum.x, s.albedoSum.y, s.albedoSum.z);
+    leaf_->setValueOn(openvdb::Index(offset), true);
+    DenseSums& d = *sums_;
+    d.area[offset] += s.area;
+    d.albedoWeight[offset] += s.albedoWeight;
+    d.vectorArea[offset] += s.vectorArea;
+    d.albedoSum[offset] += s.albedoSum;
 }
 
 VoxelSums AccumLeaf::sums(int offset) const {
-    const auto i = openvdb::Index(offset);
+    const DenseSums& d = *sums_;
     VoxelSums s;
-    s.area = blocker_[0]->getValue(i);
-    s.albedoWeight = blocker_[1]->getValue(i);
-    const openvdb::Vec3f& n = normal_->getValue(i);
-    const openvdb::Vec3f& a = albedo_->getValue(i);
-    s.vectorArea = {n.x(), n.y(), n.z()};
-    s.albedoSum = {a.x(), a.y(), a.z()};
+    s.area = d.area[offset];
+    s.albedoWeight = d.albedoWeight[offset];
+    s.vectorArea = d.vectorArea[offset];
+    s.albedoSum = d.albedoSum[offset];
     return s;
 }
 
-void AccumLeaf::finalizeValues(BlockerFit fit) {
-    for (auto it = occupancy_->cbeginValueOn(); it; ++it) {
-        const openvdb::Index i = it.pos();
-        VoxelSums s = sums(int(i));
-        glm::vec3 albedo = s.albedoWeight > 0.0f ? s.albedoSum / s.albedoWeight : glm::vec3(0.0f);
-        glm::vec4 sh = blockerFromCoverage(s.area, s.vectorArea, fit);
-        albedo_->setValueOnly(i, openvdb::Vec3f(albedo.x, albedo.y, albedo.z));
-        for (int c = 0; c < 4; ++c) blocker_[c]->setValueOnly(i, sh[c]);
-    }
-    // Every grid of a level has the occupancy's active voxels.
-    albedo_->setValueMask(occupancy_->getValueMask());
-    normal_->setValueMask(occupancy_->getValueMask());
-    for (auto& b : blocker_) b->setValueMask(occupancy_->getValueMask());
+void AccumLeaf::moveOccupancyInto(openvdb::BoolTree& tree) {
+    tree.addLeaf(leaf_);
+    ownsLeaf_ = false;
 }
 
-void AccumLeaf::moveInto(LevelGrids& g) {
-    g.occupancy->tree().addLeaf(occupancy_.release());
-    g.albedo->tree().addLeaf(albedo_.release());
-    g.normal->tree().addLeaf(normal_.release());
-    for (int c = 0; c < 4; ++c) g.blocker[c]->tree().addLeaf(blocker_[c].release());
+void AccumLeaf::writeAttributes(LevelGrids& level, BlockerFit fit) const {
+    std::size_t index = leaf_->transientData();
+    for (auto it = leaf_->cbeginValueOn(); it; ++it, ++index) {
+        VoxelSums s = sums(int(it.pos()));
+        glm::vec3 albedo = s.albedoWeight > 0.0f ? s.albedoSum / s.albedoWeight : glm::vec3(0.0f);
+        level.normalC0[index] = glm::vec4(s.vectorArea, blockerFromCoverage(s.area, s.vectorArea, fit)[0]);
+        level.albedo[index] = quantizeAlbedo(albedo);
+    }
 }
 
 AccumLevel downsample(const AccumLevel& fine) {
@@ -103,20 +92,19 @@ AccumLevel downsample(const AccumLevel& fine) {
 }
 
 LevelGrids buildLevelGrids(AccumLevel&& level, double voxelSize, BlockerFit fit) {
-    tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t i) { level[i]->finalizeValues(fit); });
     LevelGrids g;
     g.voxelSize = voxelSize;
-    auto xform = voxelTransform(voxelSize);
     g.occupancy = openvdb::BoolGrid::create(false);
-    g.albedo = openvdb::Vec3fGrid::create(openvdb::Vec3f(0.0f));
-    g.normal = openvdb::Vec3fGrid::create(openvdb::Vec3f(0.0f));
-    for (auto& b : g.blocker) b = openvdb::FloatGrid::create(0.0f);
-    for (auto& leaf : level) leaf->moveInto(g);
+    g.occupancy->setTransform(voxelTransform(voxelSize));
+    for (auto& leaf : level) leaf->moveOccupancyInto(g.occupancy->tree());
+    const std::uint64_t active = indexLeaves(g.occupancy->tree());
+    g.normalC0.resize(active);
+    g.albedo.resize(active);
+    tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t i) {
+        level[i]->writeAttributes(g, fit);
+        level[i].reset();
+    });
     level.clear();
-    g.occupancy->setTransform(xform);
-    g.albedo->setTransform(xform->copy());
-    g.normal->setTransform(xform->copy());
-    for (auto& b : g.blocker) b->setTransform(xform->copy());
     return g;
 }
 

@@ -34,6 +34,7 @@ MeshToVolumeRun runMeshToUnsignedDistance(const Scene& scene, float voxelSize, f
     run.cpuSeconds = processCpuSeconds() - cpuStart;
     run.activeVoxels = grid->activeVoxelCount();
     run.memoryBytes = grid->memUsage();
+    run.leafCount = grid->tree().leafCount();
     return run;
 }
 

@@ -16,6 +16,7 @@ struct MeshToVolumeRun {
     double cpuSeconds = 0.0;  // user + system time of the whole process during the call
     std::uint64_t activeVoxels = 0;
     std::uint64_t memoryBytes = 0;  // the grid's memUsage
+    std::uint64_t leafCount = 0;    // 8^3 leaves (each holds 512 floats, active or not)
 };
 
 // User + system CPU seconds this process has used so far (all threads).

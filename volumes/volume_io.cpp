@@ -76,7 +76,7 @@ void writeGeometryVolume(const std::string& path, const SparseGeometryVolume& vo
     const std::string tmp = temporaryPathFor(path);
     try {
         openvdb::io::File file(tmp);
-        file.write(g.all(), meta);
+        file.write(detail::expandGrids(g), meta);
         file.close();
     } catch (const std::exception& e) {
         std::remove(tmp.c_str());
@@ -122,15 +122,16 @@ SparseGeometryVolume readGeometryVolume(const std::string& path) {
     g.sourceHash = stringMeta(*meta, "voxgi_source_hash");
     g.blockerFit = stringMeta(*meta, "voxgi_blocker_fit") == "projection" ? BlockerFit::Projection : BlockerFit::PlaneExact;
     for (int level = 0; level == 0 || hasGrid(grids, gridName("occupancy", level)); ++level) {
-        detail::LevelGrids l;
+        detail::LevelFileGrids l;
         l.occupancy = requireGrid<openvdb::BoolGrid>(grids, gridName("occupancy", level), path);
         l.albedo = requireGrid<openvdb::Vec3fGrid>(grids, gridName("albedo", level), path);
         l.normal = requireGrid<openvdb::Vec3fGrid>(grids, gridName("normal", level), path);
         for (int c = 0; c < 4; ++c)
-            l.blocker[c] = requireGrid<openvdb::FloatGrid>(grids, gridName("blocker_sh" + std::to_string(c), level), path);
-        l.voxelSize = l.occupancy->voxelSize()[0];
-        if (!(l.voxelSize > 0.0)) throw InputError(path + ": grid '" + l.occupancy->getName() + "' has no voxel size");
-        g.levels.push_back(l);
+            l.blocker[std::size_t(c)] =
+                requireGrid<openvdb::FloatGrid>(grids, gridName("blocker_sh" + std::to_string(c), level), path);
+        if (!(l.occupancy->voxelSize()[0] > 0.0))
+            throw InputError(path + ": grid '" + l.occupancy->getName() + "' has no voxel size");
+        g.levels.push_back(detail::compactLevel(std::move(l), g.blockerFit, path));
     }
     if (hasGrid(grids, "sdf")) g.sdf = requireGrid<openvdb::FloatGrid>(grids, "sdf", path);
     return volume;

@@ -1,14 +1,12 @@
-// Per-voxel sums gathered while voxelizing, kept directly in the OpenVDB leaves they end up in
-// (no second copy of the volume): until a level is finalized the albedo leaf holds the weighted
-// albedo sum, blocker leaf 0 the clipped area and blocker leaf 1 the albedo weight. Areas are in
-// units of the level's voxel face area (index units).
+// Per-voxel sums gathered while voxelizing: the occupancy leaf that ends up in the level's
+// topology plus dense sum arrays that live only until the level is finished (a coarser level
+// reads them first). Areas are in units of the level's voxel face area (index units).
 #pragma once
 
 #include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <openvdb/openvdb.h>
 
 #include "volumes/detail/geometry_grids.h"
 
@@ -24,32 +22,39 @@ struct VoxelSums {
 class AccumLeaf {
 public:
     explicit AccumLeaf(const glm::ivec3& origin);
+    ~AccumLeaf();
 
     static int offset(int x, int y, int z) { return ((x & 7) << 6) | ((y & 7) << 3) | (z & 7); }
     const glm::ivec3& origin() const { return origin_; }
     // Moves the leaf by whole leaves (bins rasterize in local coordinates).
     void translate(const glm::ivec3& delta);
 
-    bool on(int offset) const { return occupancy_->isValueOn(openvdb::Index(offset)); }
+    bool on(int offset) const { return leaf_->isValueOn(openvdb::Index(offset)); }
     void add(int offset, const VoxelSums& s);
     VoxelSums sums(int offset) const;
 
-    // Turns the sums into the final values (after any coarser level has read them), then
-    // hands the leaves over to the level's grids.
-    void finalizeValues(BlockerFit fit);
-    void moveInto(LevelGrids& grids);
+    // Hands the occupancy leaf to `tree` (it stays reachable for writeAttributes).
+    void moveOccupancyInto(openvdb::BoolTree& tree);
+    // Writes the final attributes of the active voxels from the leaf's transient data on (set by
+    // indexLeaves), after any coarser level has read the sums.
+    void writeAttributes(LevelGrids& level, BlockerFit fit) const;
 
 private:
+    struct DenseSums {
+        float area[512];
+        float albedoWeight[512];
+        glm::vec3 vectorArea[512];
+        glm::vec3 albedoSum[512];
+    };
     glm::ivec3 origin_;
-    std::unique_ptr<openvdb::BoolTree::LeafNodeType> occupancy_;
-    std::unique_ptr<openvdb::Vec3fTree::LeafNodeType> albedo_;
-    std::unique_ptr<openvdb::Vec3fTree::LeafNodeType> normal_;
-    std::unique_ptr<openvdb::FloatTree::LeafNodeType> blocker_[4];
+    OccupancyLeaf* leaf_;  // owned until moveOccupancyInto
+    bool ownsLeaf_ = true;
+    std::unique_ptr<DenseSums> sums_;
 };
 
 using AccumLevel = std::vector<std::unique_ptr<AccumLeaf>>;
 
-// Level L+1 from level L (not yet finalized): sums added 2x2x2, areas rescaled to the coarser
+// Level L+1 from level L (not yet finished): sums added 2x2x2, areas rescaled to the coarser
 // face area.
 AccumLevel downsample(const AccumLevel& fine);
 

@@ -1,4 +1,4 @@
-// Internal: voxel sums -> OpenVDB grids (volumes/grid_build.cpp).
+// Internal: voxel sums -> a compact level (volumes/grid_build.cpp).
 #pragma once
 
 #include "volumes/detail/accumulation.h"
@@ -6,7 +6,7 @@
 
 namespace voxgi::detail {
 
-// Finalizes the sums and moves the leaves into new grids (the level is consumed).
+// Finishes the sums into the level's topology and attribute arrays (the level is consumed).
 LevelGrids buildLevelGrids(AccumLevel&& level, double voxelSize, BlockerFit fit);
 
 }  // namespace voxgi::detail

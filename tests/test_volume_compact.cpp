@@ -1,0 +1,237 @@
+// The compact in-memory geometry set: attributes stored for active voxels only and found
+// through the occupancy topology (leaf base index + active bits below the voxel), albedo halves
+// within their stated bound, the dense file grids agreeing with the accessors, memoryBytes
+// counting every array, and a file whose blocker contradicts its normal grid refused.
+//
+// This file builds OpenVDB grids itself; the voxgi_volumes objects are compiled with
+// OPENVDB_USE_DELAYED_LOADING (from OpenVDB's CMake target), which changes OpenVDB's class
+// layouts, so it is set here too.
+#ifndef OPENVDB_USE_DELAYED_LOADING
+#define OPENVDB_USE_DELAYED_LOADING
+#endif
+
+#include <cmath>
+#include <map>
+#include <random>
+#include <tuple>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+
+#include "scenes/errors.h"
+#include "support/test_support.h"
+#include "volumes/detail/geometry_grids.h"
+#include "volumes/geometry_volume.h"
+
+using namespace voxgi;
+
+namespace {
+
+constexpr float kHalfRelative = 1.0f / 2048.0f;  // 2^-11
+constexpr float kHalfSubnormal = 2.9802322e-08f;  // 2^-25
+
+struct Expected {
+    glm::vec3 albedo;
+    glm::vec3 normal;  // area * unit normal (h = 1)
+};
+
+using VoxelKey = std::tuple<int, int, int>;
+
+// One small triangle strictly inside each chosen voxel (h = 1), each with its own material,
+// randomly oriented: every voxel's attributes are distinct, so an index pointing at another
+// voxel's slot shows. Leaves are full, sparse or single-voxel.
+Scene scatteredTriangles(std::map<VoxelKey, Expected>& expected) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<glm::ivec3> voxels;
+    for (int x = 0; x < 8; ++x)
+        for (int y = 0; y < 8; ++y)
+            for (int z = 0; z < 8; ++z) voxels.push_back({x, y, z});  // a full leaf
+    for (int i = 0; i < 3000; ++i)  // sparse leaves, negative coordinates included
+        voxels.push_back({int(unit(rng) * 64.0f) - 32, int(unit(rng) * 64.0f) - 32, int(unit(rng) * 24.0f) + 16});
+    voxels.push_back({-100, 37, 5});  // a leaf with one voxel
+    voxels.push_back({7, 15, 23});    // the last offset of its leaf
+
+    Scene scene;
+    Mesh mesh;
+    for (const glm::ivec3& v : voxels) {
+        if (expected.count({v.x, v.y, v.z})) continue;
+        const glm::vec3 center = glm::vec3(v) + 0.5f;
+        // A random frame: the triangle lies in the plane spanned by u, w at radius 0.3 < 0.5.
+        glm::vec3 n = glm::normalize(glm::vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f) + 1e-3f);
+        glm::vec3 u = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+        glm::vec3 w = glm::cross(n, u);
+        const float r = 0.3f;
+        glm::vec3 a = center + r * u, b = center + r * (-0.5f * u + 0.866f * w), c = center + r * (-0.5f * u - 0.866f * w);
+        auto base = std::uint32_t(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), {a, b, c});
+        mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+        mesh.materialIds.push_back(std::uint32_t(scene.materials.size()));
+        Material m;
+        m.albedo = glm::vec3(unit(rng), unit(rng), unit(rng));
+        scene.materials.push_back(m);
+        glm::vec3 cr = glm::cross(b - a, c - a);
+        expected[{v.x, v.y, v.z}] = {m.albedo, 0.5f * cr};
+    }
+    scene.meshes.push_back(std::move(mesh));
+    return scene;
+}
+
+SparseGeometryVolume voxelizeUnit(const Scene& scene, int levels = 1) {
+    VoxelizeSettings settings;
+    settings.voxelSize = 1.0f;
+    settings.levels = levels;
+    return voxelizeScene(scene, settings);
+}
+
+void expectAlbedoWithinHalfBound(const glm::vec3& got, const glm::vec3& want) {
+    for (int c = 0; c < 3; ++c)
+        EXPECT_LE(std::abs(got[c] - want[c]), kHalfRelative * std::abs(want[c]) + 1e-6f * std::abs(want[c]) + kHalfSubnormal)
+            << got[c] << " vs " << want[c];
+}
+
+}  // namespace
+
+TEST(VolumeCompact, AlbedoHalvesStayWithinTheStatedBound) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> exponent(-30.0f, 16.0f);
+    for (int i = 0; i < 200000; ++i) {
+        const float v = std::exp2(exponent(rng));
+        const glm::vec3 got = detail::dequantizeAlbedo(detail::quantizeAlbedo(glm::vec3(v, 0.5f * v, v / 3.0f)));
+        const glm::vec3 want(v, 0.5f * v, v / 3.0f);
+        for (int c = 0; c < 3; ++c) {
+            const float bound = std::abs(want[c]) >= 6.1035156e-05f ? kHalfRelative * std::abs(want[c]) : kHalfSubnormal;
+            ASSERT_LE(std::abs(got[c] - want[c]), bound) << want[c];
+        }
+    }
+    // Exact values the tests and materials use survive unchanged; the range saturates.
+    for (float v : {0.0f, 1.0f, 0.5f, 0.25f, 0.75f})
+        EXPECT_EQ(detail::dequantizeAlbedo(detail::quantizeAlbedo(glm::vec3(v))), glm::vec3(v));
+    EXPECT_EQ(detail::dequantizeAlbedo(detail::quantizeAlbedo(glm::vec3(1e9f))), glm::vec3(65504.0f));
+}
+
+TEST(VolumeCompact, EveryVoxelReadsItsOwnAttributes) {
+    std::map<VoxelKey, Expected> expected;
+    SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected));
+    ASSERT_EQ(v.activeVoxelCount(), expected.size());
+    for (const auto& [key, e] : expected) {
+        const glm::ivec3 c(std::get<0>(key), std::get<1>(key), std::get<2>(key));
+        ASSERT_TRUE(v.occupied(c));
+        expectAlbedoWithinHalfBound(v.albedo(c), e.albedo);
+        EXPECT_LE(glm::length(v.normal(c) - e.normal), 1e-5f * glm::length(e.normal));
+        // One flat piece: the plane-exact blocker is its coverage along the normal, 0 behind.
+        const glm::vec4 sh = v.blockerSH(c);
+        EXPECT_EQ(sh, blockerSH(sh[0], v.normal(c), BlockerFit::PlaneExact));
+        const glm::vec3 n = glm::normalize(e.normal);
+        EXPECT_NEAR(evaluateBlocker(sh, n), glm::length(e.normal), 1e-5f);
+        EXPECT_EQ(evaluateBlocker(sh, -n), 0.0f);
+    }
+    // Empty voxels inside occupied leaves and outside them read zero.
+    for (const glm::ivec3& c : {glm::ivec3(-100, 37, 4), glm::ivec3(-99, 37, 5), glm::ivec3(500, 0, 0)}) {
+        EXPECT_FALSE(v.occupied(c));
+        EXPECT_EQ(v.albedo(c), glm::vec3(0.0f));
+        EXPECT_EQ(v.normal(c), glm::vec3(0.0f));
+        EXPECT_EQ(v.blockerSH(c), glm::vec4(0.0f));
+    }
+}
+
+TEST(VolumeCompact, FileGridsAreDenseCopiesOfTheAccessors) {
+    std::map<VoxelKey, Expected> expected;
+    SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected), 2);
+    openvdb::GridPtrVec grids = detail::expandGrids(v.grids());
+    ASSERT_EQ(grids.size(), 14u);
+    for (int level = 0; level < 2; ++level) {
+        auto find = [&](const std::string& base) {
+            for (const auto& g : grids)
+                if (g->getName() == gridName(base, level)) return g;
+            ADD_FAILURE() << "no grid " << gridName(base, level);
+            return openvdb::GridBase::Ptr();
+        };
+        auto occupancy = openvdb::gridPtrCast<openvdb::BoolGrid>(find("occupancy"));
+        auto albedo = openvdb::gridPtrCast<openvdb::Vec3fGrid>(find("albedo"));
+        auto normal = openvdb::gridPtrCast<openvdb::Vec3fGrid>(find("normal"));
+        ASSERT_TRUE(occupancy && albedo && normal);
+        EXPECT_EQ(occupancy->activeVoxelCount(), v.activeVoxelCount(level));
+        EXPECT_EQ(albedo->activeVoxelCount(), v.activeVoxelCount(level));
+        EXPECT_EQ(normal->activeVoxelCount(), v.activeVoxelCount(level));
+        EXPECT_EQ(albedo->tree().leafCount(), occupancy->tree().leafCount());
+        for (int c = 0; c < 4; ++c) {
+            auto b = openvdb::gridPtrCast<openvdb::FloatGrid>(find("blocker_sh" + std::to_string(c)));
+            ASSERT_TRUE(b);
+            EXPECT_EQ(b->activeVoxelCount(), v.activeVoxelCount(level));
+            for (auto it = occupancy->cbeginValueOn(); it; ++it) {
+                const glm::ivec3 ijk(it.getCoord().x(), it.getCoord().y(), it.getCoord().z());
+                ASSERT_EQ(b->tree().getValue(it.getCoord()), v.blockerSH(ijk, level)[c]);
+            }
+        }
+        for (auto it = occupancy->cbeginValueOn(); it; ++it) {
+            const glm::ivec3 ijk(it.getCoord().x(), it.getCoord().y(), it.getCoord().z());
+            const openvdb::Vec3f a = albedo->tree().getValue(it.getCoord()), n = normal->tree().getValue(it.getCoord());
+            ASSERT_EQ(glm::vec3(a.x(), a.y(), a.z()), v.albedo(ijk, level));
+            ASSERT_EQ(glm::vec3(n.x(), n.y(), n.z()), v.normal(ijk, level));
+        }
+        // Inactive voxels of the dense leaves hold zero, as before the compact layout.
+        for (auto it = albedo->cbeginValueOff(); it; ++it) ASSERT_EQ(*it, openvdb::Vec3f(0.0f));
+    }
+}
+
+TEST(VolumeCompact, MemoryCountsTreesAndArraysAndBeatsDenseGrids) {
+    std::map<VoxelKey, Expected> expected;
+    SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected));
+    const detail::LevelGrids& l = v.grids().levels.at(0);
+    const std::uint64_t active = v.activeVoxelCount();
+    const std::uint64_t arrays = l.normalC0.capacity() * sizeof(glm::vec4) + l.albedo.capacity() * sizeof(detail::HalfRgb);
+    EXPECT_EQ(l.normalC0.size(), active);
+    EXPECT_EQ(l.albedo.size(), active);
+    EXPECT_EQ(sizeof(glm::vec4) + sizeof(detail::HalfRgb), 22u);  // bytes per active voxel
+    EXPECT_GE(v.memoryBytes(), l.occupancy->memUsage() + arrays);
+    EXPECT_LE(v.memoryBytes(), l.occupancy->memUsage() + arrays + 4096);
+    std::uint64_t dense = 0;
+    for (const auto& g : detail::expandGrids(v.grids())) dense += g->memUsage();
+    EXPECT_LT(4 * v.memoryBytes(), dense);
+}
+
+TEST(VolumeCompact, ReadingRefusesABlockerThatContradictsTheNormal) {
+    std::map<VoxelKey, Expected> expected;
+    SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected));
+    const std::string path = test::makeTempDir("vol-compact") + "/edited.vdb";
+    openvdb::GridPtrVec grids = detail::expandGrids(v.grids());
+    for (const auto& g : grids)
+        if (g->getName() == "blocker_sh2") openvdb::gridPtrCast<openvdb::FloatGrid>(g)->tree().setValue({7, 15, 23}, 0.75f);
+    openvdb::io::File(path).write(grids);
+    try {
+        readGeometryVolume(path);
+        FAIL() << "an inconsistent blocker was accepted";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_NE(message.find("blocker_sh2"), std::string::npos) << message;
+        EXPECT_NE(message.find("(7, 15, 23)"), std::string::npos) << message;
+    }
+}
+
+TEST(VolumeCompact, ActiveTilesFromOtherWritersBecomeVoxels) {
+    std::map<VoxelKey, Expected> expected;
+    SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected));
+    const std::string path = test::makeTempDir("vol-compact") + "/tiled.vdb";
+    openvdb::GridPtrVec grids = detail::expandGrids(v.grids());
+    // The full leaf at the origin stored as one active tile, as OpenVDB's prune() would.
+    for (const auto& g : grids) {
+        if (g->getName() != "occupancy") continue;
+        auto occupancy = openvdb::gridPtrCast<openvdb::BoolGrid>(g);
+        auto copy = occupancy->deepCopy();
+        copy->tree().addTile(1, openvdb::Coord(0, 0, 0), true, true);
+        ASSERT_EQ(copy->tree().probeConstLeaf(openvdb::Coord(0, 0, 0)), nullptr);
+        occupancy->setTree(copy->treePtr());
+    }
+    openvdb::io::File(path).write(grids);
+    SparseGeometryVolume r = readGeometryVolume(path);
+    ASSERT_EQ(r.activeVoxelCount(), v.activeVoxelCount());
+    for (const glm::ivec3& c : {glm::ivec3(0, 0, 0), glm::ivec3(3, 4, 5), glm::ivec3(7, 7, 7)}) {
+        ASSERT_TRUE(r.occupied(c));
+        EXPECT_EQ(r.albedo(c), v.albedo(c));
+        EXPECT_EQ(r.normal(c), v.normal(c));
+        EXPECT_EQ(r.blockerSH(c), v.blockerSH(c));
+    }
+}
