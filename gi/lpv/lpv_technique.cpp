@@ -218,32 +218,40 @@ struct LpvTechnique::Impl {
         if (changed) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
     }
 
-    // The gl back end: RSM, injection and propagation without leaving the GPU.
+    // The gl back end: RSM, injection and propagation without leaving the GPU. RSM faces are
+    // rendered in batches that bound their texture memory (one batch unless the maps are large
+    // or the lights many; each batch adds one sample to the rsm, inject and blockers timers).
     void updateOnGpu(const FrameInput& input, const GBufferView& g) {
-        input.timers.begin("lpv.rsm");
-        const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu);
-        input.timers.end();
         refreshStaticBlockers(input);
+        const InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
+        const std::size_t faceCount = rsm.faceCount(scene), batch = rsm.facesPerBatch();
+        for (std::size_t first = 0; first == 0 || first < faceCount; first += batch) {
+            const bool firstBatch = first == 0, lastBatch = first + batch >= faceCount;
+            input.timers.begin("lpv.rsm");
+            const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu, first, batch);
+            input.timers.end();
 
-        input.timers.begin("lpv.inject");
-        InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
-        for (std::size_t c = 0; c < placements.size(); ++c) {
-            GlCascadeTargets t = glTargets(c);
-            glInjector->clearLight(t);
-            for (const RsmFace& face : faces) glInjector->injectLight(face, offsets, t);
-        }
-        input.timers.end();
+            input.timers.begin("lpv.inject");
+            for (std::size_t c = 0; c < placements.size(); ++c) {
+                GlCascadeTargets t = glTargets(c);
+                if (firstBatch) glInjector->clearLight(t);
+                for (const RsmFace& face : faces) glInjector->injectLight(face, offsets, t);
+            }
+            input.timers.end();
 
-        input.timers.begin("lpv.blockers");
-        GBufferSampling sampling = GBufferSampling::of(g, scene.camera, desc.gbufferBlockerSize);
-        for (std::size_t c = 0; c < placements.size(); ++c) {
-            GlCascadeTargets t = glTargets(c);
-            glInjector->clearGeometry(t);
-            for (const RsmFace& face : faces) glInjector->injectBlockers(face, t);
-            glInjector->injectBlockers(g, sampling, t);
-            if (voxels) glInjector->mergeBlockers(*glStatic[c], t);
+            // Sources merge in the CPU back end's order: RSM faces, the camera, static blockers.
+            input.timers.begin("lpv.blockers");
+            GBufferSampling sampling = GBufferSampling::of(g, scene.camera, desc.gbufferBlockerSize);
+            for (std::size_t c = 0; c < placements.size(); ++c) {
+                GlCascadeTargets t = glTargets(c);
+                if (firstBatch) glInjector->clearGeometry(t);
+                for (const RsmFace& face : faces) glInjector->injectBlockers(face, t);
+                if (!lastBatch) continue;
+                glInjector->injectBlockers(g, sampling, t);
+                if (voxels) glInjector->mergeBlockers(*glStatic[c], t);
+            }
+            input.timers.end();
         }
-        input.timers.end();
 
         input.timers.begin("lpv.propagate");
         PropagationOptions options{desc.occlusion, desc.bounces};

@@ -1,5 +1,6 @@
 #include "gi/lpv/rsm.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -156,11 +157,28 @@ std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu
     return sources;
 }
 
-const std::vector<RsmFace>& RsmRenderer::renderToTextures(const Scene& scene, const SceneGpu& gpu) {
+std::size_t RsmRenderer::faceCount(const Scene& scene) const {
+    std::size_t count = 0;
+    for (const Light& light : scene.lights) count += faceViews(scene, light, impl_->size).size();
+    return count;
+}
+
+std::size_t RsmRenderer::facesPerBatch() const {
+    // Four RGBA32F colour targets and a 32-bit depth buffer per texel.
+    const double faceBytes = 68.0 * double(impl_->size) * double(impl_->size);
+    return std::max<std::size_t>(1, std::size_t(256.0 * 1024.0 * 1024.0 / faceBytes));
+}
+
+const std::vector<RsmFace>& RsmRenderer::renderToTextures(const Scene& scene, const SceneGpu& gpu, std::size_t first,
+                                                          std::size_t count) {
     impl_->faces.clear();
+    std::size_t index = 0;
     for (const Light& light : scene.lights)
-        for (const FaceView& v : faceViews(scene, light, impl_->size))
-            impl_->faces.push_back(impl_->renderFace(impl_->faces.size(), gpu, v, light));
+        for (const FaceView& v : faceViews(scene, light, impl_->size)) {
+            if (index >= first && index - first < count)
+                impl_->faces.push_back(impl_->renderFace(impl_->faces.size(), gpu, v, light));
+            ++index;
+        }
     return impl_->faces;
 }
 
