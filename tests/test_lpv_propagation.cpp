@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "gi/lpv/detail/propagation_soa.h"
+#include "gi/lpv/injection.h"
 #include "gi/lpv/propagation.h"
 #include "gi/sh/sh.h"
 
@@ -224,4 +226,57 @@ TEST(LpvPropagation, SparseMatchesDense) {
     p.propagate(in, gv, 12, {}, dense, false);
     for (std::size_t i = 0; i < dense.r.size(); ++i)
         for (int k = 0; k < 4; ++k) ASSERT_NEAR(sparse.r[i][k], dense.r[i][k], 1e-6f * (1.0f + std::abs(dense.r[i][k])));
+}
+
+// The step's SIMD variants (AVX-512VL, AVX2 + FMA, SSE) run the same arithmetic: every one the
+// CPU supports must give the baseline's light, including partial runs (resolution 12).
+TEST(LpvPropagation, EverySimdPathGivesTheSameStep) {
+    using namespace lpv_detail;
+    for (int n : {12, 16}) {
+        LightVolume in;
+        in.reset(unitGrid(n));
+        BlockerVolume gv;
+        gv.reset(in.grid);
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+        for (int k = 0; k < 3 * n; ++k) {
+            std::size_t i = std::size_t(rng() % in.grid.cellCount());
+            glm::vec4 lobe = v4(sh::cosineLobe(glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + 1e-3f)));
+            in.r[i] += lobe * 2.0f;
+            in.g[i] += lobe;
+            in.b[i] += lobe * 0.5f;
+        }
+        for (std::size_t i = 0; i < gv.blocker.size(); i += 5) {
+            gv.blocker[i] = fullBlocker(glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + 1e-3f)) * std::abs(u(rng));
+            gv.albedo[i] = glm::vec3(0.9f, 0.6f, 0.3f);
+        }
+        const SoaLayout layout(n);
+        const PropagationOperator op(gv, in.grid, {});
+        SoaLight from;
+        from.reset(layout);
+        from.fromVolume(in);
+        auto run = [&](SimdLevel level) {
+            SoaLight to, acc;
+            to.reset(layout);
+            acc.reset(layout);
+            const int bricks = (n + kLanes - 1) / kLanes;
+            for (int z = 0; z < bricks; ++z)
+                for (int y = 0; y < bricks; ++y)
+                    for (int x = 0; x < layout.runsX; ++x) propagateBrick(op, from, to, acc, {x, y, z}, level);
+            return to.data;
+        };
+        const std::vector<float> baseline = run(SimdLevel::Baseline);
+        float scale = 0.0f;
+        for (float v : baseline) scale = std::max(scale, std::abs(v));
+        ASSERT_GT(scale, 0.0f);
+        int compared = 0;
+        for (SimdLevel level : {SimdLevel::Avx2, SimdLevel::Avx512}) {
+            if (!simdLevelSupported(level)) continue;
+            ++compared;
+            const std::vector<float> other = run(level);
+            for (std::size_t i = 0; i < baseline.size(); ++i)
+                ASSERT_NEAR(other[i], baseline[i], 1e-6f * scale) << "n " << n << " level " << int(level) << " at " << i;
+        }
+        std::printf("n %d: compared %d SIMD variant(s) with the baseline\n", n, compared);
+    }
 }

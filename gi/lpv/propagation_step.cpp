@@ -1,6 +1,5 @@
 // One propagation step over a brick, 8 cells per SIMD register (GCC vector extensions: the
-// same source compiles to AVX2 + FMA where the CPU has them, chosen at run time, and to SSE
-// otherwise).
+// same source compiles for AVX-512VL, AVX2 + FMA and SSE, chosen at run time by the CPU).
 #include <cmath>
 #include <algorithm>
 #include <cstring>
@@ -163,6 +162,12 @@ VOXGI_INLINE bool brickKernel(const PropagationOperator& op, const SoaLight& in,
 }
 
 #if defined(__x86_64__)
+// AVX-512VL keeps 256-bit vectors but gives 32 registers and broadcast operands.
+__attribute__((target("avx512f,avx512vl,avx2,fma"))) bool brickAvx512(const PropagationOperator& op, const SoaLight& in,
+                                                                     SoaLight& out, SoaLight& acc, glm::ivec3 brick) {
+    return brickKernel(op, in, out, acc, brick);
+}
+
 __attribute__((target("avx2,fma"))) bool brickAvx2(const PropagationOperator& op, const SoaLight& in, SoaLight& out,
                                                    SoaLight& acc, glm::ivec3 brick) {
     return brickKernel(op, in, out, acc, brick);
@@ -175,20 +180,42 @@ bool brickBaseline(const PropagationOperator& op, const SoaLight& in, SoaLight& 
 
 using BrickFn = bool (*)(const PropagationOperator&, const SoaLight&, SoaLight&, SoaLight&, glm::ivec3);
 
-BrickFn chooseBrickFn() {
+BrickFn brickFn(SimdLevel level) {
+    switch (level) {
 #if defined(__x86_64__)
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return brickAvx2;
+        case SimdLevel::Avx512: return brickAvx512;
+        case SimdLevel::Avx2: return brickAvx2;
 #endif
-    return brickBaseline;
+        default: return brickBaseline;
+    }
 }
 
 }  // namespace
 
+bool simdLevelSupported(SimdLevel level) {
+#if defined(__x86_64__)
+    if (level == SimdLevel::Avx512) return __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512f");
+    if (level == SimdLevel::Avx2) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#endif
+    return level == SimdLevel::Baseline;
+}
+
+SimdLevel bestSimdLevel() {
+    for (SimdLevel level : {SimdLevel::Avx512, SimdLevel::Avx2})
+        if (simdLevelSupported(level)) return level;
+    return SimdLevel::Baseline;
+}
+
 bool propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
                     glm::ivec3 brick) {
-    static const BrickFn fn = chooseBrickFn();
-    (void)constants();  // built before any thread needs it
+    static const BrickFn fn = brickFn(bestSimdLevel());
     return fn(op, in, out, acc, brick);
+}
+
+bool propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+                    glm::ivec3 brick, SimdLevel level) {
+    if (!simdLevelSupported(level)) throw std::logic_error("LPV propagation: SIMD level not supported by this CPU");
+    return brickFn(level)(op, in, out, acc, brick);
 }
 
 }  // namespace voxgi::lpv_detail
