@@ -88,25 +88,24 @@ public:
         const std::size_t count = std::size_t(n_ + 1) * std::size_t(n_ + 1) * std::size_t(n_ + 1);
         std::vector<std::vector<FaceRecord>> slices(std::size_t(n_ + 1));
         for (int k = 0; k < 3; ++k) index_[k].assign(count, -1);
+        // Corners holding a blocker: most faces of a cascade have none and are skipped on these.
+        std::vector<std::uint8_t> blocks(count);
+        tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { blocks[i] = gv.blocker[i] != glm::vec4(0.0f); });
+        // Faces share the corner grid's indexing (face on the low-k side of cell c = corner c).
+        const std::size_t N = std::size_t(n_ + 1), stride[3] = {1, N, N * N};
         tbb::parallel_for(0, n_ + 1, [&](int z) {
             auto& local = slices[std::size_t(z)];
             for (int y = 0; y <= n_; ++y)
                 for (int x = 0; x <= n_; ++x) {
                     const glm::ivec3 c(x, y, z);
+                    const std::size_t i = indexOf(c);
                     for (int k = 0; k < 3; ++k) {
                         const int u = (k + 1) % 3, v = (k + 2) % 3;
                         if (c[u] == n_ || c[v] == n_) continue;  // not a face of the grid
-                        glm::vec4 b(0.0f);
-                        glm::vec3 a(0.0f);
-                        for (int du = 0; du < 2; ++du)
-                            for (int dv = 0; dv < 2; ++dv) {
-                                glm::ivec3 corner = c;
-                                corner[u] += du;
-                                corner[v] += dv;
-                                const std::size_t i = gv.cornerIndex(corner);
-                                b += gv.blocker[i];
-                                a += gv.albedo[i];
-                            }
+                        const std::size_t su = stride[u], sv = stride[v];
+                        if (!(blocks[i] | blocks[i + sv] | blocks[i + su] | blocks[i + su + sv])) continue;
+                        glm::vec4 b = gv.blocker[i] + gv.blocker[i + sv] + gv.blocker[i + su] + gv.blocker[i + su + sv];
+                        const glm::vec3 a = gv.albedo[i] + gv.albedo[i + sv] + gv.albedo[i + su] + gv.albedo[i + su + sv];
                         if (b == glm::vec4(0.0f)) continue;
                         b *= 0.25f;
                         FaceRecord r{};
@@ -121,7 +120,7 @@ public:
                         const float flux = b.x * (4.0f * sh::kPi * sh::kY00);
                         r.reflects = bounces && flux > 1e-12f && r.albedo != glm::vec3(0.0f);
                         if (r.reflects) r.shape = reflectionShape(b, flux);
-                        index_[k][indexOf(c)] = std::int32_t(local.size());  // slice-local for now
+                        index_[k][i] = std::int32_t(local.size());  // slice-local for now
                         local.push_back(r);
                     }
                 }
@@ -142,17 +141,19 @@ public:
         });
     }
 
-    // The face between `cell` and `cell + sign * e_k`, or null where nothing blocks.
-    const FaceRecord* between(glm::ivec3 cell, int k, int sign) const {
-        if (sign > 0) cell[k] += 1;
-        const std::int32_t i = index_[k][indexOf(cell)];
-        return i < 0 ? nullptr : &records_[std::size_t(i)];
+    // The faces between `cell` and its neighbour at -e_k (low) or +e_k (high), or null where
+    // nothing blocks.
+    const FaceRecord* lowSide(glm::ivec3 cell, int k) const { return record(index_[k][indexOf(cell)]); }
+    const FaceRecord* highSide(glm::ivec3 cell, int k) const {
+        cell[k] += 1;
+        return record(index_[k][indexOf(cell)]);
     }
 
 private:
     std::size_t indexOf(glm::ivec3 c) const {
         return (std::size_t(c.z) * std::size_t(n_ + 1) + std::size_t(c.y)) * std::size_t(n_ + 1) + std::size_t(c.x);
     }
+    const FaceRecord* record(std::int32_t i) const { return i < 0 ? nullptr : &records_[std::size_t(i)]; }
     int n_;
     std::vector<std::int32_t> index_[3];
     std::vector<FaceRecord> records_;
@@ -184,23 +185,28 @@ PropagationOperator::PropagationOperator(const BlockerVolume& gv, const CascadeG
                 const int x = rx * kLanes + lane;
                 if (x >= n) break;
                 const glm::ivec3 d(x, y, z);
-                for (int a = 0; a < 6; ++a) {
-                    const int k = a / 2, sign = a % 2 == 0 ? 1 : -1, dir = a % 2;
-                    // Light arriving along axis a crosses the face between d - axis and d.
-                    glm::ivec3 source = d;
-                    source[k] -= sign;
-                    if ((gatherFace[a][lane] = faces.between(sign > 0 ? source : d, k, 1))) anyOccluded[a] = true;
-                    // This cell's light stopped at its face toward axis a bounces back into it,
-                    // shaped like the blocker's lobe normalized to unit flux.
-                    const FaceRecord* r = faces.between(d, k, sign);
-                    if (!r || !r->reflects) continue;
-                    if (!bounces[lane])
-                        for (auto& colour : matrices[lane])
-                            for (auto& column : colour) column = glm::vec4(0.0f);
-                    bounces[lane] = anyBounce = true;
-                    for (int c = 0; c < 3; ++c)
-                        for (int col = 0; col < 4; ++col)
-                            matrices[lane][c][col] += (r->albedo[c] * r->blocked[dir][col]) * r->shape;
+                for (int k = 0; k < 3; ++k) {
+                    // The faces on the cell's low-k and high-k sides.
+                    const FaceRecord* low = faces.lowSide(d, k);
+                    const FaceRecord* high = faces.highSide(d, k);
+                    // Light arriving along +k crosses the low face, along -k the high face.
+                    gatherFace[2 * k][lane] = low;
+                    gatherFace[2 * k + 1][lane] = high;
+                    anyOccluded[2 * k] |= low != nullptr;
+                    anyOccluded[2 * k + 1] |= high != nullptr;
+                    // This cell's light stopped at its face toward +k (the high face) or -k (the
+                    // low face) bounces back into it, shaped like the blocker's lobe with unit flux.
+                    for (int dir = 0; dir < 2; ++dir) {
+                        const FaceRecord* r = dir == 0 ? high : low;
+                        if (!r || !r->reflects) continue;
+                        if (!bounces[lane])
+                            for (auto& colour : matrices[lane])
+                                for (auto& column : colour) column = glm::vec4(0.0f);
+                        bounces[lane] = anyBounce = true;
+                        for (int c = 0; c < 3; ++c)
+                            for (int col = 0; col < 4; ++col)
+                                matrices[lane][c][col] += (r->albedo[c] * r->blocked[dir][col]) * r->shape;
+                    }
                 }
             }
             for (int a = 0; a < 6; ++a) {
