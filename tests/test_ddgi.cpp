@@ -16,13 +16,9 @@ using namespace voxgi;
 
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
+using test::descFrom;
 
-DdgiDesc descFrom(const std::map<std::string, std::string>& keys) {
-    GiSettings gi;
-    for (const auto& [k, v] : keys) gi.set("ddgi." + k, v);
-    return readDdgiDesc(gi);
-}
+constexpr float kPi = 3.14159265358979323846f;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -39,11 +35,11 @@ void runFrames(DdgiSystem& s, int frames, glm::vec3 eye = glm::vec3(0.0f)) {
 }
 
 // Irradiance on the six inner walls of a furnace box (points a quarter in from the centre).
-void checkFurnace(float rho, const std::string& probes) {
+void checkFurnace(float rho, const std::string& probes, const std::string& hitCache = "off") {
     const float le = 1.0f;
     Scene scene = test::furnaceBox(rho, le);
     RayTracer tracer(scene);
-    DdgiSystem ddgi(tracer, descFrom({{"probes", probes}, {"rays", "64"}, {"hysteresis", "0"}}));
+    DdgiSystem ddgi(tracer, descFrom({{"probes", probes}, {"rays", "64"}, {"hysteresis", "0"}, {"hit_cache", hitCache}}));
     runFrames(ddgi, 60);
     const float expected = kPi * le / (1.0f - rho);
     const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -66,17 +62,25 @@ TEST(Ddgi, FurnaceConvergesToAnalyticIrradiance) {
 
 TEST(Ddgi, SingleProbeFurnace) { checkFurnace(0.5f, "1"); }
 
+TEST(Ddgi, FurnaceConvergesWithTheHitCache) {
+    for (const char* mode : {"probes", "all"}) {
+        checkFurnace(0.5f, "2", mode);
+        checkFurnace(0.9f, "2", mode);
+    }
+}
+
 // Mean irradiance over floor points of each room (normal up).
 struct RoomLight {
     float lit = 0, dark = 0;
 };
 
-RoomLight measureRooms(bool classify, bool relocate, const std::string& probes) {
+RoomLight measureRooms(bool classify, bool relocate, const std::string& probes, const std::string& hitCache = "off") {
     Scene scene = test::twoRooms();
     RayTracer tracer(scene);
     DdgiSystem ddgi(tracer, descFrom({{"probes", probes},
                                       {"rays", "128"},
                                       {"hysteresis", "0.5"},
+                                      {"hit_cache", hitCache},
                                       {"classify", classify ? "true" : "false"},
                                       {"relocate", relocate ? "true" : "false"}}));
     runFrames(ddgi, 24);
@@ -102,6 +106,12 @@ TEST(Ddgi, ThinWallLeakStaysUnderTwoPercent) {
                     probes, on.dark / on.lit, on.lit, off.dark / off.lit);
         ASSERT_GT(on.lit, 0.0f);
         EXPECT_LT(on.dark, 0.02f * on.lit) << probes;
+        // Hits on the two faces of the wall have opposite normals: the hit cache never shares
+        // light across it.
+        RoomLight cached = measureRooms(true, true, probes, "all");
+        std::printf("probes %s: leak with the hit cache (all) %.3e\n", probes, cached.dark / cached.lit);
+        ASSERT_GT(cached.lit, 0.0f);
+        EXPECT_LT(cached.dark, 0.02f * cached.lit) << probes;
     }
 }
 
@@ -229,14 +239,18 @@ TEST(Ddgi, ScrollingMatchesAFreshVolume) {
                                                      {"classify", "false"}, {"relocate", "false"}};
     const glm::vec3 start(0.1f, 1.0f, -0.2f);
     const glm::vec3 moves[3] = {{0.5f, 0, 0}, {0, -0.5f, 0}, {0, 0, 0.5f}};
+    // With the hit cache sharing light visibility too: the groups depend on the hits alone.
     for (const glm::vec3& move : moves) {
-        DdgiSystem moving(tracer, descFrom(keys));
+      for (const char* cache : {"off", "all"}) {
+        auto cachedKeys = keys;
+        cachedKeys["hit_cache"] = cache;
+        DdgiSystem moving(tracer, descFrom(cachedKeys));
         runFrames(moving, 10, start);
         runFrames(moving, 30, start + move);
         Scene moved = scene;
         moved.camera.eye = start + move;
         RayTracer movedTracer(moved);
-        DdgiSystem fresh(movedTracer, descFrom(keys));
+        DdgiSystem fresh(movedTracer, descFrom(cachedKeys));
         runFrames(fresh, 40, start + move);
         auto a = probeValues(moving.field()), b = probeValues(fresh.field());
         ASSERT_EQ(a.size(), b.size());
@@ -244,21 +258,24 @@ TEST(Ddgi, ScrollingMatchesAFreshVolume) {
             auto it = b.find(key);
             ASSERT_NE(it, b.end()) << "probe position differs after scrolling";
             EXPECT_NEAR(value.x, it->second.x, 1e-3f * (1.0f + it->second.x));
-            EXPECT_NEAR(value.z, it->second.z, 1e-3f * (1.0f + it->second.z));
+            EXPECT_NEAR(value.z, it->second.z, 1e-3f * (1.0f + it->second.z)) << cache;
         }
+      }
     }
 }
 
 TEST(Ddgi, DeterministicForAFixedSeed) {
     Scene scene = test::openYard();
     RayTracer tracer(scene);
-    auto run = [&](const std::string& seed) {
-        DdgiSystem ddgi(tracer, descFrom({{"probes", "4,2,4"}, {"rays", "32"}, {"seed", seed}}));
-        runFrames(ddgi, 3);
-        return ddgi.field().irradiance.texels;
-    };
-    EXPECT_EQ(run("7"), run("7"));
-    EXPECT_NE(run("7"), run("8"));
+    for (const char* cache : {"off", "all"}) {
+        auto run = [&](const std::string& seed) {
+            DdgiSystem ddgi(tracer, descFrom({{"probes", "4,2,4"}, {"rays", "32"}, {"seed", seed}, {"hit_cache", cache}}));
+            runFrames(ddgi, 3);
+            return ddgi.field().irradiance.texels;
+        };
+        EXPECT_EQ(run("7"), run("7")) << cache;
+        EXPECT_NE(run("7"), run("8")) << cache;
+    }
 }
 
 TEST(Ddgi, SettingsReaderRejectsTyposAndBadValues) {
@@ -267,6 +284,8 @@ TEST(Ddgi, SettingsReaderRejectsTyposAndBadValues) {
     EXPECT_THROW(descFrom({{"hysteresis", "1.5"}}), InputError);
     EXPECT_THROW(descFrom({{"probes", "4,4"}}), InputError);
     EXPECT_THROW(descFrom({{"direct", "maps"}}), InputError);
+    EXPECT_THROW(descFrom({{"hit_cache", "yes"}}), InputError);
+    EXPECT_THROW(descFrom({{"hit_cache_cells", "0"}}), InputError);
     EXPECT_THROW(descFrom({{"probes", "100"}}), InputError);                   // memory
     EXPECT_THROW(descFrom({{"probes", "64"}, {"rays", "1024"}}), InputError);  // 268M rays
     DdgiDesc d = descFrom({{"probes", "16,8,12"}, {"spacing", "1"}});

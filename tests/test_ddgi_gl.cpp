@@ -19,6 +19,8 @@ using namespace voxgi;
 
 namespace {
 
+using test::descFrom;
+
 std::unique_ptr<gl::Context> g_context;
 
 class DdgiGl : public ::testing::Test {
@@ -27,12 +29,6 @@ protected:
         if (!g_context) g_context = gl::Context::createHeadless();
     }
 };
-
-DdgiDesc descFrom(const std::map<std::string, std::string>& keys) {
-    GiSettings gi;
-    for (const auto& [k, v] : keys) gi.set("ddgi." + k, v);
-    return readDdgiDesc(gi);
-}
 
 float maxRelativeDifference(const Atlas& a, const Atlas& b, int channels) {
     float worst = 0.0f;
@@ -80,7 +76,7 @@ TEST_F(DdgiGl, ApplyMatchesCpuSamplingWithCascadesAndScrolling) {
     const ProbeTrace& trace = ddgi.lastTrace();
     int k = 0;
     for (int i = 0; i < int(trace.surfels.size()) && k < w * h; i += 7) {
-        const Surfel& s = trace.surfels[std::size_t(i)];
+        const ProbeSurfel& s = trace.surfels[std::size_t(i)];
         if (s.distance <= 0.0f || s.distance >= kMissDistance) continue;
         pos[k] = glm::vec4(s.position, 1.0f);
         nrm[k] = glm::vec4(s.normal, 0.5f);

@@ -1,12 +1,24 @@
 // Small scenes shared by the DDGI tests (built in code, no files needed).
 #pragma once
 
+#include <map>
+#include <string>
+
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "gi/ddgi/ddgi_desc.h"
 
 #include "scenes/primitives.h"
 #include "scenes/scene.h"
 
 namespace voxgi::test {
+
+// A DdgiDesc from `ddgi.*` keys (values as the scene files write them), through the reader.
+inline DdgiDesc descFrom(const std::map<std::string, std::string>& keys) {
+    GiSettings gi;
+    for (const auto& [k, v] : keys) gi.set("ddgi." + k, v);
+    return readDdgiDesc(gi);
+}
 
 // A closed box of size `size` seen from inside: every surface has albedo rho and emits le.
 inline Scene furnaceBox(float rho, float le, float size = 2.0f) {

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <memory>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -45,6 +47,42 @@ struct StageMedians {
     double trace = 0, shade = 0, blend = 0, border = 0, classify = 0;
     double rays = 0;     // rays traced per frame (median)
     double update() const { return trace + shade + blend + border + classify; }
+};
+
+// "1.23 2.34" from /proc/loadavg: other builds share the two cores, so every table says how busy
+// the machine was.
+std::string loadAverage() {
+    std::FILE* f = std::fopen("/proc/loadavg", "r");
+    if (!f) return "?";
+    double a = 0, b = 0, c = 0;
+    int n = std::fscanf(f, "%lf %lf %lf", &a, &b, &c);
+    std::fclose(f);
+    if (n != 3) return "?";
+    char text[64];
+    std::snprintf(text, sizeof text, "%.2f %.2f %.2f", a, b, c);
+    return text;
+}
+
+// One shading mode of the mode table: a hit-cache setting and a direct-light mode, traced and
+// shaded with the probe gather (energy 1) and with direct light alone (energy 0).
+struct ShadingMode {
+    const char* name;
+    DdgiHitCache cache;
+    DdgiDirectLight direct;
+    bool directOnlyRow;  // the energy-0 run differs from another mode's (not so for `probes`)
+};
+
+const ShadingMode kModes[] = {
+    {"off, shadow rays", DdgiHitCache::Off, DdgiDirectLight::ShadowRays, true},
+    {"probes, shadow rays", DdgiHitCache::Probes, DdgiDirectLight::ShadowRays, false},
+    {"all, shadow rays", DdgiHitCache::All, DdgiDirectLight::ShadowRays, true},
+    {"off, occlusion probes", DdgiHitCache::Off, DdgiDirectLight::OcclusionProbes, true},
+    {"all, occlusion probes", DdgiHitCache::All, DdgiDirectLight::OcclusionProbes, true},
+};
+
+struct ModeRuns {
+    std::unique_ptr<DdgiSystem> shade, direct;
+    std::vector<double> traceRate, directRate, shadeRate, groups, shadow;
 };
 
 StageMedians runFrames(DdgiSystem& ddgi, glm::vec3 eye, int frames, BlendBackend* backend) {
@@ -93,17 +131,18 @@ double rawEmbreeMs(const DdgiSystem& ddgi, int repeats, std::int64_t* rays) {
 double sampleNsPerPoint(const DdgiSystem& ddgi, int* points) {
     const ProbeTrace& trace = ddgi.lastTrace();
     std::vector<std::pair<glm::vec3, glm::vec3>> pts;
-    for (const Surfel& s : trace.surfels)
+    for (const ProbeSurfel& s : trace.surfels)
         if (s.distance > 0.0f && s.distance < kMissDistance) pts.emplace_back(s.position, s.normal);
     if (pts.size() > 200000) pts.resize(200000);
     *points = int(pts.size());
     if (pts.empty()) return 0.0;
     auto t0 = Clock::now();
+    const ProbeSampler sampler(ddgi.field());
     std::atomic<float> sink{0.0f};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pts.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         float acc = 0.0f;
         for (std::size_t i = r.begin(); i != r.end(); ++i)
-            acc += sampleIrradiance(ddgi.field(), pts[i].first, pts[i].second, pts[i].second).x;
+            acc += sampler.irradiance(pts[i].first, pts[i].second, pts[i].second).x;
         sink = sink + acc;
     });
     return msSince(t0) * 1e6 / double(pts.size());
@@ -115,7 +154,7 @@ double glApplyMs(DdgiSystem& ddgi, int width, int height, int frames) {
     std::vector<glm::vec4> pos(std::size_t(width * height), glm::vec4(0.0f)), nrm(pos.size()), alb(pos.size(), glm::vec4(0.7f, 0.7f, 0.7f, 0.0f)),
         emi(pos.size(), glm::vec4(0.0f));
     std::size_t k = 0;
-    for (const Surfel& s : trace.surfels) {
+    for (const ProbeSurfel& s : trace.surfels) {
         if (k == pos.size()) break;
         if (s.distance <= 0.0f || s.distance >= kMissDistance) continue;
         pos[k] = glm::vec4(s.position, 1.0f);
@@ -143,6 +182,7 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     const int warmup = args.integer("--warmup", 12, 0, 1000);
     const glm::vec3 eye = scene.camera.eye;
 
+    const std::string loadBefore = loadAverage();
     auto t0 = Clock::now();
     RayTracer tracer(scene);
     double bvhMs = msSince(t0);
@@ -185,13 +225,51 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     double traceRate = f.rays / (f.trace * 1e-3);
     ProbeStateCounts states = countStates(culled.field());
 
-    // The same without the probe gather at hits (energy 0): what direct light alone costs.
-    DdgiDesc direct = all;
-    direct.energyPreservation = 0.0f;
-    DdgiSystem directOnly(tracer, direct);
-    runFrames(directOnly, eye, 1, nullptr);
-    StageMedians d = runFrames(directOnly, eye, frames, nullptr);
-    double directRate = d.rays / ((d.trace + d.shade) * 1e-3);
+    // The mode table: every hit-cache and direct-light mode on the same rays, culling off,
+    // frames interleaved with Embree alone so that load hits all alike.
+    std::vector<ModeRuns> modes;
+    for (const ShadingMode& m : kModes) {
+        DdgiDesc md = all;
+        md.hitCache = m.cache;
+        md.directLight = m.direct;
+        ModeRuns runs;
+        runs.shade = std::make_unique<DdgiSystem>(tracer, md);
+        if (m.directOnlyRow) {
+            md.energyPreservation = 0.0f;
+            runs.direct = std::make_unique<DdgiSystem>(tracer, md);
+        }
+        modes.push_back(std::move(runs));
+    }
+    for (ModeRuns& m : modes) {
+        runFrames(*m.shade, eye, warmup, nullptr);
+        if (m.direct) runFrames(*m.direct, eye, warmup, nullptr);
+    }
+    // Each update is paired with an Embree-alone pass just before it; the ratio of the two
+    // rates is taken per frame (load drifts over seconds, less within a pair).
+    auto rawRateNow = [&] {
+        std::int64_t n = 0;
+        double ms = rawEmbreeMs(full, 1, &n);
+        return double(n) / (ms * 1e-3);
+    };
+    std::vector<double> modeRaw;
+    for (int i = 0; i < frames; ++i) {
+        for (ModeRuns& m : modes) {
+            double raw = rawRateNow();
+            modeRaw.push_back(raw);
+            DdgiFrameStats st = m.shade->update(eye, nullptr);
+            m.traceRate.push_back(double(st.raysTraced) / (st.traceMs * 1e-3) / raw);
+            m.shadeRate.push_back(double(st.raysTraced) / ((st.traceMs + st.shadeMs) * 1e-3) / raw);
+            m.groups.push_back(double(st.cacheGroups));
+            m.shadow.push_back(double(st.shadowQueries));
+            if (m.direct) {
+                raw = rawRateNow();
+                DdgiFrameStats sd = m.direct->update(eye, nullptr);
+                m.directRate.push_back(double(sd.raysTraced) / ((sd.traceMs + sd.shadeMs) * 1e-3) / raw);
+            }
+        }
+    }
+    const std::string loadAfter = loadAverage();
+    double modeRawRate = median(modeRaw);
 
     int points = 0;
     double sampleNs = sampleNsPerPoint(full, &points);
@@ -199,10 +277,22 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     std::printf("Embree alone (same rays, no shading): %.2f Mrays/s (%lld rays in %.1f ms, median)\n", rawRate * 1e-6,
                 (long long)rawRays, rawMs);
     std::printf("DDGI trace only:                      %.2f Mrays/s\n", traceRate * 1e-6);
-    std::printf("DDGI trace + shade:                   %.2f Mrays/s = %.0f %% of Embree alone (goal >= 70 %%)\n",
-                ddgiRate * 1e-6, 100.0 * ddgiRate / rawRate);
-    std::printf("DDGI trace + direct light only:       %.2f Mrays/s = %.0f %% (shade %.2f ms; the probe gather is the rest)\n",
-                directRate * 1e-6, 100.0 * directRate / rawRate, d.shade);
+    std::printf("DDGI trace + shade:                   %.2f Mrays/s = %.0f %% of Embree alone (goal >= 70 %%; hit_cache %s)\n",
+                ddgiRate * 1e-6, 100.0 * ddgiRate / rawRate,
+                desc.hitCache == DdgiHitCache::Off ? "off" : desc.hitCache == DdgiHitCache::Probes ? "probes" : "all");
+    std::printf("modes, %% of Embree alone (median %.2f Mrays/s, timed just before each update), medians of %d frames,\n"
+                "load average %s before, %s after:\n",
+                modeRawRate * 1e-6, frames, loadBefore.c_str(), loadAfter.c_str());
+    std::printf("  %-24s %8s %15s %14s %14s %14s\n", "hit_cache, direct", "trace", "trace + direct", "trace + shade",
+                "cache groups", "light tests");
+    for (std::size_t i = 0; i < modes.size(); ++i) {
+        const ModeRuns& m = modes[i];
+        char direct[32] = "(as above)";
+        if (m.direct) std::snprintf(direct, sizeof direct, "%.0f %%", 100.0 * median(m.directRate));
+        std::printf("  %-24s %6.0f %% %15s %12.0f %% %14.0f %14.0f\n", kModes[i].name,
+                    100.0 * median(m.traceRate), direct, 100.0 * median(m.shadeRate),
+                    median(m.groups), median(m.shadow));
+    }
     std::printf("stage medians over %d frames [ms]      culling off   culling on\n", frames);
     auto row = [&](const char* name, double a, double b) { std::printf("  %-36s %10.2f %12.2f\n", name, a, b); };
     row("trace", f.trace, c.trace);

@@ -47,7 +47,8 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
                              "hysteresis", "distance_exponent", "normal_bias", "view_bias", "irradiance_gamma",
                              "energy", "irradiance_threshold", "brightness_threshold", "backface_threshold",
                              "relocation_backface_threshold", "min_frontface_distance", "classify", "occupancy", "relocate",
-                             "sleep_interval", "cascades", "scroll", "direct", "occlusion_stride", "seed", "backend"});
+                             "sleep_interval", "cascades", "scroll", "direct", "occlusion_stride", "hit_cache", "hit_cache_cells", "seed",
+                             "backend"});
     DdgiDesc d;
     glm::vec3 counts = parseTriple(gi, "ddgi.probes", glm::vec3(0.0f));
     for (int a = 0; a < 3; ++a) {
@@ -108,6 +109,13 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
     else throw InputError("gi.ddgi.direct: expected rays or occlusion, got '" + direct + "'");
     d.occlusionStride = gi.getInt("ddgi.occlusion_stride", d.occlusionStride);
     requireRange("ddgi.occlusion_stride", d.occlusionStride, 1, 4096);
+    std::string cache = gi.getString("ddgi.hit_cache", "off");
+    if (cache == "off") d.hitCache = DdgiHitCache::Off;
+    else if (cache == "probes") d.hitCache = DdgiHitCache::Probes;
+    else if (cache == "all") d.hitCache = DdgiHitCache::All;
+    else throw InputError("gi.ddgi.hit_cache: expected off, probes or all, got '" + cache + "'");
+    d.hitCacheCells = gi.getInt("ddgi.hit_cache_cells", d.hitCacheCells);
+    requireRange("ddgi.hit_cache_cells", d.hitCacheCells, 1, 64);
     int seed = gi.getInt("ddgi.seed", int(d.seed));
     d.seed = std::uint32_t(seed);
     std::string backend = gi.getString("ddgi.backend", "gpu");

@@ -16,6 +16,13 @@ enum class DdgiDirectLight {
     OcclusionProbes,  // visibility reconstructed from an occlusion-probe field (seed 004 ch. 5)
 };
 
+// Sharing of probe-ray hit shading between nearby hits within a frame (gi/ddgi/hit_cache.h).
+enum class DdgiHitCache {
+    Off,     // every hit gathers the probes and tests its lights itself (exact)
+    Probes,  // hits in one cache cell and normal bin share one probe gather
+    All,     // ... and one light-visibility test per light (up to four lights)
+};
+
 struct DdgiDesc {
     // Grid: zero counts/spacing = fit the scene bounds (about 8 cells on the longest axis);
     // probes sit at cell centres so none lies on the bounding walls.
@@ -44,6 +51,8 @@ struct DdgiDesc {
     bool scroll = false;          // camera-centred volume(s) scrolling in whole cells
     DdgiDirectLight directLight = DdgiDirectLight::ShadowRays;
     int occlusionStride = 4;      // occlusion probes: shadow rays from every n-th blend ray's hit
+    DdgiHitCache hitCache = DdgiHitCache::Off;
+    int hitCacheCells = 4;        // hit-cache cells per smallest probe spacing
     std::uint32_t seed = 1;       // random ray rotations; same seed, same frames, same result
     bool gpuBlend = true;         // blend on the GPU (GL compute) or with the CPU reference
 

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "gi/ddgi/occlusion_probes.h"
+#include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 
 namespace voxgi {
@@ -20,8 +21,6 @@ DdgiSystem::DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQu
     Bounds b = scene.bounds();
     float radius = b.valid() ? 0.5f * glm::length(b.extent()) : 1.0f;
     shadowRays_ = std::make_unique<ShadowRayVisibility>(tracer, 1e-4f * std::max(radius, 1e-3f));
-    if (desc.directLight == DdgiDirectLight::OcclusionProbes)
-        occlusionProbes_ = std::make_unique<OcclusionProbeVisibility>(*field_, *shadowRays_);
 }
 
 DdgiSystem::~DdgiSystem() = default;
@@ -46,10 +45,18 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
     stats.probesBlended = int(blendProbes.size());
 
     t0 = std::chrono::steady_clock::now();
-    const LightVisibility& visibility = occlusionProbes_ ? *occlusionProbes_ : *shadowRays_;
-    ShadeStats shade = shadeProbeRays(tracer_.scene(), visibility, field, rays_, trace_, blendProbes, frame_, shaded_);
+    // The previous frame's field, resolved once for every lookup of this frame's shading.
+    ProbeSampler previous(field);
+    std::unique_ptr<OcclusionProbeVisibility> occlusion;
+    if (desc.directLight == DdgiDirectLight::OcclusionProbes)
+        occlusion = std::make_unique<OcclusionProbeVisibility>(previous, *shadowRays_);
+    const LightVisibility& visibility = occlusion ? *occlusion : *shadowRays_;
+    ShadeStats shade = shadeProbeRays(tracer_.scene(), visibility, previous, rays_, trace_, blendProbes, frame_,
+                                      &hitCache_, shaded_);
+    stats.cacheGroups = shade.cacheGroups;
+    stats.cachedHits = shade.cachedHits;
     std::vector<BlendJob> jobs = makeBlendJobs(field, blendProbes, rays_.blendRays);
-    if (occlusionProbes_) {
+    if (occlusion) {
         // After shading, so shading reads the previous frame's occlusion (seed 004's lag).
         stats.shadowQueries = updateOcclusionProbes(tracer_.scene(), *shadowRays_, field, rays_, trace_, jobs, frame_,
                                                     desc.occlusionStride);

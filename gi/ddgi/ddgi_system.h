@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gi/ddgi/ddgi_desc.h"
+#include "gi/ddgi/hit_cache.h"
 #include "gi/ddgi/hit_shading.h"
 #include "gi/ddgi/probe_blend.h"
 #include "gi/ddgi/probe_field.h"
@@ -23,6 +24,8 @@ struct DdgiFrameStats {
     double traceMs = 0, shadeMs = 0, blendMs = 0, borderMs = 0, classifyMs = 0;
     std::int64_t raysTraced = 0;      // probe rays (fixed + blend)
     std::int64_t shadowQueries = 0;   // shadow rays (at hits, or into the occlusion probes)
+    std::int64_t cacheGroups = 0;     // hit-cache groups (probe gathers shared by nearby hits)
+    std::int64_t cachedHits = 0;
     int probesBlended = 0;
     ProbeStateCounts states;
 };
@@ -50,7 +53,7 @@ private:
     GeometryQuery query_;
     std::unique_ptr<ProbeField> field_;
     std::unique_ptr<LightVisibility> shadowRays_;
-    std::unique_ptr<LightVisibility> occlusionProbes_;  // only in the occlusion-probe mode
+    HitCache hitCache_;
     CpuBlend cpuBlend_;
     RaySet rays_;
     ProbeTrace trace_;

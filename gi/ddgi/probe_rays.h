@@ -37,7 +37,7 @@ enum class ProbeWork : std::uint8_t {
     Full,       // classification and blend rays; the probe blends this frame
 };
 
-struct Surfel {
+struct ProbeSurfel {
     glm::vec3 position{0.0f};
     float distance = kMissDistance;  // signed: negative for a backface hit
     glm::vec3 normal{0.0f};          // facing the probe; zero for misses and backfaces
@@ -48,10 +48,10 @@ struct Surfel {
 struct ProbeTrace {
     int stride = 0;                 // surfels per probe (RaySet::stride)
     std::vector<ProbeWork> work;    // per probe
-    std::vector<Surfel> surfels;    // probe * stride + ray
+    std::vector<ProbeSurfel> surfels;    // probe * stride + ray
     std::int64_t raysTraced = 0;
 
-    const Surfel& at(int probe, int ray) const { return surfels[std::size_t(probe) * std::size_t(stride) + std::size_t(ray)]; }
+    const ProbeSurfel& at(int probe, int ray) const { return surfels[std::size_t(probe) * std::size_t(stride) + std::size_t(ray)]; }
 };
 
 // Traces the rays `work` asks for from every probe's (relocated) position.

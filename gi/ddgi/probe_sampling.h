@@ -3,6 +3,9 @@
 // and view bias; cascades blend finest first. The CPU reference of shaders/ddgi/sampling.glsl.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "gi/ddgi/probe_field.h"
@@ -17,16 +20,51 @@ float chebyshevVisibility(float r, float mean, float meanSquare);
 // 0 outside, 1 more than one cell inside the volume, linear across the outermost cell.
 float volumeBlendWeight(const ProbeVolume& volume, glm::vec3 p);
 
-// Irradiance (W/m^2) at p for unit normal n, seen from unit direction `toViewer`. Zero where
-// no probe contributes (every cage probe off).
+// The sampling functions over a snapshot of a field: per-probe positions, states and atlas
+// tile addresses are resolved once (in logical probe order, so the cage needs no toroidal
+// arithmetic) and the eight cage probes are evaluated lane by lane. Borrows the field, which
+// must not change while the sampler is used (ray shading samples the previous frame's field).
+class ProbeSampler {
+public:
+    explicit ProbeSampler(const ProbeField& field);
+
+    // Irradiance (W/m^2) at p for unit normal n, seen from unit direction `toViewer`. Zero
+    // where no probe contributes (every cage probe off).
+    glm::vec3 irradiance(glm::vec3 p, glm::vec3 n, glm::vec3 toViewer) const;
+    // One volume only; `weightSum` receives the sum of its probe weights.
+    glm::vec3 volumeIrradiance(int volume, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer, float* weightSum) const;
+    // Occlusion probes (seed 004 ch. 5): visibility of up to four lights (one per channel) at
+    // p, from the occlusion atlas with the same cage weights, looked up in the direction from
+    // each probe to p. All ones without an occlusion atlas.
+    glm::vec4 occlusion(glm::vec3 p, glm::vec3 n) const;
+
+    const ProbeField& field() const { return field_; }
+
+private:
+    struct CageProbe {
+        glm::vec3 position{0.0f};   // relocated world position
+        float live = 0.0f;          // 0 for off probes
+        std::uint32_t distanceTexel = 0;    // first texel of the tile in the distance atlas
+        std::uint32_t irradianceTexel = 0;  // ... in the irradiance atlas
+    };
+    struct Volume {
+        glm::ivec3 counts{1};
+        glm::vec3 origin{0.0f}, spacing{1.0f};
+        float biasScale = 1.0f;  // smallest spacing
+        int first = 0;           // first CageProbe of the volume
+    };
+    template <bool kOcclusion>
+    glm::vec4 gather(const Volume& v, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer, float* weightSum) const;
+
+    const ProbeField& field_;
+    std::vector<Volume> volumes_;
+    std::vector<CageProbe> probes_;
+};
+
+// One-off lookups (build a sampler per call: O(probes); use a ProbeSampler for many points).
 glm::vec3 sampleIrradiance(const ProbeField& field, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer);
-// One volume only; `weightSum` receives the sum of its probe weights.
 glm::vec3 sampleVolumeIrradiance(const ProbeField& field, int volume, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer,
                                  float* weightSum = nullptr);
-
-// Occlusion probes (seed 004 ch. 5): visibility of up to four lights (one per channel) at the
-// surface point p, reconstructed from the occlusion atlas with the same cage weights, looked up
-// in the direction from each probe to p. All ones without an occlusion atlas.
 glm::vec4 sampleOcclusion(const ProbeField& field, glm::vec3 p, glm::vec3 n);
 
 }  // namespace voxgi

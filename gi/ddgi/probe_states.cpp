@@ -71,7 +71,7 @@ void classifyProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& tra
             int backfaces = 0;
             bool near = false;
             for (int i = 0; i < rays.fixedRays; ++i) {
-                const Surfel& s = trace.at(p, i);
+                const ProbeSurfel& s = trace.at(p, i);
                 if (s.distance < 0.0f) {
                     ++backfaces;
                 } else if (s.distance < kMissDistance) {
