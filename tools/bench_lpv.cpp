@@ -60,7 +60,8 @@ int runBenchLpv(const std::vector<std::string>& argv) {
     auto context = gl::Context::createHeadless();
     std::printf("device: %s\n", context->description().c_str());
     const std::vector<std::string> stages = {"lpv.rsm", "lpv.gbuffer_readback", "lpv.inject", "lpv.blockers",
-                                             "lpv.propagate", "lpv.propagate_operator", "lpv.upload", "lpv.apply"};
+                                             "lpv.propagate", "lpv.propagate_operator", "lpv.propagate_steps", "lpv.upload",
+                                             "lpv.apply"};
     std::vector<Row> rows;
     for (const std::string& name : scenes) {
         Scene scene;

@@ -168,13 +168,15 @@ struct LpvTechnique::Impl {
 
         PropagationOptions options{desc.occlusion, desc.bounces};
         t0 = std::chrono::steady_clock::now();
-        double operatorMs = 0.0;
+        double operatorMs = 0.0, stepsMs = 0.0;
         for (std::size_t c = 0; c < placements.size(); ++c) {
             propagators[c].propagate(injected[c], geometry[c], desc.steps, options, accumulated[c], desc.sparse);
             operatorMs += propagators[c].stats().operatorMs;
+            stepsMs += propagators[c].stats().stepsMs;
         }
         input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
         input.timers.addCpu("lpv.propagate_operator", operatorMs);
+        input.timers.addCpu("lpv.propagate_steps", stepsMs);
 
         t0 = std::chrono::steady_clock::now();
         const int n = desc.resolution;
