@@ -293,6 +293,8 @@ TEST(Ddgi, SettingsReaderRejectsTyposAndBadValues) {
     EXPECT_EQ(d.rays, 256);
     EXPECT_EQ(d.raysPerProbe(), 288);
     EXPECT_FLOAT_EQ(d.hysteresis, 0.97f);
+    EXPECT_EQ(d.hitCache, DdgiHitCache::All);
+    EXPECT_EQ(descFrom({{"hit_cache", "off"}}).hitCache, DdgiHitCache::Off);
 }
 
 TEST(Ddgi, OcclusionProbesReconstructShadowsLikeShadowRays) {
@@ -300,8 +302,10 @@ TEST(Ddgi, OcclusionProbesReconstructShadowsLikeShadowRays) {
     // occlusion probes, the probes' irradiance stays close to the shadow-ray result.
     Scene scene = test::openYard();
     RayTracer tracer(scene);
+    // Every hit tests its own lights (no hit cache): the shadow-ray count is the comparison.
     const std::map<std::string, std::string> base = {{"probes", "6,3,6"}, {"spacing", "0.6"}, {"rays", "128"},
-                                                     {"hysteresis", "0.8"}, {"relocate", "false"}};
+                                                     {"hysteresis", "0.8"}, {"relocate", "false"},
+                                                     {"hit_cache", "off"}};
     auto withMode = [&](const std::string& mode) {
         auto keys = base;
         keys["direct"] = mode;

@@ -109,7 +109,7 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
     else throw InputError("gi.ddgi.direct: expected rays or occlusion, got '" + direct + "'");
     d.occlusionStride = gi.getInt("ddgi.occlusion_stride", d.occlusionStride);
     requireRange("ddgi.occlusion_stride", d.occlusionStride, 1, 4096);
-    std::string cache = gi.getString("ddgi.hit_cache", "off");
+    std::string cache = gi.getString("ddgi.hit_cache", "all");
     if (cache == "off") d.hitCache = DdgiHitCache::Off;
     else if (cache == "probes") d.hitCache = DdgiHitCache::Probes;
     else if (cache == "all") d.hitCache = DdgiHitCache::All;

@@ -51,8 +51,8 @@ struct DdgiDesc {
     bool scroll = false;          // camera-centred volume(s) scrolling in whole cells
     DdgiDirectLight directLight = DdgiDirectLight::ShadowRays;
     int occlusionStride = 4;      // occlusion probes: shadow rays from every n-th blend ray's hit
-    DdgiHitCache hitCache = DdgiHitCache::Off;
-    int hitCacheCells = 4;        // hit-cache cells per smallest probe spacing
+    DdgiHitCache hitCache = DdgiHitCache::All;
+    int hitCacheCells = 2;        // hit-cache cells per smallest probe spacing
     std::uint32_t seed = 1;       // random ray rotations; same seed, same frames, same result
     bool gpuBlend = true;         // blend on the GPU (GL compute) or with the CPU reference
 
