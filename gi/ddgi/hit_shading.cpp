@@ -141,7 +141,9 @@ struct ShadeContext {
     std::uint32_t frame;
     float energy;
 
-    bool quadLights;
+    // Quad-light sample points of this frame: the offset depends on probe % 7 only, so the
+    // 7 x rays points are tabulated once (empty without quad lights).
+    const std::vector<glm::vec2>& quadSamples;
 
     const ProbeSurfel* jobSurfels(std::size_t job) const { return &trace.at(probes[job], rays.fixedRays); }
     const ProbeSurfel& surfel(std::size_t h, int* ray, int* probe) const {
@@ -152,8 +154,8 @@ struct ShadeContext {
     }
     // The point on quad lights this ray's hit uses this frame (only quad lights read it).
     glm::vec2 quadSample(int ray, int probe) const {
-        if (!quadLights) return glm::vec2(0.5f);
-        return r2Sequence(int(frame) * rays.blendRays + ray, glm::vec2(0.5f) + 0.137f * float(probe % 7));
+        if (quadSamples.empty()) return glm::vec2(0.5f);
+        return quadSamples[std::size_t(probe % 7) * std::size_t(rays.blendRays) + std::size_t(ray)];
     }
 };
 
@@ -203,9 +205,14 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
     const DdgiDesc& desc = previous.field().desc();
     bool quadLights = false;
     for (const Light& l : scene.lights) quadLights |= l.type == LightType::Quad;
+    std::vector<glm::vec2> quadSamples;
+    if (quadLights)
+        for (int residue = 0; residue < 7; ++residue)
+            for (int i = 0; i < rays.blendRays; ++i)
+                quadSamples.push_back(r2Sequence(int(frame) * rays.blendRays + i, glm::vec2(0.5f) + 0.137f * float(residue)));
     const std::vector<PreparedLight> prepared = prepareLights(scene);
     const ShadeContext c{scene,  visibility, previous, rays, trace, probes, prepared, frame, desc.energyPreservation,
-                         quadLights};
+                         quadSamples};
     const glm::vec3 sky = scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f);
     const std::size_t hits = probes.size() * std::size_t(rays.blendRays);
     out.raysPerJob = rays.blendRays;
