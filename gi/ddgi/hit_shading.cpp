@@ -166,15 +166,39 @@ bool shaded(const ProbeSurfel& s) {
 
 // Evaluates each group at its representative hit: the probe gather, and in the `all` mode the
 // visibility of the first four lights.
+// Groups in the order of the probe cage (finest volume) their representative lies in: a
+// counting sort, so that consecutive gathers read the same eight probes' tiles from cache
+// instead of scattering over the atlases.
+std::vector<std::uint32_t> cageOrder(const ShadeContext& c, const HitCache& cache) {
+    const ProbeVolume& v = c.sampler.field().volumes().front();
+    const std::size_t groups = cache.groups(), cages = std::size_t(v.probeCount());
+    std::vector<std::uint32_t> cage(groups), start(cages + 1, 0), order(groups);
+    for (std::size_t g = 0; g < groups; ++g) {
+        int ray, probe;
+        glm::vec3 x = (c.surfel(cache.representative(g), &ray, &probe).position - v.origin) / v.spacing;
+        glm::ivec3 cell = glm::clamp(glm::ivec3(glm::clamp(x, glm::vec3(0.0f), glm::vec3(v.counts))), glm::ivec3(0),
+                                     v.counts - 1);
+        cage[g] = std::uint32_t(cell.x + v.counts.x * (cell.y + v.counts.y * cell.z));
+        ++start[cage[g] + 1];
+    }
+    for (std::size_t i = 0; i < cages; ++i) start[i + 1] += start[i];
+    for (std::size_t g = 0; g < groups; ++g) order[start[cage[g]]++] = std::uint32_t(g);
+    return order;
+}
+
+// Evaluates each group at its representative hit: the probe gather, and in the `all` mode the
+// visibility of the first four lights.
 void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool visibility, std::vector<glm::vec3>& irradiance,
                     std::vector<glm::vec4>& lightVisibility, std::atomic<std::int64_t>& queries) {
     const std::size_t groups = cache.groups();
     irradiance.resize(groups);
     if (visibility) lightVisibility.resize(groups);
     const int lights = std::min<int>(int(c.scene.lights.size()), 4);
+    const std::vector<std::uint32_t> order = cageOrder(c, cache);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 256), [&](const tbb::blocked_range<std::size_t>& r) {
         std::int64_t count = 0;
-        for (std::size_t g = r.begin(); g != r.end(); ++g) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            const std::size_t g = order[k];
             int ray, probe;
             const ProbeSurfel& s = c.surfel(cache.representative(g), &ray, &probe);
             irradiance[g] = c.energy > 0.0f
@@ -183,12 +207,12 @@ void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool visibilit
             if (!visibility) continue;
             glm::vec4 v(-1.0f);
             glm::vec2 u = c.quadSample(ray, probe);
-            for (int k = 0; k < lights; ++k) {
-                glm::vec3 l;
+            for (int l = 0; l < lights; ++l) {
+                glm::vec3 dir;
                 float range;
-                lightDirection(c.scene.lights[std::size_t(k)], s.position, u, &l, &range);
-                if (glm::dot(l, s.normal) <= 0.0f) continue;
-                v[k] = c.visibility.visible(k, s.position, s.normal, l, range);
+                lightDirection(c.scene.lights[std::size_t(l)], s.position, u, &dir, &range);
+                if (glm::dot(dir, s.normal) <= 0.0f) continue;
+                v[l] = c.visibility.visible(l, s.position, s.normal, dir, range);
                 ++count;
             }
             lightVisibility[g] = v;
