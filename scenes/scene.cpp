@@ -39,8 +39,9 @@ glm::vec3 Texture::sampleLinear(glm::vec2 uv) const {
     int x0 = int(std::floor(x)), y0 = int(std::floor(y));
     float fx = x - float(x0), fy = y - float(y0);
     auto texel = [&](int i, int j) {
-        i = ((i % width) + width) % width;
-        j = ((j % height) + height) % height;
+        // Lookups step at most one texel past an edge: wrap without dividing when inside.
+        if (unsigned(i) >= unsigned(width)) i = ((i % width) + width) % width;
+        if (unsigned(j) >= unsigned(height)) j = ((j % height) + height) % height;
         const std::uint8_t* p = &rgba[(std::size_t(j) * std::size_t(width) + std::size_t(i)) * 4];
         return glm::vec3(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2]));
     };
