@@ -124,27 +124,32 @@ glm::vec4 ProbeSampler::gather(const Volume& v, glm::vec3 p, glm::vec3 n, glm::v
     }
 
     const int nd = desc.distanceTexels;
+    // Divisions are the slow part: one reciprocal per length instead of one per component
+    // (results move by an ulp; the GLSL twin divides per component, parity holds at 1e-6).
+    // The octahedral encoding of the unit direction is that of the unnormalized one.
+    const float nn = n.x * n.x + n.y * n.y + n.z * n.z;
     alignas(32) float wrapWeight[kCage], r[kCage], lx[kCage], ly[kCage];
     for (int c = 0; c < kCage; ++c) {
         float ax = px[c] - p.x, ay = py[c] - p.y, az = pz[c] - p.z;
         float toLength = std::sqrt(ax * ax + ay * ay + az * az);
-        float cosine = toLength > 0.0f ? (ax / toLength) * n.x + (ay / toLength) * n.y + (az / toLength) * n.z
-                                       : n.x * n.x + n.y * n.y + n.z * n.z;
+        float cosine = toLength > 0.0f ? (ax * n.x + ay * n.y + az * n.z) / toLength : nn;
         float wrap = 0.5f * (cosine + 1.0f);
         wrapWeight[c] = wrap * wrap + 0.2f;
 
         float bx = q.x - px[c], by = q.y - py[c], bz = q.z - pz[c];
         float len = std::sqrt(bx * bx + by * by + bz * bz);
         r[c] = len;
-        float dx = len > 0.0f ? bx / len : -n.x, dy = len > 0.0f ? by / len : -n.y, dz = len > 0.0f ? bz / len : -n.z;
+        // The direction probe -> point (-n when the point sits on the probe).
+        float dx = len > 0.0f ? bx : -n.x, dy = len > 0.0f ? by : -n.y, dz = len > 0.0f ? bz : -n.z;
         // oct::tileCoordinate inline (encode, fold the lower hemisphere, to tile coordinates).
         float l1 = std::abs(dx) + std::abs(dy) + std::abs(dz);
-        float ex = l1 > 0.0f ? dx / l1 : 0.0f, ey = l1 > 0.0f ? dy / l1 : 0.0f;
-        if (dz < 0.0f && l1 > 0.0f) {
-            float fx = (1.0f - std::abs(ey)) * (ex >= 0.0f ? 1.0f : -1.0f);
-            float fy = (1.0f - std::abs(ex)) * (ey >= 0.0f ? 1.0f : -1.0f);
-            ex = fx, ey = fy;
-        }
+        float inv = l1 > 0.0f ? 1.0f / l1 : 0.0f;
+        float ex = dx * inv, ey = dy * inv;
+        float fx = (1.0f - std::abs(ey)) * (ex >= 0.0f ? 1.0f : -1.0f);
+        float fy = (1.0f - std::abs(ex)) * (ey >= 0.0f ? 1.0f : -1.0f);
+        bool fold = dz < 0.0f && l1 > 0.0f;
+        ex = fold ? fx : ex;
+        ey = fold ? fy : ey;
         lx[c] = 1.0f + std::clamp(ex * 0.5f + 0.5f, 0.0f, 1.0f) * float(nd);
         ly[c] = 1.0f + std::clamp(ey * 0.5f + 0.5f, 0.0f, 1.0f) * float(nd);
     }
