@@ -6,7 +6,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "gi/octahedral/octahedral.h"
 
 namespace voxgi {
 
@@ -30,9 +29,17 @@ std::uint64_t HitCache::key(glm::vec3 p, glm::vec3 n, float inv, float* centreDi
         if (!(std::abs(cell[a]) < float(kCellRange))) return 0;  // also NaN
         k = (k << 20) | std::uint64_t(std::int64_t(cell[a]) + kCellRange);
     }
-    glm::vec2 square = oct::encode(n) * 0.5f + 0.5f;
-    int bx = std::clamp(int(square.x * float(kNormalBins)), 0, kNormalBins - 1);
-    int by = std::clamp(int(square.y * float(kNormalBins)), 0, kNormalBins - 1);
+    // The octahedral square of n (oct::encode, with one reciprocal), cut into bins.
+    float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    float invL1 = l1 > 0.0f ? 1.0f / l1 : 0.0f;
+    float ex = n.x * invL1, ey = n.y * invL1;
+    if (n.z < 0.0f) {
+        float fx = (1.0f - std::abs(ey)) * (ex >= 0.0f ? 1.0f : -1.0f);
+        ey = (1.0f - std::abs(ex)) * (ey >= 0.0f ? 1.0f : -1.0f);
+        ex = fx;
+    }
+    int bx = std::clamp(int((ex * 0.5f + 0.5f) * float(kNormalBins)), 0, kNormalBins - 1);
+    int by = std::clamp(int((ey * 0.5f + 0.5f) * float(kNormalBins)), 0, kNormalBins - 1);
     glm::vec3 d = scaled - cell - 0.5f;
     *centreDistance2 = glm::dot(d, d);
     return (k << 4) | std::uint64_t(by * kNormalBins + bx);

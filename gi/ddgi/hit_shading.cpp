@@ -173,14 +173,16 @@ std::vector<std::uint32_t> cageOrder(const ShadeContext& c, const HitCache& cach
     const ProbeVolume& v = c.sampler.field().volumes().front();
     const std::size_t groups = cache.groups(), cages = std::size_t(v.probeCount());
     std::vector<std::uint32_t> cage(groups), start(cages + 1, 0), order(groups);
-    for (std::size_t g = 0; g < groups; ++g) {
-        int ray, probe;
-        glm::vec3 x = (c.surfel(cache.representative(g), &ray, &probe).position - v.origin) / v.spacing;
-        glm::ivec3 cell = glm::clamp(glm::ivec3(glm::clamp(x, glm::vec3(0.0f), glm::vec3(v.counts))), glm::ivec3(0),
-                                     v.counts - 1);
-        cage[g] = std::uint32_t(cell.x + v.counts.x * (cell.y + v.counts.y * cell.z));
-        ++start[cage[g] + 1];
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t g = r.begin(); g != r.end(); ++g) {
+            int ray, probe;
+            glm::vec3 x = (c.surfel(cache.representative(g), &ray, &probe).position - v.origin) / v.spacing;
+            glm::ivec3 cell = glm::clamp(glm::ivec3(glm::clamp(x, glm::vec3(0.0f), glm::vec3(v.counts))),
+                                         glm::ivec3(0), v.counts - 1);
+            cage[g] = std::uint32_t(cell.x + v.counts.x * (cell.y + v.counts.y * cell.z));
+        }
+    });
+    for (std::size_t g = 0; g < groups; ++g) ++start[cage[g] + 1];
     for (std::size_t i = 0; i < cages; ++i) start[i + 1] += start[i];
     for (std::size_t g = 0; g < groups; ++g) order[start[cage[g]]++] = std::uint32_t(g);
     return order;
