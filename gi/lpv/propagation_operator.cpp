@@ -87,6 +87,7 @@ public:
         const PropagationKernel& kernel = propagationKernel();
         const std::size_t count = std::size_t(n_ + 1) * std::size_t(n_ + 1) * std::size_t(n_ + 1);
         std::vector<std::vector<FaceRecord>> slices(std::size_t(n_ + 1));
+        for (auto& slice : slices) slice.reserve(std::size_t(3 * (n_ + 1) * (n_ + 1)) / 4);
         for (int k = 0; k < 3; ++k) index_[k].assign(count, -1);
         // Corners holding a blocker: most faces of a cascade have none and are skipped on these.
         std::vector<std::uint8_t> blocks(count);
@@ -120,43 +121,33 @@ public:
                         const float flux = b.x * (4.0f * sh::kPi * sh::kY00);
                         r.reflects = bounces && flux > 1e-12f && r.albedo != glm::vec3(0.0f);
                         if (r.reflects) r.shape = reflectionShape(b, flux);
-                        index_[k][i] = std::int32_t(local.size());  // slice-local for now
+                        index_[k][i] = std::int32_t(local.size());
                         local.push_back(r);
                     }
                 }
         });
-        std::vector<std::int32_t> base(slices.size());
-        std::size_t total = 0;
-        for (std::size_t z = 0; z < slices.size(); ++z) {
-            base[z] = std::int32_t(total);
-            total += slices[z].size();
-        }
-        records_.reserve(total);
-        for (auto& slice : slices) records_.insert(records_.end(), slice.begin(), slice.end());
-        tbb::parallel_for(0, n_ + 1, [&](int z) {
-            const std::size_t from = indexOf({0, 0, z}), to = indexOf({0, 0, z + 1});
-            for (int k = 0; k < 3; ++k)
-                for (std::size_t i = from; i < to; ++i)
-                    if (index_[k][i] >= 0) index_[k][i] += base[std::size_t(z)];
-        });
+        // Index entries stay slice-local: a face's slice is its z, known at every lookup.
+        records_ = std::move(slices);
     }
 
     // The faces between `cell` and its neighbour at -e_k (low) or +e_k (high), or null where
     // nothing blocks.
-    const FaceRecord* lowSide(glm::ivec3 cell, int k) const { return record(index_[k][indexOf(cell)]); }
+    const FaceRecord* lowSide(glm::ivec3 cell, int k) const { return record(index_[k][indexOf(cell)], cell.z); }
     const FaceRecord* highSide(glm::ivec3 cell, int k) const {
         cell[k] += 1;
-        return record(index_[k][indexOf(cell)]);
+        return record(index_[k][indexOf(cell)], cell.z);
     }
 
 private:
     std::size_t indexOf(glm::ivec3 c) const {
         return (std::size_t(c.z) * std::size_t(n_ + 1) + std::size_t(c.y)) * std::size_t(n_ + 1) + std::size_t(c.x);
     }
-    const FaceRecord* record(std::int32_t i) const { return i < 0 ? nullptr : &records_[std::size_t(i)]; }
+    const FaceRecord* record(std::int32_t i, int z) const {
+        return i < 0 ? nullptr : &records_[std::size_t(z)][std::size_t(i)];
+    }
     int n_;
     std::vector<std::int32_t> index_[3];
-    std::vector<FaceRecord> records_;
+    std::vector<std::vector<FaceRecord>> records_;  // per slice z
 };
 
 }  // namespace
@@ -164,17 +155,20 @@ private:
 PropagationOperator::PropagationOperator(const BlockerVolume& gv, const CascadeGrid& grid,
                                          const PropagationOptions& opt)
     : layout(grid.resolution) {
-    occluded.assign(layout.runCount() * 6, kOpen);
-    bounce.assign(layout.runCount(), -1);
+    pass.assign(layout.runCount() * 6, nullptr);
+    bounce.assign(layout.runCount(), nullptr);
     if (!opt.occlusion || gv.blocker.empty()) return;
     const FaceTable faces(gv, opt.bounces);
     const int n = grid.resolution;
-    // Rows of runs are built in parallel into their own pools, then concatenated.
-    std::vector<std::vector<float>> passSlices(std::size_t(n) * std::size_t(n)), bounceSlices(passSlices.size());
+    // Rows of runs are built in parallel into their own pools; pointers are taken once a row's
+    // pool is complete.
+    passRows_.resize(std::size_t(n) * std::size_t(n));
+    bounceRows_.resize(passRows_.size());
     tbb::parallel_for(0, n * n, [&](int yz) {
         const int y = yz % n, z = yz / n;
-        auto& passLocal = passSlices[std::size_t(yz)];
-        auto& bounceLocal = bounceSlices[std::size_t(yz)];
+        auto& passLocal = passRows_[std::size_t(yz)];
+        auto& bounceLocal = bounceRows_[std::size_t(yz)];
+        std::vector<std::pair<std::size_t, std::size_t>> passAt, bounceAt;  // (slot, offset)
         for (int rx = 0; rx < layout.runsX; ++rx) {
             const std::size_t run = layout.run(rx, y, z);
             const FaceRecord* gatherFace[6][kLanes] = {};
@@ -211,16 +205,16 @@ PropagationOperator::PropagationOperator(const BlockerVolume& gv, const CascadeG
             }
             for (int a = 0; a < 6; ++a) {
                 if (!anyOccluded[a]) continue;
-                occluded[run * 6 + std::size_t(a)] = std::int32_t(passLocal.size());
                 const std::size_t at = passLocal.size();
+                passAt.emplace_back(run * 6 + std::size_t(a), at);
                 passLocal.resize(at + 5 * kLanes, 0.0f);
                 for (int lane = 0; lane < kLanes; ++lane)
                     for (int f = 0; f < 5; ++f)
                         passLocal[at + f * kLanes + lane] = gatherFace[a][lane] ? 1.0f - gatherFace[a][lane]->beta[a % 2][f] : 1.0f;
             }
             if (!anyBounce) continue;
-            bounce[run] = std::int32_t(bounceLocal.size());
             const std::size_t at = bounceLocal.size();
+            bounceAt.emplace_back(run, at);
             bounceLocal.resize(at + kBounceFloats, 0.0f);
             for (int lane = 0; lane < kLanes; ++lane) {
                 if (!bounces[lane]) continue;
@@ -230,26 +224,9 @@ PropagationOperator::PropagationOperator(const BlockerVolume& gv, const CascadeG
                             bounceLocal[at + std::size_t(((c * 4 + col) * 4 + row) * kLanes + lane)] = matrices[lane][c][col][row];
             }
         }
+        for (const auto& [slot, offset] : passAt) pass[slot] = passLocal.data() + offset;
+        for (const auto& [slot, offset] : bounceAt) bounce[slot] = bounceLocal.data() + offset;
     });
-    // Rebase the row-local offsets onto the concatenated pools.
-    std::size_t passTotal = 0, bounceTotal = 0;
-    for (std::size_t s = 0; s < passSlices.size(); ++s) {
-        passTotal += passSlices[s].size();
-        bounceTotal += bounceSlices[s].size();
-    }
-    passPool.reserve(passTotal);
-    bouncePool.reserve(bounceTotal);
-    for (int yz = 0; yz < n * n; ++yz) {
-        const auto passBase = std::int32_t(passPool.size()), bounceBase = std::int32_t(bouncePool.size());
-        for (int rx = 0; rx < layout.runsX; ++rx) {
-            const std::size_t run = layout.run(rx, yz % n, yz / n);
-            for (std::size_t a = 0; a < 6; ++a)
-                if (occluded[run * 6 + a] != kOpen) occluded[run * 6 + a] += passBase;
-            if (bounce[run] >= 0) bounce[run] += bounceBase;
-        }
-        passPool.insert(passPool.end(), passSlices[std::size_t(yz)].begin(), passSlices[std::size_t(yz)].end());
-        bouncePool.insert(bouncePool.end(), bounceSlices[std::size_t(yz)].begin(), bounceSlices[std::size_t(yz)].end());
-    }
 }
 
 }  // namespace voxgi::lpv_detail

@@ -78,7 +78,7 @@ const Constants& constants() {
 
 // o += the light arriving along axis A from the source cells at `src` (colour channel 0;
 // channel i at src + i * stride); `pass` is null for an open face, else the 5 faces' pass
-// factors (see PropagationOperator::occluded).
+// factors (see PropagationOperator::pass).
 template <int A>
 VOXGI_INLINE void gatherAxis(const AxisConstants& K, const float* src, std::size_t stride, const float* pass,
                              v8 o[4]) {
@@ -125,11 +125,8 @@ VOXGI_INLINE bool brickKernel(const PropagationOperator& op, const SoaLight& in,
         for (int y = brick.y * kLanes; y < y1; ++y) {
             const std::size_t i = L.index(brick.x * kLanes, y, z);
             const std::size_t run = L.run(brick.x, y, z);
-            const std::int32_t* occ = &op.occluded[run * 6];
-            const float* pass[6];
-            for (int a = 0; a < 6; ++a)
-                pass[a] = occ[a] == PropagationOperator::kOpen ? nullptr : &op.passPool[std::size_t(occ[a])];
-            const float* bounce = op.bounce[run] < 0 ? nullptr : &op.bouncePool[std::size_t(op.bounce[run])];
+            const float* const* pass = &op.pass[run * 6];
+            const float* bounce = op.bounce[run];
             for (int c = 0; c < 3; ++c) {
                 const float* base = in.channel(4 * c) + i;
                 v8 o[4] = {};

@@ -63,17 +63,20 @@ struct SoaLight {
 };
 
 struct PropagationOperator {
-    static constexpr std::int32_t kOpen = -1;
     SoaLayout layout;
-    // [run * 6 + axis] -> offset in passPool of 5 faces x kLanes pass factors 1 - beta_f, or
-    // kOpen when no lane of the run has a blocker on that side.
-    std::vector<std::int32_t> occluded;
-    std::vector<float> passPool;
-    // [run] -> offset in bouncePool of kBounceFloats (colour, column, row, lane), or -1.
-    std::vector<std::int32_t> bounce;
-    std::vector<float> bouncePool;
+    // [run * 6 + axis] -> 5 faces x kLanes pass factors 1 - beta_f, or null when no lane of the
+    // run has a blocker on that side.
+    std::vector<const float*> pass;
+    // [run] -> kBounceFloats (colour, column, row, lane) bounce matrices, or null.
+    std::vector<const float*> bounce;
 
     PropagationOperator(const BlockerVolume& geometry, const CascadeGrid& grid, const PropagationOptions& options);
+    PropagationOperator(const PropagationOperator&) = delete;
+    PropagationOperator& operator=(const PropagationOperator&) = delete;
+
+private:
+    // The storage `pass` and `bounce` point into, one pool per row of runs (built in parallel).
+    std::vector<std::vector<float>> passRows_, bounceRows_;
 };
 
 // One step for the cells of the 8^3 brick `brick` (in bricks): out = transfer(in), acc += out.
