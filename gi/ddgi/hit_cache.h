@@ -50,9 +50,9 @@ private:
     void reset(std::size_t capacity);
     // Inserts the hit into its key's slot; false when the table is too full (the caller grows it).
     bool insert(std::uint64_t key, std::uint64_t score, std::uint32_t* slot);
-    void collect();
+    void collect();  // slots in use -> dense group indices and representatives
     std::size_t home(std::uint64_t key) const;  // the key's first slot
-    void prefetch(std::uint64_t key) const { __builtin_prefetch(&slots_[home(key)]); }  // slots in use -> dense group indices and representatives
+    void prefetch(std::uint64_t key) const { __builtin_prefetch(&slots_[home(key)]); }
 
     // Key and best candidate share a cache line: one miss per insert.
     struct alignas(16) Slot {

@@ -7,7 +7,6 @@
 
 #include <tbb/parallel_for.h>
 
-
 #include "gi/lpv/detail/propagation_soa.h"
 #include "gi/sh/sh.h"
 
@@ -169,7 +168,7 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
         std::fill(w.pong.data.begin(), w.pong.data.end(), 0.0f);
     }
     w.ping.fromVolume(injected);
-    w.acc.fromVolume(injected);
+    w.acc.data = w.ping.data;  // accumulated starts as the injected light
 
     const BrickGrid bricks(layout);
     // Which bricks of the input hold light.

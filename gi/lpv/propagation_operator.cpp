@@ -87,7 +87,6 @@ public:
         const PropagationKernel& kernel = propagationKernel();
         const std::size_t count = std::size_t(n_ + 1) * std::size_t(n_ + 1) * std::size_t(n_ + 1);
         std::vector<std::vector<FaceRecord>> slices(std::size_t(n_ + 1));
-        for (auto& slice : slices) slice.reserve(std::size_t(3 * (n_ + 1) * (n_ + 1)) / 4);
         for (int k = 0; k < 3; ++k) index_[k].assign(count, -1);
         // Corners holding a blocker: most faces of a cascade have none and are skipped on these.
         std::vector<std::uint8_t> blocks(count);
