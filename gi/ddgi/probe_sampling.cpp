@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "gi/octahedral/octahedral.h"
 
@@ -66,7 +67,21 @@ glm::vec4 bilinearAt(const glm::vec4* q, int tile, float tx, float ty) {
 
 }  // namespace
 
-ProbeSampler::ProbeSampler(const ProbeField& field) : field_(field) {
+bool samplingPathSupported(SamplingPath path) {
+#if defined(__x86_64__)
+    if (path == SamplingPath::Avx2) return __builtin_cpu_supports("avx2");
+#endif
+    return path == SamplingPath::Scalar;
+}
+
+SamplingPath bestSamplingPath() {
+    static const SamplingPath best =
+        samplingPathSupported(SamplingPath::Avx2) ? SamplingPath::Avx2 : SamplingPath::Scalar;
+    return best;
+}
+
+ProbeSampler::ProbeSampler(const ProbeField& field, SamplingPath path) : field_(field), path_(path) {
+    if (!samplingPathSupported(path)) throw std::logic_error("probe sampling: path not supported by this CPU");
     const int tileD = oct::tileSize(field.desc().distanceTexels), tileI = oct::tileSize(field.desc().irradianceTexels);
     for (const ProbeVolume& pv : field.volumes()) {
         Volume v;
@@ -75,6 +90,13 @@ ProbeSampler::ProbeSampler(const ProbeField& field) : field_(field) {
         v.spacing = pv.spacing;
         v.biasScale = pv.minSpacing();
         v.first = int(probes_.size());
+        for (int c = 0; c < kCage; ++c) {
+            glm::ivec3 step(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+            glm::bvec3 inside = glm::lessThan(step, pv.counts);
+            glm::ivec3 s = glm::ivec3(inside) * step;
+            v.cornerOffset[c] = s.x + pv.counts.x * (s.y + pv.counts.y * s.z);
+            v.cornerInside[c] = glm::all(inside) ? 1.0f : 0.0f;
+        }
         volumes_.push_back(v);
         for (int z = 0; z < pv.counts.z; ++z)
             for (int y = 0; y < pv.counts.y; ++y)
@@ -203,7 +225,13 @@ glm::vec4 ProbeSampler::gather(const Volume& v, glm::vec3 p, glm::vec3 n, glm::v
 
 glm::vec3 ProbeSampler::volumeIrradiance(int vi, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer, float* weightSum) const {
     float wsum = 0.0f;
-    glm::vec4 mean = gather<false>(volumes_[std::size_t(vi)], p, n, toViewer, &wsum);
+    const Volume& v = volumes_[std::size_t(vi)];
+#if defined(__x86_64__)
+    glm::vec4 mean = path_ == SamplingPath::Avx2 ? gatherAvx2<false>(v, p, n, toViewer, &wsum)
+                                                 : gather<false>(v, p, n, toViewer, &wsum);
+#else
+    glm::vec4 mean = gather<false>(v, p, n, toViewer, &wsum);
+#endif
     if (weightSum) *weightSum = wsum;
     if (!(wsum > 0.0f)) return glm::vec3(0.0f);
     glm::vec3 e(mean);
@@ -238,7 +266,13 @@ glm::vec3 ProbeSampler::irradiance(glm::vec3 p, glm::vec3 n, glm::vec3 toViewer)
 glm::vec4 ProbeSampler::occlusion(glm::vec3 p, glm::vec3 n) const {
     if (field_.occlusion.texels.empty()) return glm::vec4(1.0f);
     auto perVolume = [&](int v) {
-        glm::vec4 value = gather<true>(volumes_[std::size_t(v)], p, n, n, nullptr);
+        const Volume& volume = volumes_[std::size_t(v)];
+#if defined(__x86_64__)
+        glm::vec4 value = path_ == SamplingPath::Avx2 ? gatherAvx2<true>(volume, p, n, n, nullptr)
+                                                      : gather<true>(volume, p, n, n, nullptr);
+#else
+        glm::vec4 value = gather<true>(volume, p, n, n, nullptr);
+#endif
         // No probe sees p: assume lit rather than invent a shadow.
         return value.x < 0.0f ? glm::vec4(1.0f) : value;
     };

@@ -20,13 +20,22 @@ float chebyshevVisibility(float r, float mean, float meanSquare);
 // 0 outside, 1 more than one cell inside the volume, linear across the outermost cell.
 float volumeBlendWeight(const ProbeVolume& volume, glm::vec3 p);
 
+// How a ProbeSampler evaluates the eight cage probes: the portable reference, or all eight in
+// one AVX2 register (x86-64 CPUs with AVX2, detected at run time). Their cage weights are
+// identical; the weighted sums differ by rounding (tests/test_ddgi_sampling.cpp).
+enum class SamplingPath { Scalar, Avx2 };
+bool samplingPathSupported(SamplingPath path);
+SamplingPath bestSamplingPath();
+
 // The sampling functions over a snapshot of a field: per-probe positions, states and atlas
 // tile addresses are resolved once (in logical probe order, so the cage needs no toroidal
 // arithmetic) and the eight cage probes are evaluated lane by lane. Borrows the field, which
 // must not change while the sampler is used (ray shading samples the previous frame's field).
 class ProbeSampler {
 public:
-    explicit ProbeSampler(const ProbeField& field);
+    explicit ProbeSampler(const ProbeField& field) : ProbeSampler(field, bestSamplingPath()) {}
+    // Throws std::logic_error when this CPU cannot run `path`.
+    ProbeSampler(const ProbeField& field, SamplingPath path);
 
     // Irradiance (W/m^2) at p for unit normal n, seen from unit direction `toViewer`. Zero
     // where no probe contributes (every cage probe off).
@@ -39,6 +48,7 @@ public:
     glm::vec4 occlusion(glm::vec3 p, glm::vec3 n) const;
 
     const ProbeField& field() const { return field_; }
+    SamplingPath path() const { return path_; }
 
 private:
     struct CageProbe {
@@ -52,13 +62,21 @@ private:
         glm::vec3 origin{0.0f}, spacing{1.0f};
         float biasScale = 1.0f;  // smallest spacing
         int first = 0;           // first CageProbe of the volume
+        // Cage corner c relative to the base probe, and 0 where it lies outside the volume (a
+        // dimension of one probe), where it then repeats its inside neighbour.
+        int cornerOffset[8] = {};
+        float cornerInside[8] = {};
     };
     template <bool kOcclusion>
     glm::vec4 gather(const Volume& v, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer, float* weightSum) const;
+    // gather on eight AVX2 lanes (probe_sampling_avx2.cpp); call only where the CPU has AVX2.
+    template <bool kOcclusion>
+    glm::vec4 gatherAvx2(const Volume& v, glm::vec3 p, glm::vec3 n, glm::vec3 toViewer, float* weightSum) const;
 
     const ProbeField& field_;
     std::vector<Volume> volumes_;
     std::vector<CageProbe> probes_;
+    SamplingPath path_ = SamplingPath::Scalar;
 };
 
 // One-off lookups (build a sampler per call: O(probes); use a ProbeSampler for many points).
