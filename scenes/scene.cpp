@@ -17,8 +17,8 @@ glm::mat4 Camera::projection() const {
 }
 
 namespace {
-float srgbToLinear(std::uint8_t v) {
-    // Tabulated: a bilinear lookup decodes 12 values, and the path tracer does millions.
+// Tabulated: a bilinear lookup decodes 12 values, and the path tracer does millions.
+const std::array<float, 256>& srgbTable() {
     static const std::array<float, 256> table = [] {
         std::array<float, 256> t{};
         for (int i = 0; i < 256; ++i) {
@@ -27,27 +27,49 @@ float srgbToLinear(std::uint8_t v) {
         }
         return t;
     }();
-    return table[v];
+    return table;
 }
 }  // namespace
 
-glm::vec3 Texture::sampleLinear(glm::vec2 uv) const {
+float srgbToLinear(std::uint8_t code) { return srgbTable()[code]; }
+
+std::uint8_t linearToSrgb(float linear) {
+    // The code whose decoded value is nearest: the table is increasing, so search it and
+    // compare the two neighbours (round trips are exact: linearToSrgb(srgbToLinear(c)) == c).
+    const std::array<float, 256>& t = srgbTable();
+    if (!(linear > 0.0f)) return 0;
+    if (linear >= 1.0f) return 255;
+    std::size_t hi = std::size_t(std::lower_bound(t.begin(), t.end(), linear) - t.begin());
+    if (hi == 0) return 0;
+    return std::uint8_t(linear - t[hi - 1] <= t[hi] - linear ? hi - 1 : hi);
+}
+
+glm::vec3 sampleSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv) {
     if (width <= 0 || height <= 0) return glm::vec3(1.0f);
     // Texel centres at (i + 0.5) / width; rows stored top first, v = 0 is the bottom.
     float x = (uv.x - std::floor(uv.x)) * float(width) - 0.5f;
     float y = (1.0f - (uv.y - std::floor(uv.y))) * float(height) - 0.5f;
     int x0 = int(std::floor(x)), y0 = int(std::floor(y));
     float fx = x - float(x0), fy = y - float(y0);
+    const std::array<float, 256>& decode = srgbTable();
     auto texel = [&](int i, int j) {
-        // Lookups step at most one texel past an edge: wrap without dividing when inside.
+        // Lookups step at most one texel past an edge, so one add or subtract wraps them (small
+        // mip levels wrap on most lookups: no division there); non-finite uvs take the modulo.
+        if (unsigned(i) >= unsigned(width)) i = i < 0 ? i + width : i - width;
+        if (unsigned(j) >= unsigned(height)) j = j < 0 ? j + height : j - height;
         if (unsigned(i) >= unsigned(width)) i = ((i % width) + width) % width;
         if (unsigned(j) >= unsigned(height)) j = ((j % height) + height) % height;
         const std::uint8_t* p = &rgba[(std::size_t(j) * std::size_t(width) + std::size_t(i)) * 4];
-        return glm::vec3(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2]));
+        return glm::vec3(decode[p[0]], decode[p[1]], decode[p[2]]);
     };
     glm::vec3 a = glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx);
     glm::vec3 b = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx);
     return glm::mix(a, b, fy);
+}
+
+glm::vec3 Texture::sampleLinear(glm::vec2 uv) const {
+    if (rgba.size() < std::size_t(width) * std::size_t(height) * 4) return glm::vec3(1.0f);
+    return sampleSrgbBilinear(rgba.data(), width, height, uv);
 }
 
 Bounds Scene::bounds() const {

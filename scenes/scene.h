@@ -66,6 +66,12 @@ struct Texture {
     glm::vec3 sampleLinear(glm::vec2 uv) const;
 };
 
+// The lookup behind Texture::sampleLinear, over any sRGB RGBA8 image (mip levels included).
+glm::vec3 sampleSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv);
+// sRGB 8-bit code to linear, and linear [0,1] to the nearest sRGB code.
+float srgbToLinear(std::uint8_t code);
+std::uint8_t linearToSrgb(float linear);
+
 struct Material {
     std::string name;
     glm::vec3 albedo{0.8f};      // linear base colour (multiplied by the texture if any)

@@ -3,15 +3,24 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
+#include <vector>
 
 #include <embree3/rtcore.h>
+#include <tbb/parallel_for.h>
+
+#include "gi/raytrace/texture_pyramid.h"
 
 namespace voxgi {
 
 struct RayTracer::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
+    // Built on the first cone lookup: most users (the path tracer) never need them.
+    std::once_flag conesReady;
+    std::vector<std::unique_ptr<TexturePyramid>> pyramids;  // per texture
+    std::vector<std::vector<float>> uvDensity;  // per mesh with uvs: 0.5 log2(uv area / world area) per triangle
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -117,12 +126,56 @@ RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) co
     return hit;
 }
 
+float RayTracer::nearestHit(glm::vec3 o, glm::vec3 d) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = makeRay(o, d, 0.0f, 1e30f);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &context, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? INFINITY : rh.ray.tfar;
+}
+
 bool RayTracer::occluded(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray = makeRay(o, d, tMin, tMax);
     rtcOccluded1(impl_->scene, &context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+void RayTracer::prepareCones() const {
+    std::call_once(impl_->conesReady, [&] {
+        impl_->pyramids.resize(scene_.textures.size());
+        impl_->uvDensity.resize(scene_.meshes.size());
+        tbb::parallel_for(std::size_t(0), scene_.textures.size(), [&](std::size_t i) {
+            impl_->pyramids[i] = std::make_unique<TexturePyramid>(scene_.textures[i]);
+        });
+        tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
+            const Mesh& mesh = scene_.meshes[m];
+            if (mesh.uvs.empty()) return;
+            std::vector<float>& d = impl_->uvDensity[m];
+            d.resize(mesh.triangleCount());
+            for (std::size_t t = 0; t < d.size(); ++t) {
+                const std::uint32_t* tri = &mesh.indices[3 * t];
+                d[t] = triangleTexelDensity(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]],
+                                            mesh.uvs[tri[0]], mesh.uvs[tri[1]], mesh.uvs[tri[2]], 1, 1);
+            }
+        });
+    });
+}
+
+glm::vec3 RayTracer::albedoInCone(const RayHit& hit, glm::vec3 direction, float spread) const {
+    const Material& m = scene_.materials[hit.material];
+    if (m.albedoTexture < 0) return m.albedo;
+    prepareCones();
+    const TexturePyramid& pyramid = *impl_->pyramids[std::size_t(m.albedoTexture)];
+    const std::vector<float>& density = impl_->uvDensity[hit.mesh];
+    if (density.empty() || pyramid.levels() == 0) return m.albedo * scene_.textures[std::size_t(m.albedoTexture)].sampleLinear(hit.uv);
+    // The per-triangle constant is taken over uv space: add this texture's texel count.
+    float lod = rayConeLod(density[hit.triangle] + pyramid.log2Texels(), hit.t * spread, glm::dot(hit.geometricNormal, direction));
+    return m.albedo * pyramid.sample(hit.uv, lod);
 }
 
 glm::vec3 RayTracer::albedoAt(const RayHit& hit) const {

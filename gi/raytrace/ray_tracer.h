@@ -33,14 +33,21 @@ public:
 
     RayHit intersect(glm::vec3 origin, glm::vec3 direction, float tMin = 0.0f, float tMax = 1e30f) const;
     bool occluded(glm::vec3 origin, glm::vec3 direction, float tMin, float tMax) const;
+    // The distance to the nearest hit (infinity for a miss) and nothing else: Embree's own cost
+    // of a ray, without the hit record intersect() builds (benchmarks compare against it).
+    float nearestHit(glm::vec3 origin, glm::vec3 direction) const;
 
     // Material albedo at a hit, times the diffuse texture when there is one.
     glm::vec3 albedoAt(const RayHit& hit) const;
+    // The same averaged over the footprint of a ray cone of apex angle `spread` (radians) that
+    // travelled hit.t along unit `direction` (texture mip pyramids, gi/raytrace/texture_pyramid.h).
+    glm::vec3 albedoInCone(const RayHit& hit, glm::vec3 direction, float spread) const;
     const Scene& scene() const { return scene_; }
     // Triangles Embree accepted (NaN or degenerate ones are left out).
     std::size_t triangleCount() const { return triangles_; }
 
 private:
+    void prepareCones() const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
     const Scene& scene_;
