@@ -2,6 +2,7 @@
 // (no shading), per-stage timings (trace, shade, blend, border, classify, sample), the update
 // speed-up that probe culling gives, for the Cornell box and Sibenik by default.
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <cstdlib>
 #include <chrono>
@@ -45,6 +46,7 @@ double median(std::vector<double> v) {
 
 struct StageMedians {
     double trace = 0, shade = 0, blend = 0, border = 0, classify = 0;
+    double merge = 0, groups = 0, hits = 0;  // parts of shade
     double rays = 0;     // rays traced per frame (median)
     double update() const { return trace + shade + blend + border + classify; }
 };
@@ -86,9 +88,12 @@ struct ModeRuns {
 };
 
 StageMedians runFrames(DdgiSystem& ddgi, glm::vec3 eye, int frames, BlendBackend* backend) {
-    std::vector<double> t, s, b, bo, c, r;
+    std::vector<double> t, s, b, bo, c, r, sm, sg, sh;
     for (int f = 0; f < frames; ++f) {
         DdgiFrameStats st = ddgi.update(eye, backend);
+        sm.push_back(st.shadeMergeMs);
+        sg.push_back(st.shadeGroupsMs);
+        sh.push_back(st.shadeHitsMs);
         t.push_back(st.traceMs);
         s.push_back(st.shadeMs);
         b.push_back(st.blendMs);
@@ -96,13 +101,14 @@ StageMedians runFrames(DdgiSystem& ddgi, glm::vec3 eye, int frames, BlendBackend
         c.push_back(st.classifyMs);
         r.push_back(double(st.raysTraced));
     }
-    return {median(t), median(s), median(b), median(bo), median(c), median(r)};
+    return {median(t), median(s), median(b), median(bo), median(c), median(sm), median(sg), median(sh), median(r)};
 }
 
 // Embree alone: the same probe origins and directions (every probe, every ray of the last
 // frame's set), intersected with nothing done at the hits, chunked like traceProbes. Best of
-// `repeats`.
-double rawEmbreeMs(const DdgiSystem& ddgi, int repeats, std::int64_t* rays) {
+// `repeats`. With `hitRecord` each ray builds RayTracer::intersect's hit record (position,
+// normals, uv), which any use of a hit needs; without, it is rtcIntersect1 and nothing else.
+double rawEmbreeMs(const DdgiSystem& ddgi, int repeats, std::int64_t* rays, bool hitRecord = true) {
     const ProbeField& field = ddgi.field();
     const RaySet& set = ddgi.lastRays();
     const int probes = field.probeCount();
@@ -118,7 +124,9 @@ double rawEmbreeMs(const DdgiSystem& ddgi, int repeats, std::int64_t* rays) {
             for (int task = r.begin(); task != r.end(); ++task) {
                 int p = task / chunks, first = (task % chunks) * chunk, last = std::min(stride, first + chunk);
                 glm::vec3 o = field.probePosition(p);
-                for (int i = first; i < last; ++i) hits += ddgi.tracer().intersect(o, set.directions[std::size_t(i)]).hit;
+                for (int i = first; i < last; ++i)
+                    hits += hitRecord ? ddgi.tracer().intersect(o, set.directions[std::size_t(i)]).hit
+                                      : std::isfinite(ddgi.tracer().nearestHit(o, set.directions[std::size_t(i)]));
             }
             sink += hits;
         });
@@ -202,11 +210,12 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     runFrames(full, eye, warmup, nullptr);
     runFrames(culled, eye, warmup, nullptr);
     std::vector<StageMedians> fs, cs;
-    std::vector<double> raw;
+    std::vector<double> raw, bare;
     std::int64_t rawRays = 0;
     for (int i = 0; i < frames; ++i) {
         fs.push_back(runFrames(full, eye, 1, nullptr));
         raw.push_back(rawEmbreeMs(full, 1, &rawRays));
+        bare.push_back(rawEmbreeMs(full, 1, &rawRays, false));
         cs.push_back(runFrames(culled, eye, 1, nullptr));
     }
     auto med = [](const std::vector<StageMedians>& v) {
@@ -215,8 +224,9 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
             for (const StageMedians& s : v) x.push_back(s.*m);
             return median(x);
         };
-        return StageMedians{pick(&StageMedians::trace), pick(&StageMedians::shade), pick(&StageMedians::blend),
-                            pick(&StageMedians::border), pick(&StageMedians::classify), pick(&StageMedians::rays)};
+        return StageMedians{pick(&StageMedians::trace),  pick(&StageMedians::shade),    pick(&StageMedians::blend),
+                            pick(&StageMedians::border), pick(&StageMedians::classify), pick(&StageMedians::merge),
+                            pick(&StageMedians::groups), pick(&StageMedians::hits),     pick(&StageMedians::rays)};
     };
     StageMedians f = med(fs), c = med(cs);
     double rawMs = median(raw);
@@ -276,6 +286,8 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
 
     std::printf("Embree alone (same rays, no shading): %.2f Mrays/s (%lld rays in %.1f ms, median)\n", rawRate * 1e-6,
                 (long long)rawRays, rawMs);
+    std::printf("  (rtcIntersect1 with no hit record:  %.2f Mrays/s; the hit record takes %.0f %% of Embree alone's time)\n",
+                double(rawRays) / (median(bare) * 1e-3) * 1e-6, 100.0 * (1.0 - median(bare) / rawMs));
     std::printf("DDGI trace only:                      %.2f Mrays/s\n", traceRate * 1e-6);
     std::printf("DDGI trace + shade:                   %.2f Mrays/s = %.0f %% of Embree alone (goal >= 70 %%; hit_cache %s)\n",
                 ddgiRate * 1e-6, 100.0 * ddgiRate / rawRate,
@@ -295,8 +307,11 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     }
     std::printf("stage medians over %d frames [ms]      culling off   culling on\n", frames);
     auto row = [&](const char* name, double a, double b) { std::printf("  %-36s %10.2f %12.2f\n", name, a, b); };
-    row("trace", f.trace, c.trace);
+    row("trace (hit-cache grouping included)", f.trace, c.trace);
     row("shade (direct + previous probes)", f.shade, c.shade);
+    row("  of which merge hit-cache tables", f.merge, c.merge);
+    row("  of which evaluate cache groups", f.groups, c.groups);
+    row("  of which shade every hit", f.hits, c.hits);
     row("blend (CPU reference)", f.blend, c.blend);
     row("border (CPU reference)", f.border, c.border);
     row("classify + relocate", f.classify, c.classify);

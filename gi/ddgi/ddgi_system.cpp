@@ -35,7 +35,10 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
     auto t0 = std::chrono::steady_clock::now();
     rays_ = makeRaySet(desc, desc.seed, frame_);
     trace_.work = scheduleProbes(field, frame_);
-    traceProbes(tracer_, field, rays_, trace_);
+    // Hits are grouped for the hit cache while they are traced.
+    const bool grouping = hitCacheUsed(desc, tracer_.scene());
+    if (grouping) hitCache_.begin(hitCacheCellSize(field), std::size_t(field.probeCount()) * std::size_t(rays_.blendRays));
+    traceProbes(tracer_, field, rays_, trace_, grouping ? &hitCache_ : nullptr);
     stats.traceMs = msSince(t0);
     stats.raysTraced = trace_.raysTraced;
 
@@ -45,6 +48,8 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
     stats.probesBlended = int(blendProbes.size());
 
     t0 = std::chrono::steady_clock::now();
+    if (grouping) hitCache_.finish();
+    stats.shadeMergeMs = msSince(t0);
     // The previous frame's field, resolved once for every lookup of this frame's shading.
     ProbeSampler previous(field);
     std::unique_ptr<OcclusionProbeVisibility> occlusion;
@@ -52,8 +57,10 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
         occlusion = std::make_unique<OcclusionProbeVisibility>(previous, *shadowRays_);
     const LightVisibility& visibility = occlusion ? *occlusion : *shadowRays_;
     ShadeStats shade = shadeProbeRays(tracer_.scene(), visibility, previous, rays_, trace_, blendProbes, frame_,
-                                      &hitCache_, shaded_);
+                                      grouping ? &hitCache_ : nullptr, shaded_);
     stats.cacheGroups = shade.cacheGroups;
+    stats.shadeGroupsMs = shade.groupsMs;
+    stats.shadeHitsMs = shade.hitsMs;
     stats.cachedHits = shade.cachedHits;
     std::vector<BlendJob> jobs = makeBlendJobs(field, blendProbes, rays_.blendRays);
     if (occlusion) {

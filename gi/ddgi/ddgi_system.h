@@ -22,6 +22,8 @@ class RayTracer;
 
 struct DdgiFrameStats {
     double traceMs = 0, shadeMs = 0, blendMs = 0, borderMs = 0, classifyMs = 0;
+    // Parts of shadeMs: merging the hit-cache tables, evaluating the groups, shading each hit.
+    double shadeMergeMs = 0, shadeGroupsMs = 0, shadeHitsMs = 0;
     std::int64_t raysTraced = 0;      // probe rays (fixed + blend)
     std::int64_t shadowQueries = 0;   // shadow rays (at hits, or into the occlusion probes)
     std::int64_t cacheGroups = 0;     // hit-cache groups (probe gathers shared by nearby hits)

@@ -7,39 +7,77 @@
 // (ties to the lower hit index). That choice depends only on the set of hits, not on thread
 // timing or probe order, so the result is deterministic and the same for a scrolled volume as
 // for a fresh one. Hits on the two faces of a thin wall have opposite normals and never share.
+//
+// Hits are added while they are traced (HitCache::Writer), each thread into its own table, so
+// the grouping costs no second pass over the surfels and no cache line is shared between
+// threads; finish() merges the tables into dense groups.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <tbb/enumerable_thread_specific.h>
 
 namespace voxgi {
 
 class HitCache {
+    struct LocalTable;
+
 public:
     static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
     // Normal bins per side of the octahedral square (16 bins over the sphere).
     static constexpr int kNormalBins = 4;
 
-    // Groups `runs * runLength` hits (run r holds hits r * runLength ...);
-    // `hit(run, i, &position, &normal)` returns false for hits that must not be cached
-    // (misses, backfaces, black surfaces). Cells are `cellSize` wide.
+    HitCache();
+    ~HitCache();
+    HitCache(const HitCache&) = delete;
+    HitCache& operator=(const HitCache&) = delete;
+
+    // Starts a frame of `hits` hits (numbered 0 ... hits - 1) in cells `cellSize` wide.
+    void begin(float cellSize, std::size_t hits);
+
+    // Adds hits from one thread: one writer per task, which binds the calling thread's table.
+    // Every hit the frame's shading will ask about gets exactly one add() or skip(). A hit's
+    // table slot is prefetched when it is added and looked at a few adds later, so the cache
+    // miss overlaps with the tracing in between.
+    class Writer {
+    public:
+        explicit Writer(HitCache& cache);
+        ~Writer();  // flushes
+        Writer(const Writer&) = delete;
+        Writer& operator=(const Writer&) = delete;
+        void add(std::size_t h, glm::vec3 position, glm::vec3 normal);
+        void skip(std::size_t h) { cache_.hitId_[h] = kNone; }
+
+    private:
+        static constexpr unsigned kDelay = 8;
+        struct Pending {
+            std::uint64_t key;
+            std::uint32_t d2, hit;
+        };
+        void place(const Pending& p);
+        HitCache& cache_;
+        LocalTable& table_;
+        Pending pending_[kDelay];
+        unsigned first_ = 0, count_ = 0;
+    };
+
+    // After every add of the frame (every writer destroyed): dense groups and representatives.
+    void finish();
+
+    // begin, add every hit for which `hit(run, i, &position, &normal)` is true (hit
+    // run * runLength + i), finish.
     template <typename HitFn>
     void group(float cellSize, std::size_t runs, std::size_t runLength, HitFn&& hit);
 
     // The group of hit h (kNone: not cached) and the representative hit of a group.
     std::uint32_t groupOf(std::size_t h) const {
-        std::uint32_t slot = hitGroup_[h];
-        return slot == kNone ? kNone : slotGroup_[slot];
+        std::uint32_t id = hitId_[h];
+        return id == kNone ? kNone : idGroup_[id];
     }
     std::size_t groups() const { return representatives_.size(); }
-    // Brings the slot-to-group entry of hit h into the cache ahead of groupOf(h).
-    void prefetchGroupOf(std::size_t h) const {
-        if (hitGroup_[h] != kNone) __builtin_prefetch(&slotGroup_[hitGroup_[h]]);
-    }
     std::size_t representative(std::size_t g) const { return representatives_[g]; }
 
     // The cell-and-normal key of a point (0: outside the representable range) and its squared
@@ -47,25 +85,15 @@ public:
     static std::uint64_t key(glm::vec3 position, glm::vec3 normal, float invCellSize, float* centreDistance2);
 
 private:
-    void reset(std::size_t capacity);
-    // Inserts the hit into its key's slot; false when the table is too full (the caller grows it).
-    bool insert(std::uint64_t key, std::uint64_t score, std::uint32_t* slot);
-    void collect();  // slots in use -> dense group indices and representatives
-    std::size_t home(std::uint64_t key) const;  // the key's first slot
-    void prefetch(std::uint64_t key) const { __builtin_prefetch(&slots_[home(key)]); }
+    LocalTable& localTable();
 
-    // Key and best candidate share a cache line: one miss per insert.
-    struct alignas(16) Slot {
-        std::atomic<std::uint64_t> key;   // 0: empty
-        std::atomic<std::uint64_t> best;  // (squared distance bits << 32) | hit
-    };
-    std::size_t capacity_ = 0;
-    std::unique_ptr<Slot[]> slots_;
-    std::atomic<std::size_t> used_{0};
-    std::vector<std::uint32_t> hitGroup_;        // per hit: its slot
-    std::vector<std::uint32_t> slotGroup_;       // per slot: dense group index
-    std::vector<std::size_t> representatives_;   // per group
-    std::size_t lastGroups_ = 0;
+    float invCellSize_ = 1.0f;
+    // A key's id is the first hit that added it in some thread's table (unique, no counter).
+    std::vector<std::uint32_t> hitId_;      // per hit: the id of its key in its thread's table
+    std::vector<std::uint32_t> idBestHit_;  // per id: the candidate nearest the cell centre
+    std::vector<std::uint32_t> idGroup_;    // per id: dense group index
+    std::vector<std::size_t> representatives_;  // per group
+    tbb::enumerable_thread_specific<std::unique_ptr<LocalTable>> tables_;
 };
 
 }  // namespace voxgi

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -55,6 +56,8 @@ struct PreparedLight {
     glm::vec3 position, edgeU, edgeV, color, direction, quadNormal;
     float cosOuter = 0.0f, cosInner = 0.0f, area = 0.0f;
 
+    bool dark = false;  // no colour: never worth a shadow ray
+
     explicit PreparedLight(const Light& light)
         : type(light.type), position(light.position), edgeU(light.edgeU), edgeV(light.edgeV), color(light.color) {
         if (type == LightType::Directional || type == LightType::Spot) direction = glm::normalize(light.direction);
@@ -66,37 +69,47 @@ struct PreparedLight {
             quadNormal = light.quadNormal();
             area = light.area();
         }
+        dark = !(glm::max(color.x, glm::max(color.y, color.z)) > 0.0f);
     }
 
-    // Irradiance at (p, n) before visibility, the unit direction l toward the light and its
-    // distance (infinite for the sun). False when the light cannot contribute.
-    bool unshadowed(glm::vec3 p, glm::vec3 n, glm::vec2 quadSample, glm::vec3* e, glm::vec3* l, float* range) const {
+    // The light as seen from p before the receiver's cosine and visibility: a surface facing
+    // it receives colour * weight; l is the unit direction toward it and range its distance
+    // (infinite for the sun). False when it cannot reach p whatever the normal.
+    bool incident(glm::vec3 p, glm::vec2 quadSample, float* weight, glm::vec3* l, float* range) const {
+        if (dark) return false;
         if (type == LightType::Directional) {
             *l = -direction;
-            float c = glm::dot(n, *l);
-            if (!(c > 0.0f)) return false;
-            *e = color * c;
+            *weight = 1.0f;
             *range = INFINITY;
             return true;
         }
         glm::vec3 at = position;
-        glm::vec3 intensity = color;  // W/sr
+        float scale = 1.0f;  // intensity (W/sr) over colour
         if (type == LightType::Quad) {
             at = position + quadSample.x * edgeU + quadSample.y * edgeV;
-            intensity = color * area;
+            scale = area;
         }
         glm::vec3 toLight = at - p;
         float d2 = glm::dot(toLight, toLight);
         if (!(d2 > 1e-12f)) return false;
         float d = std::sqrt(d2);
         *l = toLight / d;
-        float c = glm::dot(n, *l);
-        if (c <= 0.0f) return false;
-        if (type == LightType::Spot) intensity *= smoothstep(cosOuter, cosInner, glm::dot(-*l, direction));
-        else if (type == LightType::Quad) intensity *= std::max(glm::dot(quadNormal, -*l), 0.0f);
-        if (glm::max(intensity.x, glm::max(intensity.y, intensity.z)) <= 0.0f) return false;
-        *e = intensity * (c / d2);
+        if (type == LightType::Spot) scale *= smoothstep(cosOuter, cosInner, glm::dot(-*l, direction));
+        else if (type == LightType::Quad) scale *= std::max(glm::dot(quadNormal, -*l), 0.0f);
+        if (!(scale > 0.0f)) return false;
+        *weight = scale / d2;
         *range = d;
+        return true;
+    }
+
+    // Irradiance at (p, n) before visibility, with l and range as above. False when the light
+    // cannot contribute.
+    bool unshadowed(glm::vec3 p, glm::vec3 n, glm::vec2 quadSample, glm::vec3* e, glm::vec3* l, float* range) const {
+        float w;
+        if (!incident(p, quadSample, &w, l, range)) return false;
+        float c = glm::dot(n, *l);
+        if (!(c > 0.0f)) return false;
+        *e = color * (w * c);
         return true;
     }
 };
@@ -146,10 +159,10 @@ struct ShadeContext {
     const std::vector<glm::vec2>& quadSamples;
 
     const ProbeSurfel* jobSurfels(std::size_t job) const { return &trace.at(probes[job], rays.fixedRays); }
+    // Hit h of the cache is ray h % blendRays of probe h / blendRays.
     const ProbeSurfel& surfel(std::size_t h, int* ray, int* probe) const {
-        std::size_t job = h / std::size_t(rays.blendRays);
-        *ray = int(h - job * std::size_t(rays.blendRays));
-        *probe = probes[job];
+        *probe = int(h / std::size_t(rays.blendRays));
+        *ray = int(h - std::size_t(*probe) * std::size_t(rays.blendRays));
         return trace.at(*probe, rays.fixedRays + *ray);
     }
     // The point on quad lights this ray's hit uses this frame (only quad lights read it).
@@ -159,13 +172,6 @@ struct ShadeContext {
     }
 };
 
-bool shaded(const ProbeSurfel& s) {
-    return !(s.distance < 0.0f) && s.distance < kMissDistance &&
-           glm::max(s.diffuseAlbedo.x, glm::max(s.diffuseAlbedo.y, s.diffuseAlbedo.z)) > 0.0f;
-}
-
-// Evaluates each group at its representative hit: the probe gather, and in the `all` mode the
-// visibility of the first four lights.
 // Groups in the order of the probe cage (finest volume) their representative lies in: a
 // counting sort, so that consecutive gathers read the same eight probes' tiles from cache
 // instead of scattering over the atlases.
@@ -188,14 +194,24 @@ std::vector<std::uint32_t> cageOrder(const ShadeContext& c, const HitCache& cach
     return order;
 }
 
-// Evaluates each group at its representative hit: the probe gather, and in the `all` mode the
-// visibility of the first four lights.
-void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool visibility, std::vector<glm::vec3>& irradiance,
-                    std::vector<glm::vec4>& lightVisibility, std::atomic<std::int64_t>& queries) {
+// What a group shares, per group: the probe irradiance and, in the `all` mode, per light (the
+// first kSharedLights) the vector weight * visibility * l seen from the representative, so a
+// hit adds colour * max(n . v, 0) with its own normal. A light the representative faced away
+// from has no tested visibility: w = 1 marks it, and a hit that faces it tests it itself.
+constexpr int kSharedLights = 4;
+struct GroupValues {
+    int stride = 1;                 // vec4s per group: irradiance, then the shared lights
+    int lights = 0;                 // shared lights
+    std::vector<glm::vec4> values;  // group * stride + ...
+};
+
+// Evaluates each group at its representative hit.
+void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool shareLights, GroupValues& out,
+                    std::atomic<std::int64_t>& queries) {
     const std::size_t groups = cache.groups();
-    irradiance.resize(groups);
-    if (visibility) lightVisibility.resize(groups);
-    const int lights = std::min<int>(int(c.scene.lights.size()), 4);
+    out.lights = shareLights ? std::min<int>(int(c.lights.size()), kSharedLights) : 0;
+    out.stride = 1 + out.lights;
+    out.values.resize(groups * std::size_t(out.stride));
     const std::vector<std::uint32_t> order = cageOrder(c, cache);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 256), [&](const tbb::blocked_range<std::size_t>& r) {
         std::int64_t count = 0;
@@ -203,21 +219,24 @@ void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool visibilit
             const std::size_t g = order[k];
             int ray, probe;
             const ProbeSurfel& s = c.surfel(cache.representative(g), &ray, &probe);
-            irradiance[g] = c.energy > 0.0f
-                                ? c.energy * c.sampler.irradiance(s.position, s.normal, -c.rays.blendDirection(ray))
-                                : glm::vec3(0.0f);
-            if (!visibility) continue;
-            glm::vec4 v(-1.0f);
-            glm::vec2 u = c.quadSample(ray, probe);
-            for (int l = 0; l < lights; ++l) {
+            glm::vec4* v = &out.values[g * std::size_t(out.stride)];
+            v[0] = glm::vec4(c.energy > 0.0f
+                                 ? c.energy * c.sampler.irradiance(s.position, s.normal, -c.rays.blendDirection(ray))
+                                 : glm::vec3(0.0f),
+                             0.0f);
+            const glm::vec2 u = c.quadSample(ray, probe);
+            for (int l = 0; l < out.lights; ++l) {
                 glm::vec3 dir;
-                float range;
-                lightDirection(c.scene.lights[std::size_t(l)], s.position, u, &dir, &range);
-                if (glm::dot(dir, s.normal) <= 0.0f) continue;
-                v[l] = c.visibility.visible(l, s.position, s.normal, dir, range);
+                float weight, range;
+                v[1 + l] = glm::vec4(0.0f);
+                if (!c.lights[std::size_t(l)].incident(s.position, u, &weight, &dir, &range)) continue;
+                if (!(glm::dot(dir, s.normal) > 0.0f)) {
+                    v[1 + l] = glm::vec4(weight * dir, 1.0f);
+                    continue;
+                }
                 ++count;
+                v[1 + l] = glm::vec4(weight * c.visibility.visible(l, s.position, s.normal, dir, range) * dir, 0.0f);
             }
-            lightVisibility[g] = v;
         }
         queries += count;
     });
@@ -225,9 +244,31 @@ void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool visibilit
 
 }  // namespace
 
+bool hitCacheUsed(const DdgiDesc& desc, const Scene& scene) {
+    if (desc.hitCache == DdgiHitCache::Off) return false;
+    return desc.energyPreservation > 0.0f || (desc.hitCache == DdgiHitCache::All && !scene.lights.empty());
+}
+
+float hitCacheCellSize(const ProbeField& field) {
+    float cell = field.volumes().front().minSpacing();
+    for (const ProbeVolume& v : field.volumes()) cell = std::min(cell, v.minSpacing());
+    return cell / float(field.desc().hitCacheCells);
+}
+
+void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays, const ProbeTrace& trace) {
+    cache.group(hitCacheCellSize(field), std::size_t(field.probeCount()), std::size_t(rays.blendRays),
+                [&](std::size_t probe, std::size_t i, glm::vec3* p, glm::vec3* n) {
+                    if (trace.work[probe] != ProbeWork::Full) return false;
+                    const ProbeSurfel& s = trace.at(int(probe), rays.fixedRays + int(i));
+                    *p = s.position;
+                    *n = s.normal;
+                    return shadedHit(s);
+                });
+}
+
 ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeSampler& previous,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
-                          std::uint32_t frame, HitCache* cache, ShadedRays& out) {
+                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out) {
     const DdgiDesc& desc = previous.field().desc();
     bool quadLights = false;
     for (const Light& l : scene.lights) quadLights |= l.type == LightType::Quad;
@@ -246,83 +287,77 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
     ShadeStats stats;
     std::atomic<std::int64_t> queries{0};
 
-    const bool cacheVisibility = desc.hitCache == DdgiHitCache::All && !scene.lights.empty();
-    const bool useCache = cache && desc.hitCache != DdgiHitCache::Off && (c.energy > 0.0f || cacheVisibility);
-    std::vector<glm::vec3> groupIrradiance;
-    std::vector<glm::vec4> groupVisibility;
-    if (useCache) {
-        float cell = previous.field().volumes().front().minSpacing();
-        for (const ProbeVolume& v : previous.field().volumes()) cell = std::min(cell, v.minSpacing());
-        cache->group(cell / float(desc.hitCacheCells), probes.size(), std::size_t(rays.blendRays),
-                     [&](std::size_t job, std::size_t i, glm::vec3* p, glm::vec3* n) {
-                         const ProbeSurfel& s = c.jobSurfels(job)[i];
-                         *p = s.position;
-                         *n = s.normal;
-                         return shaded(s);
-                     });
-        evaluateGroups(c, *cache, cacheVisibility, groupIrradiance, groupVisibility, queries);
+    const HitCache* cache = grouped && hitCacheUsed(desc, scene) ? grouped : nullptr;
+    GroupValues shared;
+    if (cache) {
+        const auto t0 = std::chrono::steady_clock::now();
+        evaluateGroups(c, *cache, desc.hitCache == DdgiHitCache::All, shared, queries);
+        stats.groupsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         stats.cacheGroups = std::int64_t(cache->groups());
     }
 
     std::atomic<std::int64_t> cachedHits{0};
+    const auto hitsStart = std::chrono::steady_clock::now();
     const std::size_t perJob = std::size_t(rays.blendRays);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, probes.size(), 2), [&](const tbb::blocked_range<std::size_t>& r) {
         std::int64_t count = 0, cached = 0;
         std::vector<std::uint32_t> groups;
         for (std::size_t job = r.begin(); job != r.end(); ++job) {
             const ProbeSurfel* surfels = c.jobSurfels(job);
+            const std::size_t firstHit = std::size_t(probes[job]) * perJob;
             groups.resize(perJob);
             for (std::size_t i = 0; i < perJob; ++i) {
                 // Group indices first, with the groups' values prefetched (they are scattered).
-                std::uint32_t g = useCache ? cache->groupOf(job * perJob + i) : HitCache::kNone;
+                std::uint32_t g = cache ? cache->groupOf(firstHit + i) : HitCache::kNone;
                 groups[i] = g;
-                if (g != HitCache::kNone) {
-                    __builtin_prefetch(&groupIrradiance[g]);
-                    if (cacheVisibility) __builtin_prefetch(&groupVisibility[g]);
-                }
+                if (g != HitCache::kNone) __builtin_prefetch(&shared.values[std::size_t(g) * std::size_t(shared.stride)]);
             }
             for (std::size_t i = 0; i < perJob; ++i) {
                 const ProbeSurfel& s = surfels[i];
-                const std::size_t h = job * perJob + i;
-                glm::vec4& o = out.values[h];
+                glm::vec4& o = out.values[job * perJob + i];
                 if (s.distance >= kMissDistance) {
                     o = glm::vec4(sky, kMissDistance);
                     continue;
                 }
-                if (!shaded(s)) {
+                if (!shadedHit(s)) {
                     // Backfaces carry no light; black front faces only their emission.
                     o = glm::vec4(s.distance < 0.0f ? glm::vec3(0.0f) : s.emission, s.distance);
                     continue;
                 }
-                glm::vec2 u = c.quadSample(int(i), probes[job]);
                 const std::uint32_t g = groups[i];
-                glm::vec3 e;
-                auto traced = [&](int k, glm::vec3 l, float range) {
+                // One light exactly at this hit: its own light point and shadow ray.
+                auto exact = [&](int k) {
+                    glm::vec3 e, l;
+                    float range;
+                    if (!prepared[std::size_t(k)].unshadowed(s.position, s.normal, c.quadSample(int(i), probes[job]), &e,
+                                                            &l, &range))
+                        return glm::vec3(0.0f);
                     ++count;
-                    return visibility.visible(k, s.position, s.normal, l, range);
+                    return e * visibility.visible(k, s.position, s.normal, l, range);
                 };
+                glm::vec3 e(0.0f);
+                int firstExact = 0;
                 if (g == HitCache::kNone) {
-                    e = sumLights(prepared, s.position, s.normal, u, traced);
                     if (c.energy > 0.0f)
-                        e += c.energy * previous.irradiance(s.position, s.normal, -rays.blendDirection(int(i)));
-                } else if (cacheVisibility) {
-                    // The group's visibility; a light the representative did not test (it faced
-                    // away) or past the fourth is tested here.
-                    const glm::vec4& shared = groupVisibility[g];
-                    e = sumLights(prepared, s.position, s.normal, u, [&](int k, glm::vec3 l, float range) {
-                            return k < 4 && shared[k] >= 0.0f ? shared[k] : traced(k, l, range);
-                        }) + groupIrradiance[g];
-                    ++cached;
+                        e = c.energy * previous.irradiance(s.position, s.normal, -rays.blendDirection(int(i)));
                 } else {
-                    e = sumLights(prepared, s.position, s.normal, u, traced) + groupIrradiance[g];
+                    const glm::vec4* v = &shared.values[std::size_t(g) * std::size_t(shared.stride)];
+                    e = glm::vec3(v[0]);
+                    for (int k = 0; k < shared.lights; ++k) {
+                        const float cosine = glm::dot(s.normal, glm::vec3(v[1 + k]));
+                        if (cosine > 0.0f) e += v[1 + k].w == 0.0f ? prepared[std::size_t(k)].color * cosine : exact(k);
+                    }
+                    firstExact = shared.lights;
                     ++cached;
                 }
+                for (int k = firstExact; k < int(prepared.size()); ++k) e += exact(k);
                 o = glm::vec4(s.emission + s.diffuseAlbedo * kInvPi * e, s.distance);
             }
         }
         queries += count;
         cachedHits += cached;
     });
+    stats.hitsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - hitsStart).count();
     stats.shadowQueries = queries.load();
     stats.cachedHits = cachedHits.load();
     return stats;

@@ -51,16 +51,27 @@ struct ShadeStats {
     std::int64_t shadowQueries = 0;  // light-visibility tests (shadow rays or occlusion lookups)
     std::int64_t cacheGroups = 0;    // hit-cache groups (one probe gather each)
     std::int64_t cachedHits = 0;     // hits that took their probe irradiance from a group
+    double groupsMs = 0.0;           // evaluating the groups (gathers, shared light tests)
+    double hitsMs = 0.0;             // shading every hit
 };
 
 class HitCache;
 class ProbeSampler;
 
+// Whether shading with `desc` reads a hit cache (its mode is on and there is something to
+// share: the probe gather, or light visibility in the `all` mode).
+bool hitCacheUsed(const DdgiDesc& desc, const Scene& scene);
+// The hit-cache cell of a field: its smallest probe spacing over hit_cache_cells.
+float hitCacheCellSize(const ProbeField& field);
+// Groups the shaded blend-ray hits of every probe `trace` traced in full (hit
+// probe * blendRays + ray), for callers that did not group while tracing (traceProbes can).
+void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays, const ProbeTrace& trace);
+
 // Shades the blend rays of `probes` (the probes that blend this frame) against the previous
-// frame's field (`previous`). `cache` is used when the field's desc asks for a hit cache
-// (it keeps its table size between frames); it may be null otherwise.
+// frame's field (`previous`). `grouped` holds this frame's hits grouped (traceProbes with a
+// cache, or groupProbeHits); it is read when hitCacheUsed() and may be null otherwise.
 ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeSampler& previous,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
-                          std::uint32_t frame, HitCache* cache, ShadedRays& out);
+                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out);
 
 }  // namespace voxgi

@@ -1,12 +1,15 @@
 #include "gi/ddgi/probe_rays.h"
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "gi/ddgi/hit_cache.h"
 #include "gi/raytrace/ray_tracer.h"
+#include "gi/raytrace/texture_pyramid.h"
 #include "gi/sampling/sequences.h"
 
 namespace voxgi {
@@ -15,6 +18,34 @@ namespace {
 
 // Quad-light geometry is drawn by the direct pass; its emission must not enter the probes too.
 bool countsAsIndirectEmitter(const Mesh& mesh) { return mesh.name.rfind("quad_light_", 0) != 0; }
+
+// One ray into its surfel. `spread` is the ray's cone angle for the albedo lookup; negative for
+// classification rays, which are never shaded (albedo 0, no lookup).
+void traceSurfel(const RayTracer& tracer, const std::vector<char>& emitterCounts, glm::vec3 origin, glm::vec3 d,
+                 float spread, ProbeSurfel& s) {
+    RayHit hit = tracer.intersect(origin, d);
+    if (!hit.hit) {
+        s = ProbeSurfel{};
+        return;
+    }
+    s.position = hit.position;
+    s.emission = glm::vec3(0.0f);
+    if (!hit.frontFace) {
+        s.distance = -hit.t;
+        s.normal = s.diffuseAlbedo = glm::vec3(0.0f);
+        return;
+    }
+    s.distance = hit.t;
+    glm::vec3 n = hit.shadingNormal;
+    s.normal = glm::dot(n, d) > 0.0f ? -n : n;
+    if (spread < 0.0f) {
+        s.diffuseAlbedo = glm::vec3(0.0f);
+        return;
+    }
+    const Material& m = tracer.scene().materials[hit.material];
+    s.diffuseAlbedo = (1.0f - m.metallic) * (1.0f - m.specular) * tracer.albedoInCone(hit, d, spread);
+    if (emitterCounts[hit.mesh]) s.emission = m.emission;
+}
 
 }  // namespace
 
@@ -46,7 +77,8 @@ RaySet makeRaySet(const DdgiDesc& desc, std::uint32_t seed, std::uint32_t frame)
     return set;
 }
 
-void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace) {
+void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace,
+                 HitCache* group) {
     const Scene& scene = tracer.scene();
     std::vector<char> emitterCounts(scene.meshes.size());
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) emitterCounts[m] = countsAsIndirectEmitter(scene.meshes[m]);
@@ -63,10 +95,15 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
     }
     trace.raysTraced = traced;
 
+    // Each blend ray stands for 1 / blendRays of the sphere: its albedo is the texture averaged
+    // over that cone's footprint, not a point sample (no aliasing, and coarse mips stay cached).
+    const float spread = coneSpreadForRays(rays.blendRays);
     // One task per (probe, ray chunk) keeps both cores busy on small grids too.
     const int chunk = 64;
     const int chunksPerProbe = (trace.stride + chunk - 1) / chunk;
     tbb::parallel_for(tbb::blocked_range<int>(0, probes * chunksPerProbe), [&](const tbb::blocked_range<int>& r) {
+        std::optional<HitCache::Writer> writer;
+        if (group) writer.emplace(*group);
         for (int task = r.begin(); task != r.end(); ++task) {
             int p = task / chunksPerProbe;
             ProbeWork w = trace.work[std::size_t(p)];
@@ -76,26 +113,15 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
             int last = std::min(end, first + chunk);
             glm::vec3 origin = field.probePosition(p);
             for (int i = first; i < last; ++i) {
-                glm::vec3 d = rays.directions[std::size_t(i)];
-                RayHit hit = tracer.intersect(origin, d);
+                const glm::vec3 d = rays.directions[std::size_t(i)];
                 ProbeSurfel& s = trace.surfels[std::size_t(p) * std::size_t(trace.stride) + std::size_t(i)];
-                if (!hit.hit) {
-                    s = ProbeSurfel{};
-                    continue;
+                const bool blend = i >= rays.fixedRays;
+                traceSurfel(tracer, emitterCounts, origin, d, blend ? spread : -1.0f, s);
+                if (writer && blend) {
+                    const std::size_t h = std::size_t(p) * std::size_t(rays.blendRays) + std::size_t(i - rays.fixedRays);
+                    if (shadedHit(s)) writer->add(h, s.position, s.normal);
+                    else writer->skip(h);
                 }
-                s.position = hit.position;
-                s.emission = glm::vec3(0.0f);
-                if (!hit.frontFace) {
-                    s.distance = -hit.t;
-                    s.normal = s.diffuseAlbedo = glm::vec3(0.0f);
-                    continue;
-                }
-                s.distance = hit.t;
-                glm::vec3 n = hit.shadingNormal;
-                s.normal = glm::dot(n, d) > 0.0f ? -n : n;
-                const Material& m = scene.materials[hit.material];
-                s.diffuseAlbedo = (1.0f - m.metallic) * (1.0f - m.specular) * tracer.albedoAt(hit);
-                if (emitterCounts[hit.mesh]) s.emission = m.emission;
             }
         }
     });

@@ -12,6 +12,7 @@
 
 namespace voxgi {
 
+class HitCache;
 class RayTracer;
 
 // Stored distance of a ray that left the scene.
@@ -37,6 +38,7 @@ enum class ProbeWork : std::uint8_t {
     Full,       // classification and blend rays; the probe blends this frame
 };
 
+// Classification rays (the first fixedRays of a probe) are never shaded: their albedo is 0.
 struct ProbeSurfel {
     glm::vec3 position{0.0f};
     float distance = kMissDistance;  // signed: negative for a backface hit
@@ -44,6 +46,13 @@ struct ProbeSurfel {
     glm::vec3 diffuseAlbedo{0.0f};   // (1 - metallic)(1 - specular) albedo
     glm::vec3 emission{0.0f};        // front-face emission of meshes that are not analytic lights
 };
+
+// A front-face hit with some diffuse albedo: it reflects light toward its probe, so shading
+// computes it (and the hit cache may group it).
+inline bool shadedHit(const ProbeSurfel& s) {
+    return !(s.distance < 0.0f) && s.distance < kMissDistance &&
+           glm::max(s.diffuseAlbedo.x, glm::max(s.diffuseAlbedo.y, s.diffuseAlbedo.z)) > 0.0f;
+}
 
 struct ProbeTrace {
     int stride = 0;                 // surfels per probe (RaySet::stride)
@@ -54,7 +63,10 @@ struct ProbeTrace {
     const ProbeSurfel& at(int probe, int ray) const { return surfels[std::size_t(probe) * std::size_t(stride) + std::size_t(ray)]; }
 };
 
-// Traces the rays `work` asks for from every probe's (relocated) position.
-void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace);
+// Traces the rays `work` asks for from every probe's (relocated) position. With `group` (begun
+// for probeCount * blendRays hits), shaded blend-ray hits are added to it as they are traced:
+// hit probe * blendRays + ray.
+void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace,
+                 HitCache* group = nullptr);
 
 }  // namespace voxgi
