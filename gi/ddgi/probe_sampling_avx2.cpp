@@ -9,6 +9,7 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -127,6 +128,18 @@ VOXGI_AVX2 glm::vec4 ProbeSampler::gatherAvx2(const Volume& v, glm::vec3 p, glm:
         static_assert(offsetof(CageProbe, live) == 3 * sizeof(float), "position, live load as one float4");
         record[c] = _mm_loadu_ps(&cage[c]->position.x);
     }
+    // The irradiance footprint depends on n only: start its fetches before the long chain of
+    // arithmetic that decides the distance footprints (atlases of big volumes miss the caches).
+    const int ni = desc.irradianceTexels, tileI = ni + 2;
+    const glm::vec2 nc = oct::tileCoordinate(n, ni);
+    const float nfx = nc.x - 0.5f, nfy = nc.y - 0.5f;
+    const int ifx = std::min(int(nfx), tileI - 2), ify = std::min(int(nfy), tileI - 2);
+    const glm::vec4* irradiance = field_.irradiance.texels.data() + std::size_t(ify * tileI + ifx);
+    if constexpr (!kOcclusion)
+        for (int c = 0; c < kCage; ++c) {
+            _mm_prefetch(reinterpret_cast<const char*>(irradiance + cage[c]->irradianceTexel), _MM_HINT_T0);
+            _mm_prefetch(reinterpret_cast<const char*>(irradiance + cage[c]->irradianceTexel + tileI), _MM_HINT_T0);
+        }
     const Columns probe = transpose(record);
     const __m256 live = _mm256_mul_ps(probe.w, _mm256_loadu_ps(v.cornerInside));
 
@@ -238,14 +251,7 @@ VOXGI_AVX2 glm::vec4 ProbeSampler::gatherAvx2(const Volume& v, glm::vec3 p, glm:
         }
     } else {
         // One footprint for all lanes: the normal's direction in each probe's irradiance tile.
-        const int ni = desc.irradianceTexels, tileI = ni + 2;
-        glm::vec2 nc = oct::tileCoordinate(n, ni);
-        float px = nc.x - 0.5f, py = nc.y - 0.5f;
-        int fx = int(px), fy = int(py);
-        const __m256 wx = rowWeights(px - float(fx)), wy = _mm256_set1_ps(py - float(fy));
-        fx = fx < 0 ? 0 : fx > tileI - 2 ? tileI - 2 : fx;
-        fy = fy < 0 ? 0 : fy > tileI - 2 ? tileI - 2 : fy;
-        const glm::vec4* irradiance = field_.irradiance.texels.data() + std::size_t(fy * tileI + fx);
+        const __m256 wx = rowWeights(nfx - float(int(nfx))), wy = _mm256_set1_ps(nfy - float(int(nfy)));
         const float halfGamma = 0.5f * desc.irradianceGamma;
         for (int c = 0; c < kCage; c += 2) {
             __m256 e = mixRows(bilinearRows(irradiance + cage[c]->irradianceTexel, irradiance + cage[c + 1]->irradianceTexel,
