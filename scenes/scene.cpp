@@ -33,6 +33,8 @@ const std::array<float, 256>& srgbTable() {
 
 float srgbToLinear(std::uint8_t code) { return srgbTable()[code]; }
 
+const float* srgbDecodeTable() { return srgbTable().data(); }
+
 std::uint8_t linearToSrgb(float linear) {
     // The code whose decoded value is nearest: the table is increasing, so search it and
     // compare the two neighbours (round trips are exact: linearToSrgb(srgbToLinear(c)) == c).

@@ -77,8 +77,9 @@ TEST_F(DdgiGl, ApplyMatchesCpuSamplingWithCascadesAndScrolling) {
     int k = 0;
     for (int i = 0; i < int(trace.surfels.size()) && k < w * h; i += 7) {
         const ProbeSurfel& s = trace.surfels[std::size_t(i)];
-        if (s.distance <= 0.0f || s.distance >= kMissDistance) continue;
-        pos[k] = glm::vec4(s.position, 1.0f);
+        const int probe = i / trace.stride, ray = i % trace.stride;
+        if (trace.work[std::size_t(probe)] == ProbeWork::None || s.distance <= 0.0f || s.distance >= kMissDistance) continue;
+        pos[k] = glm::vec4(trace.position(ddgi.lastRays(), probe, ray), 1.0f);
         nrm[k] = glm::vec4(s.normal, 0.5f);
         alb[k] = glm::vec4(0.8f, 0.5f, 0.3f, float(k % 3) * 0.25f);  // metallic
         emi[k] = glm::vec4(0.0f, 0.0f, 0.0f, float(k % 2) * 0.1f);  // specular

@@ -2,6 +2,7 @@
 // cone-averaged albedo lookup of RayTracer (used by DDGI probe rays).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gi/raytrace/ray_tracer.h"
@@ -49,7 +50,11 @@ TEST(TexturePyramid, LevelsHalveAndKeepTheMeanInLinearSpace) {
     // Black and white average to linear 0.5 (sRGB code 188), not code 128: filtering is done
     // in linear space.
     for (int l = 0; l < pyramid.levels(); ++l) EXPECT_NEAR(pyramid.levelMean(l).x, 0.5f, 0.004f) << "level " << l;
-    EXPECT_NEAR(pyramid.sample(glm::vec2(0.3f, 0.6f), 100.0f).y, 0.5f, 0.004f);
+    EXPECT_NEAR(pyramid.sample(glm::vec2(0.3f, 0.6f), 100).y, 0.5f, 0.004f);
+    // Above level 0 a lookup is the nearest texel of the level.
+    const glm::vec3 texel = pyramid.sample(glm::vec2(0.3f, 0.6f), 1);
+    EXPECT_NEAR(texel.x, 0.5f, 0.004f);
+    EXPECT_EQ(texel, pyramid.sample(glm::vec2(0.3f + 0.2f / 32.0f, 0.6f), 1));
 }
 
 TEST(TexturePyramid, OddSidesDropNoTexel) {
@@ -62,28 +67,39 @@ TEST(TexturePyramid, OddSidesDropNoTexel) {
     EXPECT_NEAR(pyramid.levelMean(1).x, 1.0f / 3.0f, 0.004f);
 }
 
-TEST(TexturePyramid, LodZeroIsTheFullResolutionLookup) {
+TEST(TexturePyramid, LevelZeroIsTheFullResolutionLookup) {
     Texture t = checkerboard(32, 32, 4);
     TexturePyramid pyramid(t);
     for (float u : {0.01f, 0.37f, 0.5f, 0.99f, -0.25f, 3.7f})
         for (float v : {0.02f, 0.5f, 0.77f}) {
-            glm::vec3 a = pyramid.sample(glm::vec2(u, v), 0.0f), b = t.sampleLinear(glm::vec2(u, v));
+            glm::vec3 a = pyramid.sample(glm::vec2(u, v), 0), b = t.sampleLinear(glm::vec2(u, v));
             EXPECT_EQ(a, b);
-            EXPECT_EQ(pyramid.sample(glm::vec2(u, v), -3.0f), b);
-            EXPECT_EQ(pyramid.sample(glm::vec2(u, v), NAN), b);
+            EXPECT_EQ(pyramid.sample(glm::vec2(u, v), -3), b);
+            EXPECT_EQ(pyramid.sample(glm::vec2(u, v), pyramid.levelForFootprint(NAN)), b);
         }
 }
 
-TEST(TexturePyramid, RayConeLodFollowsDistanceAndSlant) {
+TEST(TexturePyramid, RayConeFootprintPicksTheLevel) {
     // A 1 m x 1 m quad mapped once onto a 256 x 256 texture: 256 texels per metre.
-    float density = triangleTexelDensity(glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec2(0),
-                                         glm::vec2(1, 0), glm::vec2(0, 1), 256, 256);
-    EXPECT_NEAR(density, 8.0f, 1e-5f);
-    // A cone 1/256 m wide covers one texel: lod 0; twice as far, twice as wide: one level up.
-    EXPECT_NEAR(rayConeLod(density, 1.0f / 256.0f, 1.0f), 0.0f, 1e-5f);
-    EXPECT_NEAR(rayConeLod(density, 2.0f / 256.0f, 1.0f), 1.0f, 1e-5f);
-    // Seen at 60 degrees from the normal the footprint stretches by 2: one level up.
-    EXPECT_NEAR(rayConeLod(density, 1.0f / 256.0f, 0.5f), 1.0f, 1e-5f);
+    float scale = triangleTexelScale(glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec2(0),
+                                     glm::vec2(1, 0), glm::vec2(0, 1), 256, 256);
+    EXPECT_NEAR(scale, 256.0f, 1e-3f);
+    // A cone 1/256 m wide covers one texel; twice as far, twice as wide; seen at 60 degrees
+    // from the normal the footprint stretches by 2.
+    EXPECT_NEAR(rayConeFootprint(scale, 1.0f / 256.0f, 1.0f), 1.0f, 1e-5f);
+    EXPECT_NEAR(rayConeFootprint(scale, 2.0f / 256.0f, 1.0f), 2.0f, 1e-5f);
+    EXPECT_NEAR(rayConeFootprint(scale, 1.0f / 256.0f, 0.5f), 2.0f, 1e-5f);
+    // The level is round(log2(footprint)), clamped to the pyramid (256 -> 9 levels).
+    TexturePyramid pyramid(checkerboard(256, 256, 1));
+    ASSERT_EQ(pyramid.levels(), 9);
+    EXPECT_FLOAT_EQ(pyramid.texelScale(), 256.0f);
+    for (float x = -4.03f; x <= 12.0f; x += 0.0625f) {  // off the exact half-way points
+        int expected = std::clamp(int(std::floor(x + 0.5f)), 0, 8);
+        EXPECT_EQ(pyramid.levelForFootprint(std::exp2(x)), expected) << "log2 footprint " << x;
+    }
+    EXPECT_EQ(pyramid.levelForFootprint(0.0f), 0);
+    EXPECT_EQ(pyramid.levelForFootprint(-1.0f), 0);
+    EXPECT_EQ(pyramid.levelForFootprint(INFINITY), 8);
     // 256 rays over the sphere: 4 pi / 256 sr each, a cone of about 0.25 rad.
     float spread = coneSpreadForRays(256);
     EXPECT_NEAR(2.0f * 3.14159265f * (1.0f - std::cos(0.5f * spread)), 4.0f * 3.14159265f / 256.0f, 1e-5f);

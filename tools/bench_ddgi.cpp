@@ -139,8 +139,13 @@ double rawEmbreeMs(const DdgiSystem& ddgi, int repeats, std::int64_t* rays, bool
 double sampleNsPerPoint(const DdgiSystem& ddgi, int* points) {
     const ProbeTrace& trace = ddgi.lastTrace();
     std::vector<std::pair<glm::vec3, glm::vec3>> pts;
-    for (const ProbeSurfel& s : trace.surfels)
-        if (s.distance > 0.0f && s.distance < kMissDistance) pts.emplace_back(s.position, s.normal);
+    const RaySet& rays = ddgi.lastRays();
+    for (std::size_t i = 0; i < trace.surfels.size(); ++i) {
+        const ProbeSurfel& s = trace.surfels[i];
+        const int probe = int(i / std::size_t(trace.stride)), ray = int(i % std::size_t(trace.stride));
+        if (trace.work[std::size_t(probe)] == ProbeWork::Full && s.distance > 0.0f && s.distance < kMissDistance)
+            pts.emplace_back(trace.position(rays, probe, ray), s.normal);
+    }
     if (pts.size() > 200000) pts.resize(200000);
     *points = int(pts.size());
     if (pts.empty()) return 0.0;
@@ -162,10 +167,11 @@ double glApplyMs(DdgiSystem& ddgi, int width, int height, int frames) {
     std::vector<glm::vec4> pos(std::size_t(width * height), glm::vec4(0.0f)), nrm(pos.size()), alb(pos.size(), glm::vec4(0.7f, 0.7f, 0.7f, 0.0f)),
         emi(pos.size(), glm::vec4(0.0f));
     std::size_t k = 0;
-    for (const ProbeSurfel& s : trace.surfels) {
-        if (k == pos.size()) break;
-        if (s.distance <= 0.0f || s.distance >= kMissDistance) continue;
-        pos[k] = glm::vec4(s.position, 1.0f);
+    for (std::size_t i = 0; i < trace.surfels.size() && k < pos.size(); ++i) {
+        const ProbeSurfel& s = trace.surfels[i];
+        const int probe = int(i / std::size_t(trace.stride)), ray = int(i % std::size_t(trace.stride));
+        if (trace.work[std::size_t(probe)] == ProbeWork::None || s.distance <= 0.0f || s.distance >= kMissDistance) continue;
+        pos[k] = glm::vec4(trace.position(ddgi.lastRays(), probe, ray), 1.0f);
         nrm[k++] = glm::vec4(s.normal, 1.0f);
     }
     UploadedGBuffer g = uploadGBuffer(pos, nrm, alb, emi, width, height, ddgi.tracer().scene().camera.eye);

@@ -57,7 +57,7 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
         occlusion = std::make_unique<OcclusionProbeVisibility>(previous, *shadowRays_);
     const LightVisibility& visibility = occlusion ? *occlusion : *shadowRays_;
     ShadeStats shade = shadeProbeRays(tracer_.scene(), visibility, previous, rays_, trace_, blendProbes, frame_,
-                                      grouping ? &hitCache_ : nullptr, shaded_);
+                                      grouping ? &hitCache_ : nullptr, shaded_, &shadeWorkspace_);
     stats.cacheGroups = shade.cacheGroups;
     stats.shadeGroupsMs = shade.groupsMs;
     stats.shadeHitsMs = shade.hitsMs;

@@ -60,6 +60,7 @@ private:
     RaySet rays_;
     ProbeTrace trace_;
     ShadedRays shaded_;
+    ShadeWorkspace shadeWorkspace_;
     std::uint32_t frame_ = 0;
 };
 

@@ -5,10 +5,18 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <emmintrin.h>
+
+#include <tbb/task_arena.h>
+
 namespace voxgi {
 
 namespace {
-constexpr std::int64_t kCellRange = std::int64_t(1) << 19;  // 20 bits per axis, offset binary
+constexpr int kCellBits = 19;  // per axis, offset binary: 3 x 19 bits and a 5-bit normal bin
+constexpr std::int64_t kCellRange = std::int64_t(1) << (kCellBits - 1);
+// Ids are handed to the threads' tables in blocks, so they stay dense (the per-id arrays stay
+// in cache) without a shared counter per key.
+constexpr std::uint32_t kIdBlock = 256;
 
 std::uint64_t mix64(std::uint64_t x) {  // splitmix64's finalizer
     x ^= x >> 30;
@@ -73,9 +81,13 @@ private:
     std::vector<Entry> entries_;
 };
 
+// Which merge partition a key belongs to (a multiplicative hash's top bits).
+std::size_t partOf(std::uint64_t key) { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 61); }
+
 struct GroupEntry {
     std::uint64_t key;
-    std::uint64_t best;  // (squared distance bits << 32) | hit
+    std::uint32_t d2;  // bits of the best candidate's squared distance to the cell centre
+    std::uint32_t id;  // the table entry holding that candidate
 };
 }  // namespace
 
@@ -89,6 +101,7 @@ struct HitCache::LocalTable {
     };
     std::vector<Slot> slots;
     std::size_t used = 0, lastUsed = 0;
+    std::uint32_t nextId = 0, idEnd = 0;  // the block of ids this table hands out
 
     void clear() {
         lastUsed = std::max(lastUsed, used);
@@ -97,6 +110,7 @@ struct HitCache::LocalTable {
         if (slots.size() != capacity) slots.assign(capacity, Slot{});
         else std::fill(slots.begin(), slots.end(), Slot{});
         used = 0;
+        nextId = idEnd = 0;
     }
     std::size_t home(std::uint64_t key) const { return std::size_t(mix64(key)) & (slots.size() - 1); }
     void grow() {
@@ -112,31 +126,37 @@ struct HitCache::LocalTable {
     }
 };
 
+struct HitCache::MergeTable {
+    KeyTable<GroupEntry> parts[kParts];
+    std::vector<std::vector<GroupEntry>> buckets;  // table * kParts + partition
+};
+
 HitCache::HitCache() = default;
 HitCache::~HitCache() = default;
 
 std::uint64_t HitCache::key(glm::vec3 p, glm::vec3 n, float inv, float* centreDistance2) {
-    glm::vec3 scaled = p * inv;
-    glm::vec3 cell = glm::floor(scaled);
-    std::uint64_t k = 0;
-    for (int a = 0; a < 3; ++a) {
-        if (!(std::abs(cell[a]) < float(kCellRange))) return 0;  // also NaN
-        k = (k << 20) | std::uint64_t(std::int64_t(cell[a]) + kCellRange);
-    }
-    // The octahedral square of n (oct::encode, with one reciprocal), cut into bins.
-    float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
-    float invL1 = l1 > 0.0f ? 1.0f / l1 : 0.0f;
-    float ex = n.x * invL1, ey = n.y * invL1;
-    if (n.z < 0.0f) {
-        float fx = (1.0f - std::abs(ey)) * (ex >= 0.0f ? 1.0f : -1.0f);
-        ey = (1.0f - std::abs(ex)) * (ey >= 0.0f ? 1.0f : -1.0f);
-        ex = fx;
-    }
-    int bx = std::clamp(int((ex * 0.5f + 0.5f) * float(kNormalBins)), 0, kNormalBins - 1);
-    int by = std::clamp(int((ey * 0.5f + 0.5f) * float(kNormalBins)), 0, kNormalBins - 1);
-    glm::vec3 d = scaled - cell - 0.5f;
-    *centreDistance2 = glm::dot(d, d);
-    return (k << 4) | std::uint64_t(by * kNormalBins + bx);
+    // Every probe-ray hit comes through here, so it is kept to a few dozen instructions: the
+    // cells in one packed multiply-add and truncation (the offset makes truncation the floor
+    // and the range check one shift), the normal's bin from its signs and largest axis.
+    const __m128 offset = _mm_set1_ps(float(kCellRange));
+    const __m128 scaled = _mm_mul_ps(_mm_setr_ps(p.x, p.y, p.z, 0.0f), _mm_set1_ps(inv));
+    const __m128i c = _mm_cvttps_epi32(_mm_add_ps(scaled, offset));
+    // Inside [0, 2 kCellRange) on every axis; NaN and overflow convert to 0x80000000.
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(_mm_srli_epi32(c, kCellBits), _mm_setzero_si128())) != 0xFFFF) return 0;
+    // The offset sum is rounded; the distance to the centre is taken from the exact product
+    // (the cell corner c - offset is an exact integer), so near-ties stay rare.
+    const __m128 d = _mm_sub_ps(_mm_sub_ps(scaled, _mm_sub_ps(_mm_cvtepi32_ps(c), offset)), _mm_set1_ps(0.5f));
+    const __m128 dd = _mm_mul_ps(d, d);
+    *centreDistance2 = _mm_cvtss_f32(_mm_add_ss(_mm_add_ss(dd, _mm_shuffle_ps(dd, dd, 1)), _mm_movehl_ps(dd, dd)));
+    const std::uint64_t cx = std::uint32_t(_mm_cvtsi128_si32(c)),
+                        cy = std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(c, 1))),
+                        cz = std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(c, 2)));
+
+    const float ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+    const int axis = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+    const int signs = int(n.x < 0.0f) | int(n.y < 0.0f) << 1 | int(n.z < 0.0f) << 2;
+    const std::uint64_t bin = std::uint64_t(1 + signs * 3 + axis);  // 1 ... 24: a key is never 0
+    return (((cx << kCellBits | cy) << kCellBits | cz) << 5) | bin;
 }
 
 void HitCache::begin(float cellSize, std::size_t hits) {
@@ -144,8 +164,13 @@ void HitCache::begin(float cellSize, std::size_t hits) {
     invCellSize_ = 1.0f / cellSize;
     // No clearing: every hit is written by add() or skip(), every id by the add that makes it.
     hitId_.resize(hits);
-    idBestHit_.resize(hits);
-    idGroup_.resize(hits);
+    // Each table wastes less than a block; more threads than expected only lose the cache
+    // for their last hits (reserveIds runs dry), never correctness.
+    const std::size_t ids = std::min<std::size_t>(
+        hits + std::size_t(kIdBlock) * (std::size_t(tbb::this_task_arena::max_concurrency()) + 8), kNone);
+    idBest_.resize(ids);
+    idGroup_.resize(ids);
+    nextId_.store(0, std::memory_order_relaxed);
     for (std::unique_ptr<LocalTable>& t : tables_)
         if (t) t->clear();
 }
@@ -157,6 +182,11 @@ HitCache::LocalTable& HitCache::localTable() {
         t->clear();
     }
     return *t;
+}
+
+std::uint32_t HitCache::reserveIds() {
+    const std::size_t first = nextId_.fetch_add(kIdBlock, std::memory_order_relaxed);
+    return first + kIdBlock <= idBest_.size() ? std::uint32_t(first) : kNone;
 }
 
 HitCache::Writer::Writer(HitCache& cache) : cache_(cache), table_(cache.localTable()) {}
@@ -172,29 +202,38 @@ void HitCache::Writer::add(std::size_t h, glm::vec3 position, glm::vec3 normal) 
         skip(h);
         return;
     }
-    Pending p{k, 0, std::uint32_t(h)};
-    std::memcpy(&p.d2, &d2, sizeof p.d2);  // non-negative floats order like their bits
-    __builtin_prefetch(&table_.slots[table_.home(k)]);
+    const std::uint64_t hash = mix64(k);
+    __builtin_prefetch(&table_.slots[std::size_t(hash) & (table_.slots.size() - 1)]);
+    unsigned at;
     if (count_ == kDelay) {
         place(pending_[first_]);
-        pending_[first_] = p;
+        at = first_;
         first_ = (first_ + 1) % kDelay;
     } else {
-        pending_[(first_ + count_++) % kDelay] = p;
+        at = (first_ + count_++) % kDelay;
     }
+    // Fields written in place: a Pending built aside and copied whole would be read back
+    // before its parts left the store buffer (a store-forwarding stall on every hit).
+    Pending& q = pending_[at];
+    q.key = k;
+    q.hash = hash;
+    std::memcpy(&q.d2, &d2, sizeof q.d2);  // non-negative floats order like their bits
+    q.hit = std::uint32_t(h);
+    q.position = position;
+    q.normal = normal;
 }
 
 void HitCache::Writer::place(const Pending& p) {
     LocalTable& t = table_;
     std::size_t mask = t.slots.size() - 1;
-    std::size_t i = t.home(p.key);
+    std::size_t i = std::size_t(p.hash) & mask;
     for (;; i = (i + 1) & mask) {
         LocalTable::Slot& s = t.slots[i];
         if (s.key == p.key) {
             // Ties go to the lower hit index, so the choice does not depend on the order of adds.
-            if (p.d2 < s.d2 || (p.d2 == s.d2 && p.hit < cache_.idBestHit_[s.id])) {
+            if (p.d2 < s.d2 || (p.d2 == s.d2 && p.hit < cache_.idBest_[s.id].hit)) {
                 s.d2 = p.d2;
-                cache_.idBestHit_[s.id] = p.hit;
+                cache_.idBest_[s.id] = Candidate{p.position, p.hit, p.normal};
             }
             cache_.hitId_[p.hit] = s.id;
             return;
@@ -204,37 +243,72 @@ void HitCache::Writer::place(const Pending& p) {
     if ((t.used + 1) * 10 > t.slots.size() * 7) {
         t.grow();
         mask = t.slots.size() - 1;
-        for (i = t.home(p.key); t.slots[i].key != 0; i = (i + 1) & mask) {
+        for (i = std::size_t(p.hash) & mask; t.slots[i].key != 0; i = (i + 1) & mask) {
         }
     }
-    t.slots[i] = LocalTable::Slot{p.key, p.hit, p.d2};
+    if (t.nextId == t.idEnd) {
+        const std::uint32_t first = cache_.reserveIds();
+        if (first == kNone) {
+            cache_.hitId_[p.hit] = kNone;
+            return;
+        }
+        t.nextId = first;
+        t.idEnd = first + kIdBlock;
+    }
+    const std::uint32_t id = t.nextId++;
+    t.slots[i] = LocalTable::Slot{p.key, id, p.d2};
     ++t.used;
-    cache_.idBestHit_[p.hit] = p.hit;
-    cache_.hitId_[p.hit] = p.hit;
+    cache_.idBest_[id] = Candidate{p.position, p.hit, p.normal};
+    cache_.hitId_[p.hit] = id;
 }
 
 void HitCache::finish() {
-    // Merge the threads' tables: one group per key, the best candidate over all of them.
+    // Merge the threads' tables: one group per key, the best candidate over all of them. Each
+    // table's slots are first scattered by key into kParts buckets (one pass, sequential
+    // writes), then each partition is merged in a table small enough to stay in cache; a
+    // group's index is its partition's offset plus its place there (idGroup_ holds both until
+    // groupOf adds them).
+    std::vector<const LocalTable*> tables;
     std::size_t total = 0;
     for (const std::unique_ptr<LocalTable>& t : tables_)
-        if (t) total += t->used;
-    KeyTable<GroupEntry> merged;
-    merged.clear(total);
-    for (const std::unique_ptr<LocalTable>& t : tables_) {
-        if (!t) continue;
-        for (const LocalTable::Slot& s : t->slots) {
-            if (s.key == 0) continue;
-            const std::uint64_t best = (std::uint64_t(s.d2) << 32) | idBestHit_[s.id];
-            std::size_t slot = 0;
-            GroupEntry* g = merged.find(s.key, &slot);
-            if (!g) g = &merged.insert(s.key, slot, GroupEntry{s.key, best});
-            else g->best = std::min(g->best, best);
-            idGroup_[s.id] = std::uint32_t(g - merged.entries().data());
+        if (t) {
+            tables.push_back(t.get());
+            total += t->used;
         }
+    if (!merged_) merged_ = std::make_unique<MergeTable>();
+    MergeTable& m = *merged_;
+    m.buckets.resize(tables.size() * kParts);
+    tbb::parallel_for(std::size_t(0), tables.size(), [&](std::size_t t) {
+        std::vector<GroupEntry>* buckets = &m.buckets[t * kParts];
+        for (std::size_t part = 0; part < kParts; ++part) buckets[part].clear();
+        for (const LocalTable::Slot& s : tables[t]->slots)
+            if (s.key != 0) buckets[partOf(s.key)].push_back(GroupEntry{s.key, s.d2, s.id});
+    });
+    tbb::parallel_for(std::size_t(0), kParts, [&](std::size_t part) {
+        KeyTable<GroupEntry>& merged = m.parts[part];  // kept: its memory is reused
+        merged.clear(total / kParts + 16);
+        for (std::size_t t = 0; t < tables.size(); ++t)
+            for (const GroupEntry& e : m.buckets[t * kParts + part]) {
+                std::size_t slot = 0;
+                GroupEntry* g = merged.find(e.key, &slot);
+                // The candidate's hit index is only read to break a tie (rare): it is in
+                // another, uncached array.
+                if (!g) g = &merged.insert(e.key, slot, e);
+                else if (e.d2 < g->d2 || (e.d2 == g->d2 && idBest_[e.id].hit < idBest_[g->id].hit)) *g = e;
+                idGroup_[e.id] = std::uint32_t(part << kPartShift) | std::uint32_t(g - merged.entries().data());
+            }
+    });
+    std::size_t groups = 0;
+    for (std::size_t part = 0; part < kParts; ++part) {
+        partOffset_[part] = std::uint32_t(groups);
+        groups += m.parts[part].entries().size();
     }
-    representatives_.resize(merged.entries().size());
-    for (std::size_t g = 0; g < representatives_.size(); ++g)
-        representatives_[g] = std::size_t(merged.entries()[g].best & 0xFFFFFFFFu);
+    if (groups >= (std::size_t(1) << kPartShift)) throw std::length_error("DDGI hit cache: too many groups in one frame");
+    representatives_.resize(groups);
+    tbb::parallel_for(std::size_t(0), kParts, [&](std::size_t part) {
+        const std::vector<GroupEntry>& entries = m.parts[part].entries();
+        for (std::size_t j = 0; j < entries.size(); ++j) representatives_[partOffset_[part] + j] = idBest_[entries[j].id];
+    });
 }
 
 }  // namespace voxgi

@@ -1,6 +1,7 @@
 // A per-frame cache of probe-ray hit shading. Within one frame the previous frame's probe
 // field is constant, so hits that land in the same small world cell (a grid finer than the
-// probe spacing, anchored at the world origin) with normals in the same octahedral bin can
+// probe spacing, anchored at the world origin) with normals in the same bin (24 over the
+// sphere: the octant and the largest axis, at most 55 degrees apart within a bin) can
 // share one probe gather (and, in the `all` mode, one set of light-visibility tests).
 //
 // Each group's value is evaluated at one of its own hits: the one closest to the cell centre
@@ -13,6 +14,7 @@
 // threads; finish() merges the tables into dense groups.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -24,11 +26,10 @@ namespace voxgi {
 
 class HitCache {
     struct LocalTable;
+    struct MergeTable;
 
 public:
     static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-    // Normal bins per side of the octahedral square (16 bins over the sphere).
-    static constexpr int kNormalBins = 4;
 
     HitCache();
     ~HitCache();
@@ -54,8 +55,9 @@ public:
     private:
         static constexpr unsigned kDelay = 8;
         struct Pending {
-            std::uint64_t key;
+            std::uint64_t key, hash;
             std::uint32_t d2, hit;
+            glm::vec3 position, normal;
         };
         void place(const Pending& p);
         HitCache& cache_;
@@ -75,24 +77,41 @@ public:
     // The group of hit h (kNone: not cached) and the representative hit of a group.
     std::uint32_t groupOf(std::size_t h) const {
         std::uint32_t id = hitId_[h];
-        return id == kNone ? kNone : idGroup_[id];
+        if (id == kNone) return kNone;
+        const std::uint32_t g = idGroup_[id];
+        return partOffset_[g >> kPartShift] + (g & ((1u << kPartShift) - 1));
     }
     std::size_t groups() const { return representatives_.size(); }
-    std::size_t representative(std::size_t g) const { return representatives_[g]; }
+    std::size_t representative(std::size_t g) const { return representatives_[g].hit; }
+    // Its position and normal as they were added: evaluating a group needs no look at the
+    // (scattered, uncached) hit records.
+    glm::vec3 representativePosition(std::size_t g) const { return representatives_[g].position; }
+    glm::vec3 representativeNormal(std::size_t g) const { return representatives_[g].normal; }
 
     // The cell-and-normal key of a point (0: outside the representable range) and its squared
     // distance to the cell centre.
     static std::uint64_t key(glm::vec3 position, glm::vec3 normal, float invCellSize, float* centreDistance2);
 
 private:
+    static constexpr std::size_t kParts = 8;  // merge partitions (partOf: the top 3 bits of a hash)
+    static constexpr int kPartShift = 28;         // idGroup_: partition << 28 | index in it
+
     LocalTable& localTable();
+    std::uint32_t reserveIds();  // first id of a fresh block; kNone when the arrays are used up
 
     float invCellSize_ = 1.0f;
-    // A key's id is the first hit that added it in some thread's table (unique, no counter).
     std::vector<std::uint32_t> hitId_;      // per hit: the id of its key in its thread's table
-    std::vector<std::uint32_t> idBestHit_;  // per id: the candidate nearest the cell centre
+    struct Candidate {
+        glm::vec3 position{0.0f};
+        std::uint32_t hit = 0;
+        glm::vec3 normal{0.0f};
+    };
+    std::vector<Candidate> idBest_;         // per id: the candidate nearest the cell centre
     std::vector<std::uint32_t> idGroup_;    // per id: dense group index
-    std::vector<std::size_t> representatives_;  // per group
+    std::vector<Candidate> representatives_;  // per group
+    std::atomic<std::size_t> nextId_{0};
+    std::unique_ptr<MergeTable> merged_;
+    std::uint32_t partOffset_[kParts] = {};
     tbb::enumerable_thread_specific<std::unique_ptr<LocalTable>> tables_;
 };
 

@@ -159,12 +159,6 @@ struct ShadeContext {
     const std::vector<glm::vec2>& quadSamples;
 
     const ProbeSurfel* jobSurfels(std::size_t job) const { return &trace.at(probes[job], rays.fixedRays); }
-    // Hit h of the cache is ray h % blendRays of probe h / blendRays.
-    const ProbeSurfel& surfel(std::size_t h, int* ray, int* probe) const {
-        *probe = int(h / std::size_t(rays.blendRays));
-        *ray = int(h - std::size_t(*probe) * std::size_t(rays.blendRays));
-        return trace.at(*probe, rays.fixedRays + *ray);
-    }
     // The point on quad lights this ray's hit uses this frame (only quad lights read it).
     glm::vec2 quadSample(int ray, int probe) const {
         if (quadSamples.empty()) return glm::vec2(0.5f);
@@ -175,14 +169,16 @@ struct ShadeContext {
 // Groups in the order of the probe cage (finest volume) their representative lies in: a
 // counting sort, so that consecutive gathers read the same eight probes' tiles from cache
 // instead of scattering over the atlases.
-std::vector<std::uint32_t> cageOrder(const ShadeContext& c, const HitCache& cache) {
+const std::vector<std::uint32_t>& cageOrder(const ShadeContext& c, const HitCache& cache, ShadeWorkspace& w) {
     const ProbeVolume& v = c.sampler.field().volumes().front();
     const std::size_t groups = cache.groups(), cages = std::size_t(v.probeCount());
-    std::vector<std::uint32_t> cage(groups), start(cages + 1, 0), order(groups);
+    std::vector<std::uint32_t>&cage = w.cage, &start = w.start, &order = w.order;
+    cage.resize(groups);
+    start.assign(cages + 1, 0);
+    order.resize(groups);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t g = r.begin(); g != r.end(); ++g) {
-            int ray, probe;
-            glm::vec3 x = (c.surfel(cache.representative(g), &ray, &probe).position - v.origin) / v.spacing;
+            glm::vec3 x = (cache.representativePosition(g) - v.origin) / v.spacing;
             glm::ivec3 cell = glm::clamp(glm::ivec3(glm::clamp(x, glm::vec3(0.0f), glm::vec3(v.counts))),
                                          glm::ivec3(0), v.counts - 1);
             cage[g] = std::uint32_t(cell.x + v.counts.x * (cell.y + v.counts.y * cell.z));
@@ -200,28 +196,30 @@ std::vector<std::uint32_t> cageOrder(const ShadeContext& c, const HitCache& cach
 // from has no tested visibility: w = 1 marks it, and a hit that faces it tests it itself.
 constexpr int kSharedLights = 4;
 struct GroupValues {
-    int stride = 1;                 // vec4s per group: irradiance, then the shared lights
-    int lights = 0;                 // shared lights
-    std::vector<glm::vec4> values;  // group * stride + ...
+    int stride = 1;                  // vec4s per group: irradiance, then the shared lights
+    int lights = 0;                  // shared lights
+    std::vector<glm::vec4>& values;  // group * stride + ...
 };
 
 // Evaluates each group at its representative hit.
 void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool shareLights, GroupValues& out,
-                    std::atomic<std::int64_t>& queries) {
+                    ShadeWorkspace& workspace, std::atomic<std::int64_t>& queries) {
     const std::size_t groups = cache.groups();
     out.lights = shareLights ? std::min<int>(int(c.lights.size()), kSharedLights) : 0;
     out.stride = 1 + out.lights;
     out.values.resize(groups * std::size_t(out.stride));
-    const std::vector<std::uint32_t> order = cageOrder(c, cache);
+    const std::vector<std::uint32_t>& order = cageOrder(c, cache, workspace);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 256), [&](const tbb::blocked_range<std::size_t>& r) {
         std::int64_t count = 0;
         for (std::size_t k = r.begin(); k != r.end(); ++k) {
             const std::size_t g = order[k];
-            int ray, probe;
-            const ProbeSurfel& s = c.surfel(cache.representative(g), &ray, &probe);
+            const std::size_t h = cache.representative(g);
+            const int probe = int(h / std::size_t(c.rays.blendRays));
+            const int ray = int(h - std::size_t(probe) * std::size_t(c.rays.blendRays));
+            const glm::vec3 position = cache.representativePosition(g), normal = cache.representativeNormal(g);
             glm::vec4* v = &out.values[g * std::size_t(out.stride)];
             v[0] = glm::vec4(c.energy > 0.0f
-                                 ? c.energy * c.sampler.irradiance(s.position, s.normal, -c.rays.blendDirection(ray))
+                                 ? c.energy * c.sampler.irradiance(position, normal, -c.rays.blendDirection(ray))
                                  : glm::vec3(0.0f),
                              0.0f);
             const glm::vec2 u = c.quadSample(ray, probe);
@@ -229,13 +227,13 @@ void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool shareLigh
                 glm::vec3 dir;
                 float weight, range;
                 v[1 + l] = glm::vec4(0.0f);
-                if (!c.lights[std::size_t(l)].incident(s.position, u, &weight, &dir, &range)) continue;
-                if (!(glm::dot(dir, s.normal) > 0.0f)) {
+                if (!c.lights[std::size_t(l)].incident(position, u, &weight, &dir, &range)) continue;
+                if (!(glm::dot(dir, normal) > 0.0f)) {
                     v[1 + l] = glm::vec4(weight * dir, 1.0f);
                     continue;
                 }
                 ++count;
-                v[1 + l] = glm::vec4(weight * c.visibility.visible(l, s.position, s.normal, dir, range) * dir, 0.0f);
+                v[1 + l] = glm::vec4(weight * c.visibility.visible(l, position, normal, dir, range) * dir, 0.0f);
             }
         }
         queries += count;
@@ -260,7 +258,7 @@ void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays
                 [&](std::size_t probe, std::size_t i, glm::vec3* p, glm::vec3* n) {
                     if (trace.work[probe] != ProbeWork::Full) return false;
                     const ProbeSurfel& s = trace.at(int(probe), rays.fixedRays + int(i));
-                    *p = s.position;
+                    *p = trace.position(rays, int(probe), rays.fixedRays + int(i));
                     *n = s.normal;
                     return shadedHit(s);
                 });
@@ -268,7 +266,7 @@ void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays
 
 ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeSampler& previous,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
-                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out) {
+                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out, ShadeWorkspace* workspace) {
     const DdgiDesc& desc = previous.field().desc();
     bool quadLights = false;
     for (const Light& l : scene.lights) quadLights |= l.type == LightType::Quad;
@@ -288,10 +286,12 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
     std::atomic<std::int64_t> queries{0};
 
     const HitCache* cache = grouped && hitCacheUsed(desc, scene) ? grouped : nullptr;
-    GroupValues shared;
+    ShadeWorkspace local;
+    if (!workspace) workspace = &local;
+    GroupValues shared{1, 0, workspace->groupValues};
     if (cache) {
         const auto t0 = std::chrono::steady_clock::now();
-        evaluateGroups(c, *cache, desc.hitCache == DdgiHitCache::All, shared, queries);
+        evaluateGroups(c, *cache, desc.hitCache == DdgiHitCache::All, shared, *workspace, queries);
         stats.groupsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         stats.cacheGroups = std::int64_t(cache->groups());
     }
@@ -321,25 +321,26 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 }
                 if (!shadedHit(s)) {
                     // Backfaces carry no light; black front faces only their emission.
-                    o = glm::vec4(s.distance < 0.0f ? glm::vec3(0.0f) : s.emission, s.distance);
+                    o = glm::vec4(s.distance < 0.0f ? glm::vec3(0.0f) : trace.emission[s.emitter], s.distance);
                     continue;
                 }
                 const std::uint32_t g = groups[i];
+                const glm::vec3 position = trace.origins[std::size_t(probes[job])] + s.distance * rays.blendDirection(int(i));
                 // One light exactly at this hit: its own light point and shadow ray.
                 auto exact = [&](int k) {
                     glm::vec3 e, l;
                     float range;
-                    if (!prepared[std::size_t(k)].unshadowed(s.position, s.normal, c.quadSample(int(i), probes[job]), &e,
+                    if (!prepared[std::size_t(k)].unshadowed(position, s.normal, c.quadSample(int(i), probes[job]), &e,
                                                             &l, &range))
                         return glm::vec3(0.0f);
                     ++count;
-                    return e * visibility.visible(k, s.position, s.normal, l, range);
+                    return e * visibility.visible(k, position, s.normal, l, range);
                 };
                 glm::vec3 e(0.0f);
                 int firstExact = 0;
                 if (g == HitCache::kNone) {
                     if (c.energy > 0.0f)
-                        e = c.energy * previous.irradiance(s.position, s.normal, -rays.blendDirection(int(i)));
+                        e = c.energy * previous.irradiance(position, s.normal, -rays.blendDirection(int(i)));
                 } else {
                     const glm::vec4* v = &shared.values[std::size_t(g) * std::size_t(shared.stride)];
                     e = glm::vec3(v[0]);
@@ -351,7 +352,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                     ++cached;
                 }
                 for (int k = firstExact; k < int(prepared.size()); ++k) e += exact(k);
-                o = glm::vec4(s.emission + s.diffuseAlbedo * kInvPi * e, s.distance);
+                o = glm::vec4(trace.emission[s.emitter] + s.diffuseAlbedo() * kInvPi * e, s.distance);
             }
         }
         queries += count;

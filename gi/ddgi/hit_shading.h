@@ -67,11 +67,19 @@ float hitCacheCellSize(const ProbeField& field);
 // probe * blendRays + ray), for callers that did not group while tracing (traceProbes can).
 void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays, const ProbeTrace& trace);
 
+// Per-frame buffers of shadeProbeRays, kept by the caller so that their memory is reused
+// (fresh ones every frame cost page faults on each first touch).
+struct ShadeWorkspace {
+    std::vector<glm::vec4> groupValues;
+    std::vector<std::uint32_t> cage, start, order;
+};
+
 // Shades the blend rays of `probes` (the probes that blend this frame) against the previous
 // frame's field (`previous`). `grouped` holds this frame's hits grouped (traceProbes with a
 // cache, or groupProbeHits); it is read when hitCacheUsed() and may be null otherwise.
 ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeSampler& previous,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
-                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out);
+                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out,
+                          ShadeWorkspace* workspace = nullptr);
 
 }  // namespace voxgi

@@ -57,16 +57,17 @@ std::int64_t updateOcclusionProbes(const Scene& scene, const LightVisibility& sh
                 const int i = firstRay + k * stride;
                 const ProbeSurfel& s = trace.at(job.probe, rays.fixedRays + i);
                 if (s.distance <= 0.0f || s.distance >= kMissDistance) continue;
+                const glm::vec3 position = trace.position(rays, job.probe, rays.fixedRays + i);
                 glm::vec2 u = r2Sequence(int(frame) * rays.blendRays + i, glm::vec2(0.5f) + 0.137f * float(job.probe % 7));
                 for (int l = 0; l < lights; ++l) {
                     glm::vec3 dir;
                     float range;
-                    lightDirection(scene.lights[std::size_t(l)], s.position, u, &dir, &range);
+                    lightDirection(scene.lights[std::size_t(l)], position, u, &dir, &range);
                     // A surface facing away says nothing about the light's visibility.
                     if (glm::dot(dir, s.normal) <= 0.0f) continue;
                     std::size_t at = std::size_t(l) * std::size_t(padded) + std::size_t(k);
                     tested[at] = 1.0f;
-                    lit[at] = shadowRays.visible(l, s.position, s.normal, dir, range);
+                    lit[at] = shadowRays.visible(l, position, s.normal, dir, range);
                     ++count;
                 }
             }

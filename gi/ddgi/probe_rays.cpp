@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/ddgi/hit_cache.h"
+#include "scenes/errors.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/raytrace/texture_pyramid.h"
 #include "gi/sampling/sequences.h"
@@ -19,32 +20,35 @@ namespace {
 // Quad-light geometry is drawn by the direct pass; its emission must not enter the probes too.
 bool countsAsIndirectEmitter(const Mesh& mesh) { return mesh.name.rfind("quad_light_", 0) != 0; }
 
-// One ray into its surfel. `spread` is the ray's cone angle for the albedo lookup; negative for
-// classification rays, which are never shaded (albedo 0, no lookup).
-void traceSurfel(const RayTracer& tracer, const std::vector<char>& emitterCounts, glm::vec3 origin, glm::vec3 d,
-                 float spread, ProbeSurfel& s) {
+// One ray into its surfel (and its hit position, for the hit cache). `spread` is the ray's
+// cone angle for the albedo lookup; negative for classification rays, which are never shaded
+// (albedo 0, no lookup).
+struct Emitters {
+    std::vector<std::uint16_t> material;  // ProbeTrace::emission entry per material (0: none)
+    std::vector<char> mesh;               // the mesh's emission counts (not an analytic light's quad)
+};
+void traceSurfel(const RayTracer& tracer, const Emitters& emitters, glm::vec3 origin, glm::vec3 d,
+                 float spread, ProbeSurfel& s, glm::vec3* position) {
     RayHit hit = tracer.intersect(origin, d);
     if (!hit.hit) {
         s = ProbeSurfel{};
         return;
     }
-    s.position = hit.position;
-    s.emission = glm::vec3(0.0f);
+    *position = hit.position;
+    s.emitter = 0;
+    s.albedo[0] = s.albedo[1] = s.albedo[2] = 0;
     if (!hit.frontFace) {
         s.distance = -hit.t;
-        s.normal = s.diffuseAlbedo = glm::vec3(0.0f);
+        s.normal = glm::vec3(0.0f);
         return;
     }
     s.distance = hit.t;
     glm::vec3 n = hit.shadingNormal;
     s.normal = glm::dot(n, d) > 0.0f ? -n : n;
-    if (spread < 0.0f) {
-        s.diffuseAlbedo = glm::vec3(0.0f);
-        return;
-    }
+    if (spread < 0.0f) return;
     const Material& m = tracer.scene().materials[hit.material];
-    s.diffuseAlbedo = (1.0f - m.metallic) * (1.0f - m.specular) * tracer.albedoInCone(hit, d, spread);
-    if (emitterCounts[hit.mesh]) s.emission = m.emission;
+    s.setDiffuseAlbedo((1.0f - m.metallic) * (1.0f - m.specular) * tracer.albedoInCone(hit, d, spread));
+    s.emitter = emitters.mesh[hit.mesh] ? emitters.material[hit.material] : 0;
 }
 
 }  // namespace
@@ -80,14 +84,25 @@ RaySet makeRaySet(const DdgiDesc& desc, std::uint32_t seed, std::uint32_t frame)
 void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace,
                  HitCache* group) {
     const Scene& scene = tracer.scene();
-    std::vector<char> emitterCounts(scene.meshes.size());
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m) emitterCounts[m] = countsAsIndirectEmitter(scene.meshes[m]);
+    // Emission table entries per emissive material, and which meshes count as emitters.
+    trace.emission.assign(1, glm::vec3(0.0f));
+    Emitters emitters;
+    emitters.material.assign(scene.materials.size(), 0);
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        if (!scene.materials[m].isEmissive()) continue;
+        if (trace.emission.size() == 0xFFFF) throw InputError("DDGI: more than 65534 emissive materials");
+        emitters.material[m] = std::uint16_t(trace.emission.size());
+        trace.emission.push_back(scene.materials[m].emission);
+    }
+    for (const Mesh& mesh : scene.meshes) emitters.mesh.push_back(countsAsIndirectEmitter(mesh));
 
     const int probes = field.probeCount();
     trace.stride = rays.stride();
     // Every traced ray writes its whole surfel below, and readers only look at traced rays, so
     // the buffer is kept between frames rather than cleared (clearing cost 10-20 % of a trace).
     trace.surfels.resize(std::size_t(probes) * std::size_t(trace.stride));
+    trace.origins.resize(std::size_t(probes));
+    for (int p = 0; p < probes; ++p) trace.origins[std::size_t(p)] = field.probePosition(p);
     std::int64_t traced = 0;
     for (int p = 0; p < probes; ++p) {
         ProbeWork w = trace.work[std::size_t(p)];
@@ -111,15 +126,16 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
             int end = w == ProbeWork::Full ? trace.stride : rays.fixedRays;
             int first = (task % chunksPerProbe) * chunk;
             int last = std::min(end, first + chunk);
-            glm::vec3 origin = field.probePosition(p);
+            const glm::vec3 origin = trace.origins[std::size_t(p)];
             for (int i = first; i < last; ++i) {
                 const glm::vec3 d = rays.directions[std::size_t(i)];
                 ProbeSurfel& s = trace.surfels[std::size_t(p) * std::size_t(trace.stride) + std::size_t(i)];
                 const bool blend = i >= rays.fixedRays;
-                traceSurfel(tracer, emitterCounts, origin, d, blend ? spread : -1.0f, s);
+                glm::vec3 position;
+                traceSurfel(tracer, emitters, origin, d, blend ? spread : -1.0f, s, &position);
                 if (writer && blend) {
                     const std::size_t h = std::size_t(p) * std::size_t(rays.blendRays) + std::size_t(i - rays.fixedRays);
-                    if (shadedHit(s)) writer->add(h, s.position, s.normal);
+                    if (shadedHit(s)) writer->add(h, position, s.normal);
                     else writer->skip(h);
                 }
             }

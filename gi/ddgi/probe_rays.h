@@ -38,29 +38,43 @@ enum class ProbeWork : std::uint8_t {
     Full,       // classification and blend rays; the probe blends this frame
 };
 
+// One probe ray's hit, 24 bytes: every shading pass streams these, so the position is not
+// stored (ProbeTrace::position rebuilds it from the ray) and the albedo is 16-bit fixed point.
 // Classification rays (the first fixedRays of a probe) are never shaded: their albedo is 0.
 struct ProbeSurfel {
-    glm::vec3 position{0.0f};
     float distance = kMissDistance;  // signed: negative for a backface hit
     glm::vec3 normal{0.0f};          // facing the probe; zero for misses and backfaces
-    glm::vec3 diffuseAlbedo{0.0f};   // (1 - metallic)(1 - specular) albedo
-    glm::vec3 emission{0.0f};        // front-face emission of meshes that are not analytic lights
+    std::uint16_t albedo[3] = {0, 0, 0};  // (1 - metallic)(1 - specular) albedo in [0, 1], unorm16
+    std::uint16_t emitter = 0;       // index into ProbeTrace::emission (0: none)
+
+    glm::vec3 diffuseAlbedo() const {
+        return glm::vec3(float(albedo[0]), float(albedo[1]), float(albedo[2])) * (1.0f / 65535.0f);
+    }
+    void setDiffuseAlbedo(glm::vec3 a) {
+        for (int c = 0; c < 3; ++c) albedo[c] = std::uint16_t(glm::clamp(a[c], 0.0f, 1.0f) * 65535.0f + 0.5f);
+    }
+    bool dark() const { return (albedo[0] | albedo[1] | albedo[2]) == 0; }
 };
 
 // A front-face hit with some diffuse albedo: it reflects light toward its probe, so shading
 // computes it (and the hit cache may group it).
-inline bool shadedHit(const ProbeSurfel& s) {
-    return !(s.distance < 0.0f) && s.distance < kMissDistance &&
-           glm::max(s.diffuseAlbedo.x, glm::max(s.diffuseAlbedo.y, s.diffuseAlbedo.z)) > 0.0f;
-}
+inline bool shadedHit(const ProbeSurfel& s) { return !(s.distance < 0.0f) && s.distance < kMissDistance && !s.dark(); }
 
 struct ProbeTrace {
     int stride = 0;                 // surfels per probe (RaySet::stride)
     std::vector<ProbeWork> work;    // per probe
+    std::vector<glm::vec3> origins;      // per probe: where its rays started this frame
     std::vector<ProbeSurfel> surfels;    // probe * stride + ray
+    // Front-face emission of the meshes that are not analytic lights, per emissive material
+    // (entry 0 is none), what ProbeSurfel::emitter indexes.
+    std::vector<glm::vec3> emission;
     std::int64_t raysTraced = 0;
 
     const ProbeSurfel& at(int probe, int ray) const { return surfels[std::size_t(probe) * std::size_t(stride) + std::size_t(ray)]; }
+    // The hit point of ray `ray` (of the RaySet traced) of `probe`; meaningless for misses.
+    glm::vec3 position(const RaySet& rays, int probe, int ray) const {
+        return origins[std::size_t(probe)] + std::abs(at(probe, ray).distance) * rays.directions[std::size_t(ray)];
+    }
 };
 
 // Traces the rays `work` asks for from every probe's (relocated) position. With `group` (begun

@@ -75,7 +75,7 @@ void classifyProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& tra
                 if (s.distance < 0.0f) {
                     ++backfaces;
                 } else if (s.distance < kMissDistance) {
-                    near |= glm::all(glm::lessThanEqual(glm::abs(s.position - position), v.spacing));
+                    near |= glm::all(glm::lessThanEqual(glm::abs(trace.position(rays, p, i) - position), v.spacing));
                 }
             }
             bool inside = float(backfaces) / float(rays.fixedRays) > desc.backfaceThreshold;

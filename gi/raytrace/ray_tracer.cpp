@@ -1,5 +1,6 @@
 #include "gi/raytrace/ray_tracer.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -18,9 +19,13 @@ struct RayTracer::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     // Built on the first cone lookup: most users (the path tracer) never need them.
-    std::once_flag conesReady;
+    std::once_flag conesOnce;
+    std::atomic<bool> conesBuilt{false};
     std::vector<std::unique_ptr<TexturePyramid>> pyramids;  // per texture
-    std::vector<std::vector<float>> uvDensity;  // per mesh with uvs: 0.5 log2(uv area / world area) per triangle
+    // Per triangle of a textured material, texels of its texture per unit length (0: no uvs
+    // or untextured); a mesh's triangles start at meshFirst[mesh].
+    std::vector<float> texelScale;
+    std::vector<std::size_t> meshFirst;
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -146,36 +151,44 @@ bool RayTracer::occluded(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const
 }
 
 void RayTracer::prepareCones() const {
-    std::call_once(impl_->conesReady, [&] {
+    std::call_once(impl_->conesOnce, [&] {
         impl_->pyramids.resize(scene_.textures.size());
-        impl_->uvDensity.resize(scene_.meshes.size());
         tbb::parallel_for(std::size_t(0), scene_.textures.size(), [&](std::size_t i) {
             impl_->pyramids[i] = std::make_unique<TexturePyramid>(scene_.textures[i]);
         });
+        impl_->meshFirst.resize(scene_.meshes.size());
+        std::size_t total = 0;
+        for (std::size_t m = 0; m < scene_.meshes.size(); ++m) {
+            impl_->meshFirst[m] = total;
+            total += scene_.meshes[m].triangleCount();
+        }
+        impl_->texelScale.assign(total, 0.0f);
         tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
             const Mesh& mesh = scene_.meshes[m];
             if (mesh.uvs.empty()) return;
-            std::vector<float>& d = impl_->uvDensity[m];
-            d.resize(mesh.triangleCount());
-            for (std::size_t t = 0; t < d.size(); ++t) {
+            float* scale = &impl_->texelScale[impl_->meshFirst[m]];
+            for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+                const int texture = scene_.materials[mesh.materialIds[t]].albedoTexture;
+                if (texture < 0) continue;
                 const std::uint32_t* tri = &mesh.indices[3 * t];
-                d[t] = triangleTexelDensity(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]],
-                                            mesh.uvs[tri[0]], mesh.uvs[tri[1]], mesh.uvs[tri[2]], 1, 1);
+                scale[t] = triangleTexelScale(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]],
+                                              mesh.uvs[tri[0]], mesh.uvs[tri[1]], mesh.uvs[tri[2]], 1, 1) *
+                           impl_->pyramids[std::size_t(texture)]->texelScale();
             }
         });
+        impl_->conesBuilt.store(true, std::memory_order_release);
     });
 }
 
 glm::vec3 RayTracer::albedoInCone(const RayHit& hit, glm::vec3 direction, float spread) const {
     const Material& m = scene_.materials[hit.material];
     if (m.albedoTexture < 0) return m.albedo;
-    prepareCones();
+    if (!impl_->conesBuilt.load(std::memory_order_acquire)) prepareCones();
     const TexturePyramid& pyramid = *impl_->pyramids[std::size_t(m.albedoTexture)];
-    const std::vector<float>& density = impl_->uvDensity[hit.mesh];
-    if (density.empty() || pyramid.levels() == 0) return m.albedo * scene_.textures[std::size_t(m.albedoTexture)].sampleLinear(hit.uv);
-    // The per-triangle constant is taken over uv space: add this texture's texel count.
-    float lod = rayConeLod(density[hit.triangle] + pyramid.log2Texels(), hit.t * spread, glm::dot(hit.geometricNormal, direction));
-    return m.albedo * pyramid.sample(hit.uv, lod);
+    const float scale = impl_->texelScale[impl_->meshFirst[hit.mesh] + hit.triangle];
+    if (!(scale > 0.0f)) return m.albedo * scene_.textures[std::size_t(m.albedoTexture)].sampleLinear(hit.uv);
+    const float footprint = rayConeFootprint(scale, hit.t * spread, glm::dot(hit.geometricNormal, direction));
+    return m.albedo * pyramid.sample(hit.uv, pyramid.levelForFootprint(footprint));
 }
 
 glm::vec3 RayTracer::albedoAt(const RayHit& hit) const {

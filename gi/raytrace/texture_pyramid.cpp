@@ -2,17 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "scenes/scene.h"
 
 namespace voxgi {
 
-TexturePyramid::TexturePyramid(const Texture& texture) {
+TexturePyramid::TexturePyramid(const Texture& texture) : decode_(srgbDecodeTable()) {
     if (texture.width <= 0 || texture.height <= 0 ||
         texture.rgba.size() < std::size_t(texture.width) * std::size_t(texture.height) * 4)
         return;
     levels_.push_back({texture.width, texture.height, texture.rgba.data()});
-    log2Texels_ = 0.5f * std::log2(float(texture.width) * float(texture.height));
+    texelScale_ = std::sqrt(float(texture.width) * float(texture.height));
     while (levels_.back().width > 1 || levels_.back().height > 1) {
         const Level& src = levels_.back();
         Level dst;
@@ -43,13 +44,8 @@ TexturePyramid::TexturePyramid(const Texture& texture) {
     }
 }
 
-glm::vec3 TexturePyramid::sample(glm::vec2 uv, float lod) const {
-    if (levels_.empty()) return glm::vec3(1.0f);
-    const float top = float(levels_.size() - 1);
-    lod = std::isnan(lod) ? 0.0f : std::clamp(lod, 0.0f, top);
-    // The nearest level, bilinear within it: cones this wide average many texels already, and
-    // blending two levels would double the lookups for no visible difference in a probe.
-    const Level& l = levels_[std::size_t(lod + 0.5f)];
+glm::vec3 TexturePyramid::sampleLevelZero(glm::vec2 uv) const {
+    const Level& l = levels_.front();
     return sampleSrgbBilinear(l.rgba, l.width, l.height, uv);
 }
 
@@ -61,16 +57,16 @@ glm::vec3 TexturePyramid::levelMean(int level) const {
     return glm::vec3(sum / double(std::size_t(l.width) * std::size_t(l.height)));
 }
 
-float rayConeLod(float texelDensity, float coneWidth, float cosine) {
-    return texelDensity + std::log2(std::abs(coneWidth) / std::abs(cosine));
+float rayConeFootprint(float texelScale, float coneWidth, float cosine) {
+    return texelScale * std::abs(coneWidth) / std::abs(cosine);
 }
 
-float triangleTexelDensity(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec2 t0, glm::vec2 t1, glm::vec2 t2,
-                           int width, int height) {
+float triangleTexelScale(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec2 t0, glm::vec2 t1, glm::vec2 t2,
+                         int width, int height) {
     glm::vec2 a = t1 - t0, b = t2 - t0;
     float texels = std::abs(a.x * b.y - a.y * b.x) * float(width) * float(height);
     float world = glm::length(glm::cross(p1 - p0, p2 - p0));
-    return 0.5f * std::log2(texels / world);
+    return std::sqrt(texels / world);
 }
 
 float coneSpreadForRays(int rays) {
