@@ -224,3 +224,38 @@ TEST(DdgiHitCache, GroupingWhileTracingMatchesGroupingAfterwards) {
             EXPECT_NE(whileTracing.representative(g) / std::size_t(rays.blendRays), 3u);
     }
 }
+
+TEST(DdgiHitCache, RefreshingCellsEveryOtherFrameKeepsTheConvergedField) {
+    // hit_cache_refresh 2: a cell seen last frame re-uses last frame's values every other
+    // frame. About half the groups are evaluated per frame, and the converged field matches
+    // evaluating every group every frame.
+    Scene scene = test::openYard();
+    RayTracer tracer(scene);
+    auto run = [&](const char* refresh, std::int64_t* groups, std::int64_t* evaluated) {
+        auto d = std::make_unique<DdgiSystem>(
+            tracer, test::descFrom({{"probes", "6,3,6"}, {"spacing", "0.6"}, {"rays", "128"}, {"hysteresis", "0.8"},
+                                    {"relocate", "false"}, {"classify", "false"}, {"hit_cache_refresh", refresh}}));
+        for (int f = 0; f < 40; ++f) {
+            DdgiFrameStats st = d->update(glm::vec3(0.0f));
+            *groups = st.cacheGroups;
+            *evaluated = st.cacheGroupsEvaluated;
+        }
+        return d;
+    };
+    std::int64_t groups1 = 0, evaluated1 = 0, groups2 = 0, evaluated2 = 0;
+    auto every = run("1", &groups1, &evaluated1);
+    auto other = run("2", &groups2, &evaluated2);
+    EXPECT_EQ(evaluated1, groups1);
+    EXPECT_GT(groups2, 100);
+    EXPECT_GT(evaluated2, groups2 / 4);
+    EXPECT_LT(evaluated2, groups2 * 3 / 4);
+    double sum = 0, diff = 0;
+    for (int p = 0; p < every->field().probeCount(); ++p) {
+        glm::vec3 a = every->field().meanIrradiance(p), b = other->field().meanIrradiance(p);
+        sum += a.x + a.y + a.z;
+        diff += std::abs(a.x - b.x) + std::abs(a.y - b.y) + std::abs(a.z - b.z);
+    }
+    std::printf("hit_cache_refresh 2: %lld of %lld groups evaluated; converged field differs by %.3f %% (mean |diff|)\n",
+                (long long)evaluated2, (long long)groups2, 100.0 * diff / sum);
+    EXPECT_LT(diff, 0.01 * sum);
+}

@@ -84,7 +84,7 @@ const ShadingMode kModes[] = {
 
 struct ModeRuns {
     std::unique_ptr<DdgiSystem> shade, direct;
-    std::vector<double> traceRate, directRate, shadeRate, groups, shadow;
+    std::vector<double> traceRate, directRate, shadeRate, groups, evaluated, shadow;
 };
 
 StageMedians runFrames(DdgiSystem& ddgi, glm::vec3 eye, int frames, BlendBackend* backend) {
@@ -276,6 +276,7 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
             m.traceRate.push_back(double(st.raysTraced) / (st.traceMs * 1e-3) / raw);
             m.shadeRate.push_back(double(st.raysTraced) / ((st.traceMs + st.shadeMs) * 1e-3) / raw);
             m.groups.push_back(double(st.cacheGroups));
+            m.evaluated.push_back(double(st.cacheGroupsEvaluated));
             m.shadow.push_back(double(st.shadowQueries));
             if (m.direct) {
                 raw = rawRateNow();
@@ -301,15 +302,16 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     std::printf("modes, %% of Embree alone (median %.2f Mrays/s, timed just before each update), medians of %d frames,\n"
                 "load average %s before, %s after:\n",
                 modeRawRate * 1e-6, frames, loadBefore.c_str(), loadAfter.c_str());
-    std::printf("  %-24s %8s %15s %14s %14s %14s\n", "hit_cache, direct", "trace", "trace + direct", "trace + shade",
-                "cache groups", "light tests");
+    std::printf("  %-24s %8s %15s %14s %20s %14s\n", "hit_cache, direct", "trace", "trace + direct", "trace + shade",
+                "groups (evaluated)", "light tests");
     for (std::size_t i = 0; i < modes.size(); ++i) {
         const ModeRuns& m = modes[i];
         char direct[32] = "(as above)";
         if (m.direct) std::snprintf(direct, sizeof direct, "%.0f %%", 100.0 * median(m.directRate));
-        std::printf("  %-24s %6.0f %% %15s %12.0f %% %14.0f %14.0f\n", kModes[i].name,
-                    100.0 * median(m.traceRate), direct, 100.0 * median(m.shadeRate),
-                    median(m.groups), median(m.shadow));
+        char groups[48];
+        std::snprintf(groups, sizeof groups, "%.0f (%.0f)", median(m.groups), median(m.evaluated));
+        std::printf("  %-24s %6.0f %% %15s %12.0f %% %20s %14.0f\n", kModes[i].name,
+                    100.0 * median(m.traceRate), direct, 100.0 * median(m.shadeRate), groups, median(m.shadow));
     }
     std::printf("stage medians over %d frames [ms]      culling off   culling on\n", frames);
     auto row = [&](const char* name, double a, double b) { std::printf("  %-36s %10.2f %12.2f\n", name, a, b); };

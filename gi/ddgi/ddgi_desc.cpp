@@ -47,7 +47,7 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
                              "hysteresis", "distance_exponent", "normal_bias", "view_bias", "irradiance_gamma",
                              "energy", "irradiance_threshold", "brightness_threshold", "backface_threshold",
                              "relocation_backface_threshold", "min_frontface_distance", "classify", "occupancy", "relocate",
-                             "sleep_interval", "cascades", "scroll", "direct", "occlusion_stride", "hit_cache", "hit_cache_cells", "seed",
+                             "sleep_interval", "cascades", "scroll", "direct", "occlusion_stride", "hit_cache", "hit_cache_cells", "hit_cache_refresh", "seed",
                              "backend"});
     DdgiDesc d;
     glm::vec3 counts = parseTriple(gi, "ddgi.probes", glm::vec3(0.0f));
@@ -116,6 +116,8 @@ DdgiDesc readDdgiDesc(const GiSettings& gi) {
     else throw InputError("gi.ddgi.hit_cache: expected off, probes or all, got '" + cache + "'");
     d.hitCacheCells = gi.getInt("ddgi.hit_cache_cells", d.hitCacheCells);
     requireRange("ddgi.hit_cache_cells", d.hitCacheCells, 1, 64);
+    d.hitCacheRefresh = gi.getInt("ddgi.hit_cache_refresh", d.hitCacheRefresh);
+    requireRange("ddgi.hit_cache_refresh", d.hitCacheRefresh, 1, 64);
     int seed = gi.getInt("ddgi.seed", int(d.seed));
     d.seed = std::uint32_t(seed);
     std::string backend = gi.getString("ddgi.backend", "gpu");

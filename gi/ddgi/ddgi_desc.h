@@ -53,6 +53,9 @@ struct DdgiDesc {
     int occlusionStride = 4;      // occlusion probes: shadow rays from every n-th blend ray's hit
     DdgiHitCache hitCache = DdgiHitCache::All;
     int hitCacheCells = 2;        // hit-cache cells per smallest probe spacing
+    // Frames between evaluations of a hit-cache cell: a cell also present last frame re-uses
+    // last frame's values on the frames between (1: evaluate every cell every frame).
+    int hitCacheRefresh = 2;
     std::uint32_t seed = 1;       // random ray rotations; same seed, same frames, same result
     bool gpuBlend = true;         // blend on the GPU (GL compute) or with the CPU reference
 

@@ -59,6 +59,7 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
     ShadeStats shade = shadeProbeRays(tracer_.scene(), visibility, previous, rays_, trace_, blendProbes, frame_,
                                       grouping ? &hitCache_ : nullptr, shaded_, &shadeWorkspace_);
     stats.cacheGroups = shade.cacheGroups;
+    stats.cacheGroupsEvaluated = shade.groupsEvaluated;
     stats.shadeGroupsMs = shade.groupsMs;
     stats.shadeHitsMs = shade.hitsMs;
     stats.cachedHits = shade.cachedHits;

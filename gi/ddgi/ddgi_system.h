@@ -27,6 +27,7 @@ struct DdgiFrameStats {
     std::int64_t raysTraced = 0;      // probe rays (fixed + blend)
     std::int64_t shadowQueries = 0;   // shadow rays (at hits, or into the occlusion probes)
     std::int64_t cacheGroups = 0;     // hit-cache groups (probe gathers shared by nearby hits)
+    std::int64_t cacheGroupsEvaluated = 0;  // of those, evaluated this frame (hit_cache_refresh)
     std::int64_t cachedHits = 0;
     int probesBlended = 0;
     ProbeStateCounts states;

@@ -40,6 +40,7 @@ public:
     }
     // The entry of `key`, or null; `slot` receives where it is or would go.
     Entry* find(std::uint64_t key, std::size_t* slot) {
+        if (slots_.empty()) return nullptr;
         const std::size_t mask = slots_.size() - 1;
         for (std::size_t i = std::size_t(mix64(key)) & mask;; i = (i + 1) & mask) {
             const Slot& s = slots_[i];
@@ -127,7 +128,8 @@ struct HitCache::LocalTable {
 };
 
 struct HitCache::MergeTable {
-    KeyTable<GroupEntry> parts[kParts];
+    KeyTable<GroupEntry> frames[2][kParts];  // this finish()'s partitions and the previous one's
+    int current = 0;
     std::vector<std::vector<GroupEntry>> buckets;  // table * kParts + partition
 };
 
@@ -277,6 +279,12 @@ void HitCache::finish() {
         }
     if (!merged_) merged_ = std::make_unique<MergeTable>();
     MergeTable& m = *merged_;
+    m.current ^= 1;
+    KeyTable<GroupEntry>* parts = m.frames[m.current];
+    KeyTable<GroupEntry>* previous = m.frames[m.current ^ 1];
+    const bool samePlaces = previousInvCellSize_ == invCellSize_;
+    previousInvCellSize_ = invCellSize_;
+    std::copy(partOffset_, partOffset_ + kParts, previousPartOffset_);
     m.buckets.resize(tables.size() * kParts);
     tbb::parallel_for(std::size_t(0), tables.size(), [&](std::size_t t) {
         std::vector<GroupEntry>* buckets = &m.buckets[t * kParts];
@@ -285,7 +293,7 @@ void HitCache::finish() {
             if (s.key != 0) buckets[partOf(s.key)].push_back(GroupEntry{s.key, s.d2, s.id});
     });
     tbb::parallel_for(std::size_t(0), kParts, [&](std::size_t part) {
-        KeyTable<GroupEntry>& merged = m.parts[part];  // kept: its memory is reused
+        KeyTable<GroupEntry>& merged = parts[part];  // kept: its memory is reused
         merged.clear(total / kParts + 16);
         for (std::size_t t = 0; t < tables.size(); ++t)
             for (const GroupEntry& e : m.buckets[t * kParts + part]) {
@@ -301,13 +309,23 @@ void HitCache::finish() {
     std::size_t groups = 0;
     for (std::size_t part = 0; part < kParts; ++part) {
         partOffset_[part] = std::uint32_t(groups);
-        groups += m.parts[part].entries().size();
+        groups += parts[part].entries().size();
     }
     if (groups >= (std::size_t(1) << kPartShift)) throw std::length_error("DDGI hit cache: too many groups in one frame");
     representatives_.resize(groups);
+    previousGroup_.resize(groups);
+    groupKeys_.resize(groups);
     tbb::parallel_for(std::size_t(0), kParts, [&](std::size_t part) {
-        const std::vector<GroupEntry>& entries = m.parts[part].entries();
-        for (std::size_t j = 0; j < entries.size(); ++j) representatives_[partOffset_[part] + j] = idBest_[entries[j].id];
+        std::vector<GroupEntry>& entries = parts[part].entries();
+        for (std::size_t j = 0; j < entries.size(); ++j) {
+            const std::size_t g = partOffset_[part] + j;
+            representatives_[g] = idBest_[entries[j].id];
+            groupKeys_[g] = entries[j].key;
+            std::size_t slot = 0;
+            const GroupEntry* before = samePlaces ? previous[part].find(entries[j].key, &slot) : nullptr;
+            previousGroup_[g] = before ? previousPartOffset_[part] + std::uint32_t(before - previous[part].entries().data())
+                                       : kNone;
+        }
     });
 }
 

@@ -83,6 +83,10 @@ public:
     }
     std::size_t groups() const { return representatives_.size(); }
     std::size_t representative(std::size_t g) const { return representatives_[g].hit; }
+    // The same cell and normal bin's group in the previous finish() (kNone: none, or another
+    // cell size), and a group's key (stable from frame to frame).
+    std::uint32_t previousGroup(std::size_t g) const { return previousGroup_[g]; }
+    std::uint64_t groupKey(std::size_t g) const { return groupKeys_[g]; }
     // Its position and normal as they were added: evaluating a group needs no look at the
     // (scattered, uncached) hit records.
     glm::vec3 representativePosition(std::size_t g) const { return representatives_[g].position; }
@@ -109,9 +113,12 @@ private:
     std::vector<Candidate> idBest_;         // per id: the candidate nearest the cell centre
     std::vector<std::uint32_t> idGroup_;    // per id: dense group index
     std::vector<Candidate> representatives_;  // per group
+    std::vector<std::uint32_t> previousGroup_;  // per group
+    std::vector<std::uint64_t> groupKeys_;      // per group
+    float previousInvCellSize_ = 0.0f;         // of the tables the previous finish() built
     std::atomic<std::size_t> nextId_{0};
     std::unique_ptr<MergeTable> merged_;
-    std::uint32_t partOffset_[kParts] = {};
+    std::uint32_t partOffset_[kParts] = {}, previousPartOffset_[kParts] = {};
     tbb::enumerable_thread_specific<std::unique_ptr<LocalTable>> tables_;
 };
 

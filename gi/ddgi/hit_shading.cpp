@@ -173,11 +173,15 @@ const std::vector<std::uint32_t>& cageOrder(const ShadeContext& c, const HitCach
     const ProbeVolume& v = c.sampler.field().volumes().front();
     const std::size_t groups = cache.groups(), cages = std::size_t(v.probeCount());
     std::vector<std::uint32_t>&cage = w.cage, &start = w.start, &order = w.order;
+    const std::uint32_t skip = std::uint32_t(cages);  // groups not due this frame
     cage.resize(groups);
-    start.assign(cages + 1, 0);
-    order.resize(groups);
+    start.assign(cages + 2, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t g = r.begin(); g != r.end(); ++g) {
+            if (!w.due[g]) {
+                cage[g] = skip;
+                continue;
+            }
             glm::vec3 x = (cache.representativePosition(g) - v.origin) / v.spacing;
             glm::ivec3 cell = glm::clamp(glm::ivec3(glm::clamp(x, glm::vec3(0.0f), glm::vec3(v.counts))),
                                          glm::ivec3(0), v.counts - 1);
@@ -185,8 +189,10 @@ const std::vector<std::uint32_t>& cageOrder(const ShadeContext& c, const HitCach
         }
     });
     for (std::size_t g = 0; g < groups; ++g) ++start[cage[g] + 1];
-    for (std::size_t i = 0; i < cages; ++i) start[i + 1] += start[i];
-    for (std::size_t g = 0; g < groups; ++g) order[start[cage[g]]++] = std::uint32_t(g);
+    for (std::size_t i = 0; i <= cages; ++i) start[i + 1] += start[i];
+    order.resize(start[cages]);  // the due groups only
+    for (std::size_t g = 0; g < groups; ++g)
+        if (cage[g] != skip) order[start[cage[g]]++] = std::uint32_t(g);
     return order;
 }
 
@@ -201,15 +207,36 @@ struct GroupValues {
     std::vector<glm::vec4>& values;  // group * stride + ...
 };
 
-// Evaluates each group at its representative hit.
-void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool shareLights, GroupValues& out,
-                    ShadeWorkspace& workspace, std::atomic<std::int64_t>& queries) {
+// Evaluates each group at its representative hit, or copies last frame's values for a cell
+// that had a group last frame and is not due (every `refresh` frames, staggered by key).
+// Returns the groups evaluated.
+std::int64_t evaluateGroups(const ShadeContext& c, const HitCache& cache, bool shareLights, int refresh,
+                            GroupValues& out, ShadeWorkspace& workspace, std::atomic<std::int64_t>& queries) {
     const std::size_t groups = cache.groups();
     out.lights = shareLights ? std::min<int>(int(c.lights.size()), kSharedLights) : 0;
     out.stride = 1 + out.lights;
+    std::swap(workspace.previousValues, out.values);
+    const bool reuse = refresh > 1 && workspace.previousStride == out.stride;
+    workspace.previousStride = out.stride;
     out.values.resize(groups * std::size_t(out.stride));
+    const std::size_t stride = std::size_t(out.stride);
+    std::atomic<std::int64_t> evaluated{0};
+    // Copies first: what is left to evaluate goes in cage order below.
+    std::vector<std::uint32_t>& due = workspace.due;
+    due.assign(groups, 1);
+    if (reuse)
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t g = r.begin(); g != r.end(); ++g) {
+                const std::uint32_t before = cache.previousGroup(g);
+                if (before == HitCache::kNone ||
+                    (std::uint32_t(cache.groupKey(g) * 0x9E3779B97F4A7C15ull >> 40) + c.frame) % std::uint32_t(refresh) == 0)
+                    continue;
+                std::copy_n(&workspace.previousValues[std::size_t(before) * stride], stride, &out.values[g * stride]);
+                due[g] = 0;
+            }
+        });
     const std::vector<std::uint32_t>& order = cageOrder(c, cache, workspace);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, groups, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
         std::int64_t count = 0;
         for (std::size_t k = r.begin(); k != r.end(); ++k) {
             const std::size_t g = order[k];
@@ -238,6 +265,7 @@ void evaluateGroups(const ShadeContext& c, const HitCache& cache, bool shareLigh
         }
         queries += count;
     });
+    return std::int64_t(order.size());
 }
 
 }  // namespace
@@ -291,7 +319,8 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
     GroupValues shared{1, 0, workspace->groupValues};
     if (cache) {
         const auto t0 = std::chrono::steady_clock::now();
-        evaluateGroups(c, *cache, desc.hitCache == DdgiHitCache::All, shared, *workspace, queries);
+        stats.groupsEvaluated = evaluateGroups(c, *cache, desc.hitCache == DdgiHitCache::All, desc.hitCacheRefresh,
+                                               shared, *workspace, queries);
         stats.groupsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         stats.cacheGroups = std::int64_t(cache->groups());
     }

@@ -49,7 +49,8 @@ struct ShadedRays {
 
 struct ShadeStats {
     std::int64_t shadowQueries = 0;  // light-visibility tests (shadow rays or occlusion lookups)
-    std::int64_t cacheGroups = 0;    // hit-cache groups (one probe gather each)
+    std::int64_t cacheGroups = 0;    // hit-cache groups
+    std::int64_t groupsEvaluated = 0;  // of those, evaluated this frame (the rest re-used last frame's)
     std::int64_t cachedHits = 0;     // hits that took their probe irradiance from a group
     double groupsMs = 0.0;           // evaluating the groups (gathers, shared light tests)
     double hitsMs = 0.0;             // shading every hit
@@ -71,7 +72,10 @@ void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays
 // (fresh ones every frame cost page faults on each first touch).
 struct ShadeWorkspace {
     std::vector<glm::vec4> groupValues;
-    std::vector<std::uint32_t> cage, start, order;
+    // Last frame's, for cells that are not due for evaluation (hit_cache_refresh).
+    std::vector<glm::vec4> previousValues;
+    int previousStride = 0;
+    std::vector<std::uint32_t> cage, start, order, due;
 };
 
 // Shades the blend rays of `probes` (the probes that blend this frame) against the previous
