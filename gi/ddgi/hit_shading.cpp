@@ -220,7 +220,6 @@ std::int64_t evaluateGroups(const ShadeContext& c, const HitCache& cache, bool s
     workspace.previousStride = out.stride;
     out.values.resize(groups * std::size_t(out.stride));
     const std::size_t stride = std::size_t(out.stride);
-    std::atomic<std::int64_t> evaluated{0};
     // Copies first: what is left to evaluate goes in cage order below.
     std::vector<std::uint32_t>& due = workspace.due;
     due.assign(groups, 1);

@@ -8,10 +8,10 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/ddgi/hit_cache.h"
-#include "scenes/errors.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/raytrace/texture_pyramid.h"
 #include "gi/sampling/sequences.h"
+#include "scenes/errors.h"
 
 namespace voxgi {
 
