@@ -193,48 +193,50 @@ std::uint32_t HitCache::reserveIds() {
 
 HitCache::Writer::Writer(HitCache& cache) : cache_(cache), table_(cache.localTable()) {}
 
-HitCache::Writer::~Writer() {
-    for (; count_ > 0; --count_, first_ = (first_ + 1) % kDelay) place(pending_[first_]);
-}
+HitCache::Writer::~Writer() { flush(); }
 
 void HitCache::Writer::add(std::size_t h, glm::vec3 position, glm::vec3 normal) {
-    float d2 = 0.0f;
-    const std::uint64_t k = key(position, normal, cache_.invCellSize_, &d2);
-    if (k == 0) {
-        skip(h);
-        return;
-    }
-    const std::uint64_t hash = mix64(k);
-    __builtin_prefetch(&table_.slots[std::size_t(hash) & (table_.slots.size() - 1)]);
-    unsigned at;
-    if (count_ == kDelay) {
-        place(pending_[first_]);
-        at = first_;
-        first_ = (first_ + 1) % kDelay;
-    } else {
-        at = (first_ + count_++) % kDelay;
-    }
-    // Fields written in place: a Pending built aside and copied whole would be read back
-    // before its parts left the store buffer (a store-forwarding stall on every hit).
-    Pending& q = pending_[at];
-    q.key = k;
-    q.hash = hash;
-    std::memcpy(&q.d2, &d2, sizeof q.d2);  // non-negative floats order like their bits
-    q.hit = std::uint32_t(h);
-    q.position = position;
-    q.normal = normal;
+    Pending& p = pending_[count_];
+    p.hit = std::uint32_t(h);
+    p.position = position;
+    p.normal = normal;
+    if (++count_ == kBatch) flush();
 }
 
-void HitCache::Writer::place(const Pending& p) {
+void HitCache::Writer::flush() {
+    // Keys first, each slot prefetched as soon as its key is known; by the time the batch is
+    // placed, the first slots have arrived.
+    const std::size_t mask = table_.slots.size() - 1;
+    unsigned keyed = 0;
+    for (unsigned i = 0; i < count_; ++i) {
+        const Pending& p = pending_[i];
+        float d2 = 0.0f;
+        const std::uint64_t k = key(p.position, p.normal, cache_.invCellSize_, &d2);
+        if (k == 0) {
+            skip(p.hit);
+            continue;
+        }
+        Keyed& q = keyed_[keyed++];
+        q.key = k;
+        q.hash = mix64(k);
+        __builtin_prefetch(&table_.slots[std::size_t(q.hash) & mask]);
+        std::memcpy(&q.d2, &d2, sizeof q.d2);  // non-negative floats order like their bits
+        q.index = i;
+    }
+    for (unsigned i = 0; i < keyed; ++i) place(keyed_[i], pending_[keyed_[i].index]);
+    count_ = 0;
+}
+
+void HitCache::Writer::place(const Keyed& k, const Pending& p) {
     LocalTable& t = table_;
     std::size_t mask = t.slots.size() - 1;
-    std::size_t i = std::size_t(p.hash) & mask;
+    std::size_t i = std::size_t(k.hash) & mask;
     for (;; i = (i + 1) & mask) {
         LocalTable::Slot& s = t.slots[i];
-        if (s.key == p.key) {
+        if (s.key == k.key) {
             // Ties go to the lower hit index, so the choice does not depend on the order of adds.
-            if (p.d2 < s.d2 || (p.d2 == s.d2 && p.hit < cache_.idBest_[s.id].hit)) {
-                s.d2 = p.d2;
+            if (k.d2 < s.d2 || (k.d2 == s.d2 && p.hit < cache_.idBest_[s.id].hit)) {
+                s.d2 = k.d2;
                 cache_.idBest_[s.id] = Candidate{p.position, p.hit, p.normal};
             }
             cache_.hitId_[p.hit] = s.id;
@@ -245,7 +247,7 @@ void HitCache::Writer::place(const Pending& p) {
     if ((t.used + 1) * 10 > t.slots.size() * 7) {
         t.grow();
         mask = t.slots.size() - 1;
-        for (i = std::size_t(p.hash) & mask; t.slots[i].key != 0; i = (i + 1) & mask) {
+        for (i = std::size_t(k.hash) & mask; t.slots[i].key != 0; i = (i + 1) & mask) {
         }
     }
     if (t.nextId == t.idEnd) {
@@ -258,7 +260,7 @@ void HitCache::Writer::place(const Pending& p) {
         t.idEnd = first + kIdBlock;
     }
     const std::uint32_t id = t.nextId++;
-    t.slots[i] = LocalTable::Slot{p.key, id, p.d2};
+    t.slots[i] = LocalTable::Slot{k.key, id, k.d2};
     ++t.used;
     cache_.idBest_[id] = Candidate{p.position, p.hit, p.normal};
     cache_.hitId_[p.hit] = id;

@@ -40,9 +40,9 @@ public:
     void begin(float cellSize, std::size_t hits);
 
     // Adds hits from one thread: one writer per task, which binds the calling thread's table.
-    // Every hit the frame's shading will ask about gets exactly one add() or skip(). A hit's
-    // table slot is prefetched when it is added and looked at a few adds later, so the cache
-    // miss overlaps with the tracing in between.
+    // Every hit the frame's shading will ask about gets exactly one add() or skip(). Adds are
+    // taken in batches: the keys of a batch are computed and their table slots prefetched
+    // first, then placed, so the cache misses of a batch overlap one another.
     class Writer {
     public:
         explicit Writer(HitCache& cache);
@@ -53,17 +53,22 @@ public:
         void skip(std::size_t h) { cache_.hitId_[h] = kNone; }
 
     private:
-        static constexpr unsigned kDelay = 8;
+        static constexpr unsigned kBatch = 64;
         struct Pending {
-            std::uint64_t key, hash;
-            std::uint32_t d2, hit;
+            std::uint32_t hit;
             glm::vec3 position, normal;
         };
-        void place(const Pending& p);
+        struct Keyed {
+            std::uint64_t key, hash;
+            std::uint32_t d2, index;  // index: into pending_
+        };
+        void flush();
+        void place(const Keyed& k, const Pending& p);
         HitCache& cache_;
         LocalTable& table_;
-        Pending pending_[kDelay];
-        unsigned first_ = 0, count_ = 0;
+        Pending pending_[kBatch];
+        Keyed keyed_[kBatch];
+        unsigned count_ = 0;
     };
 
     // After every add of the frame (every writer destroyed): dense groups and representatives.

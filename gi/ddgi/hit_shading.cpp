@@ -324,6 +324,8 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
         stats.cacheGroups = std::int64_t(cache->groups());
     }
 
+    glm::vec3 lightColour[kSharedLights];
+    for (int k = 0; k < shared.lights; ++k) lightColour[k] = prepared[std::size_t(k)].color;
     std::atomic<std::int64_t> cachedHits{0};
     const auto hitsStart = std::chrono::steady_clock::now();
     const std::size_t perJob = std::size_t(rays.blendRays);
@@ -353,9 +355,9 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                     continue;
                 }
                 const std::uint32_t g = groups[i];
-                const glm::vec3 position = trace.origins[std::size_t(probes[job])] + s.distance * rays.blendDirection(int(i));
                 // One light exactly at this hit: its own light point and shadow ray.
                 auto exact = [&](int k) {
+                    const glm::vec3 position = trace.origins[std::size_t(probes[job])] + s.distance * rays.blendDirection(int(i));
                     glm::vec3 e, l;
                     float range;
                     if (!prepared[std::size_t(k)].unshadowed(position, s.normal, c.quadSample(int(i), probes[job]), &e,
@@ -367,15 +369,25 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 glm::vec3 e(0.0f);
                 int firstExact = 0;
                 if (g == HitCache::kNone) {
-                    if (c.energy > 0.0f)
+                    if (c.energy > 0.0f) {
+                        const glm::vec3 position = trace.origins[std::size_t(probes[job])] + s.distance * rays.blendDirection(int(i));
                         e = c.energy * previous.irradiance(position, s.normal, -rays.blendDirection(int(i)));
+                    }
                 } else {
+                    // Shared lights without branches on the cosine (a hit faces a light or not
+                    // about at random); the rare light the representative did not test goes
+                    // through exact().
                     const glm::vec4* v = &shared.values[std::size_t(g) * std::size_t(shared.stride)];
                     e = glm::vec3(v[0]);
+                    unsigned untested = 0;
                     for (int k = 0; k < shared.lights; ++k) {
                         const float cosine = glm::dot(s.normal, glm::vec3(v[1 + k]));
-                        if (cosine > 0.0f) e += v[1 + k].w == 0.0f ? prepared[std::size_t(k)].color * cosine : exact(k);
+                        const float facing = cosine > 0.0f ? cosine : 0.0f;
+                        e += lightColour[k] * (v[1 + k].w == 0.0f ? facing : 0.0f);
+                        untested |= unsigned(v[1 + k].w != 0.0f && cosine > 0.0f) << k;
                     }
+                    for (int k = 0; untested != 0; ++k, untested >>= 1)
+                        if (untested & 1u) e += exact(k);
                     firstExact = shared.lights;
                     ++cached;
                 }

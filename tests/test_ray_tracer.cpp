@@ -1,0 +1,98 @@
+// RayTracer's batched queries (traceFan, intersectFan) against the one-ray intersect(): the same
+// hits, and Embree's geometric normal on the same side as the record's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "gi/raytrace/ray_tracer.h"
+#include "gi/sampling/sequences.h"
+#include "scenes/scene.h"
+
+using namespace voxgi;
+
+namespace {
+
+// Randomly placed and oriented triangles around the origin, half of the meshes with vertex
+// normals and texture coordinates, so every branch of the hit record runs.
+Scene triangleSoup(std::uint32_t seed) {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int m = 0; m < 4; ++m) {
+        Mesh mesh;
+        mesh.name = "soup" + std::to_string(m);
+        for (int t = 0; t < 60; ++t) {
+            glm::vec3 centre = 3.0f * glm::vec3(u(rng), u(rng), u(rng));
+            for (int k = 0; k < 3; ++k) {
+                mesh.positions.push_back(centre + 0.6f * glm::vec3(u(rng), u(rng), u(rng)));
+                if (m % 2) {
+                    mesh.normals.push_back(glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, 0.0f, 0.01f)));
+                    mesh.uvs.push_back(glm::vec2(u(rng), u(rng)));
+                }
+                mesh.indices.push_back(std::uint32_t(mesh.indices.size()));
+            }
+            mesh.materialIds.push_back(0);
+        }
+        scene.meshes.push_back(mesh);
+    }
+    return scene;
+}
+
+}  // namespace
+
+TEST(RayTracer, FansFindTheHitsOfSingleRays) {
+    const Scene scene = triangleSoup(7);
+    const RayTracer tracer(scene);
+    const int n = 200;  // more than one internal batch of intersectFan
+    std::vector<glm::vec3> directions;
+    for (int i = 0; i < n; ++i) directions.push_back(sphericalFibonacci(i, n));
+    for (glm::vec3 origin : {glm::vec3(0.0f), glm::vec3(0.3f, -0.2f, 0.5f), glm::vec3(5.0f, 0.0f, 0.0f)}) {
+        std::vector<RawHit> raw(static_cast<std::size_t>(n));
+        std::vector<RayHit> records(static_cast<std::size_t>(n));
+        tracer.traceFan(origin, directions.data(), n, raw.data());
+        tracer.intersectFan(origin, directions.data(), n, records.data());
+        int hits = 0, backfaces = 0;
+        for (int i = 0; i < n; ++i) {
+            const RayHit one = tracer.intersect(origin, directions[std::size_t(i)]);
+            const RawHit& r = raw[std::size_t(i)];
+            const RayHit& fan = records[std::size_t(i)];
+            ASSERT_EQ(r.hit(), one.hit) << "ray " << i;
+            ASSERT_EQ(fan.hit, one.hit) << "ray " << i;
+            if (!one.hit) continue;
+            ++hits;
+            backfaces += !one.frontFace;
+            EXPECT_EQ(r.t, one.t);
+            EXPECT_EQ(r.mesh, one.mesh);
+            EXPECT_EQ(r.triangle, one.triangle);
+            // Embree's normal is on the record's side: front faces agree whichever one decides.
+            EXPECT_GT(glm::dot(glm::normalize(r.normal), one.geometricNormal), 0.9999f) << "ray " << i;
+            EXPECT_EQ(glm::dot(r.normal, directions[std::size_t(i)]) < 0.0f, one.frontFace) << "ray " << i;
+            // The batched records are the one-ray records, bit for bit.
+            EXPECT_EQ(fan.t, one.t);
+            EXPECT_EQ(fan.position, one.position);
+            EXPECT_EQ(fan.geometricNormal, one.geometricNormal);
+            EXPECT_EQ(fan.shadingNormal, one.shadingNormal);
+            EXPECT_EQ(fan.uv, one.uv);
+            EXPECT_EQ(fan.frontFace, one.frontFace);
+            EXPECT_EQ(fan.material, one.material);
+        }
+        // The soup is dense enough that both sides of triangles are hit from inside it.
+        if (origin.x < 4.0f) {
+            EXPECT_GT(hits, n / 4);
+            EXPECT_GT(backfaces, 0);
+            EXPECT_LT(backfaces, hits);
+        }
+    }
+}
+
+TEST(RayTracer, EmptyFansWriteNothing) {
+    const Scene scene = triangleSoup(3);
+    const RayTracer tracer(scene);
+    RawHit raw;
+    raw.t = 42.0f;
+    tracer.traceFan(glm::vec3(0.0f), nullptr, 0, &raw);
+    EXPECT_EQ(raw.t, 42.0f);
+}
