@@ -1,5 +1,6 @@
 // RayTracer's batched queries (traceFan, intersectFan) against the one-ray intersect(): the same
-// hits, and Embree's geometric normal on the same side as the record's.
+// hits, Embree's geometric normal on the same side as the record's, and the triangles' surface
+// copies agreeing with the record.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,7 +53,8 @@ TEST(RayTracer, FansFindTheHitsOfSingleRays) {
     for (glm::vec3 origin : {glm::vec3(0.0f), glm::vec3(0.3f, -0.2f, 0.5f), glm::vec3(5.0f, 0.0f, 0.0f)}) {
         std::vector<RawHit> raw(static_cast<std::size_t>(n));
         std::vector<RayHit> records(static_cast<std::size_t>(n));
-        tracer.traceFan(origin, directions.data(), n, raw.data());
+        std::vector<const TriangleSurface*> surfaces(static_cast<std::size_t>(n));
+        tracer.traceFan(origin, directions.data(), n, raw.data(), surfaces.data());
         tracer.intersectFan(origin, directions.data(), n, records.data());
         int hits = 0, backfaces = 0;
         for (int i = 0; i < n; ++i) {
@@ -60,6 +62,7 @@ TEST(RayTracer, FansFindTheHitsOfSingleRays) {
             const RawHit& r = raw[std::size_t(i)];
             const RayHit& fan = records[std::size_t(i)];
             ASSERT_EQ(r.hit(), one.hit) << "ray " << i;
+            ASSERT_EQ(surfaces[std::size_t(i)] != nullptr, one.hit) << "ray " << i;
             ASSERT_EQ(fan.hit, one.hit) << "ray " << i;
             if (!one.hit) continue;
             ++hits;
@@ -70,6 +73,18 @@ TEST(RayTracer, FansFindTheHitsOfSingleRays) {
             // Embree's normal is on the record's side: front faces agree whichever one decides.
             EXPECT_GT(glm::dot(glm::normalize(r.normal), one.geometricNormal), 0.9999f) << "ray " << i;
             EXPECT_EQ(glm::dot(r.normal, directions[std::size_t(i)]) < 0.0f, one.frontFace) << "ray " << i;
+            // The triangle's surface copy gives the record's material, uv and shading normal.
+            const TriangleSurface* surface = surfaces[std::size_t(i)];
+            ASSERT_EQ(surface, &tracer.surface(r));
+            EXPECT_EQ(surface->material, one.material);
+            const glm::vec2 uv = surface->uv(r.u, r.v);
+            EXPECT_NEAR(uv.x, one.uv.x, 1e-5f);
+            EXPECT_NEAR(uv.y, one.uv.y, 1e-5f);
+            if (scene.meshes[one.mesh].normals.empty()) {
+                EXPECT_EQ(surface->normal(r.u, r.v), glm::vec3(0.0f));
+            } else {
+                EXPECT_GT(glm::dot(glm::normalize(surface->normal(r.u, r.v)), one.shadingNormal), 0.99999f) << "ray " << i;
+            }
             // The batched records are the one-ray records, bit for bit.
             EXPECT_EQ(fan.t, one.t);
             EXPECT_EQ(fan.position, one.position);

@@ -128,6 +128,18 @@ TEST(TexturePyramid, ConeAlbedoAveragesDistantTexturesAndKeepsNearOnes) {
     RayHit far = tracer.intersect(glm::vec3(0.3f, 5.0f, 0.2f), down);
     ASSERT_TRUE(far.hit);
     EXPECT_NEAR(tracer.albedoInCone(far, down, coneSpreadForRays(256)).x, 0.5f, 0.01f);
+    // The raw-hit lookup (probe rays) reads the same texels.
+    for (float spread : {coneSpreadForRays(256), 1e-6f}) {
+        for (glm::vec3 origin : {glm::vec3(0.3f, 5.0f, 0.2f), glm::vec3(0.3001f, 0.01f, 0.2001f)}) {
+            RawHit raw;
+            const TriangleSurface* surface = nullptr;
+            tracer.traceFan(origin, &down, 1, &raw, &surface);
+            ASSERT_TRUE(raw.hit());
+            const RayHit record = tracer.intersect(origin, down);
+            const glm::vec3 a = tracer.albedoInCone(raw, *surface, down, spread), b = tracer.albedoInCone(record, down, spread);
+            EXPECT_NEAR(a.x, b.x, 1e-4f);
+        }
+    }
     // A needle-thin cone reads the texel itself, like albedoAt.
     RayHit near = tracer.intersect(glm::vec3(0.3001f, 0.01f, 0.2001f), down);
     ASSERT_TRUE(near.hit);

@@ -20,37 +20,16 @@ namespace {
 // Quad-light geometry is drawn by the direct pass; its emission must not enter the probes too.
 bool countsAsIndirectEmitter(const Mesh& mesh) { return mesh.name.rfind("quad_light_", 0) != 0; }
 
-// One ray's hit into its surfel (and its hit position, for the hit cache). `spread` is the ray's
-// cone angle for the albedo lookup; negative for classification rays, which are never shaded
-// (albedo 0, no lookup).
 struct Emitters {
     std::vector<std::uint16_t> material;  // ProbeTrace::emission entry per material (0: none)
     std::vector<char> mesh;               // the mesh's emission counts (not an analytic light's quad)
 };
-// The mesh data toSurfel reads is scattered over large arrays (on big scenes a cache miss
-// per load, each address depending on the one before): fetched for the whole chunk first, in
-// two rounds (triangles, then their vertices), the misses overlap.
-void prefetchVertexData(const Scene& scene, const RawHit* hits, int n) {
-    for (int i = 0; i < n; ++i) {
-        if (!hits[i].hit()) continue;
-        const Mesh& mesh = scene.meshes[hits[i].mesh];
-        __builtin_prefetch(&mesh.indices[3 * std::size_t(hits[i].triangle)]);
-        __builtin_prefetch(&mesh.materialIds[hits[i].triangle]);
-    }
-    for (int i = 0; i < n; ++i) {
-        if (!hits[i].hit()) continue;
-        const Mesh& mesh = scene.meshes[hits[i].mesh];
-        if (mesh.normals.empty() && mesh.uvs.empty()) continue;
-        const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hits[i].triangle)];
-        for (int k = 0; k < 3; ++k) {
-            if (!mesh.normals.empty()) __builtin_prefetch(&mesh.normals[tri[k]]);
-            if (!mesh.uvs.empty()) __builtin_prefetch(&mesh.uvs[tri[k]]);
-        }
-    }
-}
 
-void toSurfel(const RayTracer& tracer, const Emitters& emitters, const RawHit& raw, glm::vec3 origin, glm::vec3 d,
-              float spread, ProbeSurfel& s, glm::vec3* position) {
+// One ray's hit into its surfel (and its hit position, for the hit cache). `spread` is the ray's
+// cone angle for the albedo lookup; negative for classification rays, which are never shaded
+// (albedo 0, no lookup).
+void toSurfel(const RayTracer& tracer, const Emitters& emitters, const RawHit& raw, const TriangleSurface* triangle,
+              glm::vec3 origin, glm::vec3 d, float spread, ProbeSurfel& s, glm::vec3* position) {
     if (!raw.hit()) {
         s = ProbeSurfel{};
         return;
@@ -62,43 +41,25 @@ void toSurfel(const RayTracer& tracer, const Emitters& emitters, const RawHit& r
         s.normal = glm::vec3(0.0f);
         return;
     }
-    // Only what a surfel needs of the hit record: no vertex positions (Embree gives the
-    // geometric normal, the position is on the ray), texture coordinates only for textures.
-    const Scene& scene = tracer.scene();
-    const Mesh& mesh = scene.meshes[raw.mesh];
-    const std::uint32_t* tri = &mesh.indices[3 * std::size_t(raw.triangle)];
-    const float w = 1.0f - raw.u - raw.v;
+    // Only what a surfel needs of the hit record, from the triangle's one-line copy of its
+    // attributes: no vertex positions (Embree gives the geometric normal, the position is on
+    // the ray), texture coordinates only for textures.
+    const TriangleSurface& surface = *triangle;
     s.distance = raw.t;
     *position = origin + raw.t * d;
-    glm::vec3 n(0.0f);
-    float length = 0.0f;
-    if (!mesh.normals.empty()) {
-        n = w * mesh.normals[tri[0]] + raw.u * mesh.normals[tri[1]] + raw.v * mesh.normals[tri[2]];
-        length = glm::length(n);
-    }
-    if (!(length > 0.0f && std::isfinite(length))) {
+    glm::vec3 n = surface.normal(raw.u, raw.v);
+    float length = glm::length(n);
+    if (!(length > 0.0f && std::isfinite(length))) {  // no vertex normals (or degenerate ones)
         n = raw.normal;
         length = glm::length(n);
     }
     n /= length;
     s.normal = glm::dot(n, d) > 0.0f ? -n : n;
     if (spread < 0.0f) return;
-    const std::uint32_t material = mesh.materialIds[raw.triangle];
-    const Material& m = scene.materials[material];
-    glm::vec3 albedo = m.albedo;
-    if (m.albedoTexture >= 0) {
-        RayHit hit;
-        hit.hit = true;
-        hit.t = raw.t;
-        hit.mesh = raw.mesh;
-        hit.triangle = raw.triangle;
-        hit.material = material;
-        hit.geometricNormal = glm::normalize(raw.normal);
-        if (!mesh.uvs.empty()) hit.uv = w * mesh.uvs[tri[0]] + raw.u * mesh.uvs[tri[1]] + raw.v * mesh.uvs[tri[2]];
-        albedo = tracer.albedoInCone(hit, d, spread);
-    }
+    const Material& m = tracer.scene().materials[surface.material];
+    const glm::vec3 albedo = m.albedoTexture >= 0 ? tracer.albedoInCone(raw, surface, d, spread) : m.albedo;
     s.setDiffuseAlbedo((1.0f - m.metallic) * (1.0f - m.specular) * albedo);
-    s.emitter = emitters.mesh[raw.mesh] ? emitters.material[material] : 0;
+    s.emitter = emitters.mesh[raw.mesh] ? emitters.material[surface.material] : 0;
 }
 
 }  // namespace
@@ -170,6 +131,7 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
         std::optional<HitCache::Writer> writer;
         if (group) writer.emplace(*group);
         RawHit hits[chunk];
+        const TriangleSurface* surfaces[chunk];
         for (int task = r.begin(); task != r.end(); ++task) {
             int p = task / chunksPerProbe;
             ProbeWork w = trace.work[std::size_t(p)];
@@ -181,14 +143,13 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
             const glm::vec3 origin = trace.origins[std::size_t(p)];
             // The whole chunk is traced before any surfel is built, so that the surfels' loads
             // overlap one another instead of stalling each traversal.
-            tracer.traceFan(origin, &rays.directions[std::size_t(first)], last - first, hits);
-            prefetchVertexData(scene, hits, last - first);
+            tracer.traceFan(origin, &rays.directions[std::size_t(first)], last - first, hits, surfaces);
             for (int i = first; i < last; ++i) {
                 const glm::vec3 d = rays.directions[std::size_t(i)];
                 ProbeSurfel& s = trace.surfels[std::size_t(p) * std::size_t(trace.stride) + std::size_t(i)];
                 const bool blend = i >= rays.fixedRays;
                 glm::vec3 position;
-                toSurfel(tracer, emitters, hits[i - first], origin, d, blend ? spread : -1.0f, s, &position);
+                toSurfel(tracer, emitters, hits[i - first], surfaces[i - first], origin, d, blend ? spread : -1.0f, s, &position);
                 if (writer && blend) {
                     const std::size_t h = std::size_t(p) * std::size_t(rays.blendRays) + std::size_t(i - rays.fixedRays);
                     if (shadedHit(s)) writer->add(h, position, s.normal);

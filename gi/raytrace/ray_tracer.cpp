@@ -26,7 +26,10 @@ struct RayTracer::Impl {
     // Per triangle of a textured material, texels of its texture per unit length (0: no uvs
     // or untextured); a mesh's triangles start at meshFirst[mesh].
     std::vector<float> texelScale;
-    std::vector<std::size_t> meshFirst;
+    std::vector<std::size_t> meshFirst;  // set by the constructor
+    std::once_flag surfacesOnce;
+    std::atomic<bool> surfacesBuilt{false};
+    std::vector<TriangleSurface> surfaces;  // per triangle, from meshFirst
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -63,6 +66,12 @@ RayTracer::RayTracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scen
     if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
     rtcSetDeviceErrorFunction(impl_->device, errorHandler, nullptr);
     impl_->scene = rtcNewScene(impl_->device);
+    impl_->meshFirst.resize(scene.meshes.size());
+    std::size_t first = 0;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        impl_->meshFirst[m] = first;
+        first += scene.meshes[m].triangleCount();
+    }
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
@@ -155,7 +164,8 @@ RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) co
     return hit;
 }
 
-void RayTracer::traceFan(glm::vec3 o, const glm::vec3* d, int n, RawHit* hits) const {
+void RayTracer::traceFan(glm::vec3 o, const glm::vec3* d, int n, RawHit* hits, const TriangleSurface** surfaces) const {
+    if (surfaces && !impl_->surfacesBuilt.load(std::memory_order_acquire)) prepareSurfaces();
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     for (int i = 0; i < n; ++i) {
@@ -165,6 +175,12 @@ void RayTracer::traceFan(glm::vec3 o, const glm::vec3* d, int n, RawHit* hits) c
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(impl_->scene, &context, &rh);
         hits[i] = toRawHit(rh);
+        if (!surfaces) continue;
+        // The line's miss overlaps with the next traversals instead of stalling its reader.
+        const TriangleSurface* surface =
+            hits[i].hit() ? &impl_->surfaces[impl_->meshFirst[hits[i].mesh] + hits[i].triangle] : nullptr;
+        if (surface) __builtin_prefetch(surface);
+        surfaces[i] = surface;
     }
 }
 
@@ -206,12 +222,8 @@ void RayTracer::prepareCones() const {
         tbb::parallel_for(std::size_t(0), scene_.textures.size(), [&](std::size_t i) {
             impl_->pyramids[i] = std::make_unique<TexturePyramid>(scene_.textures[i]);
         });
-        impl_->meshFirst.resize(scene_.meshes.size());
         std::size_t total = 0;
-        for (std::size_t m = 0; m < scene_.meshes.size(); ++m) {
-            impl_->meshFirst[m] = total;
-            total += scene_.meshes[m].triangleCount();
-        }
+        for (const Mesh& mesh : scene_.meshes) total += mesh.triangleCount();
         impl_->texelScale.assign(total, 0.0f);
         tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
             const Mesh& mesh = scene_.meshes[m];
@@ -230,15 +242,52 @@ void RayTracer::prepareCones() const {
     });
 }
 
-glm::vec3 RayTracer::albedoInCone(const RayHit& hit, glm::vec3 direction, float spread) const {
-    const Material& m = scene_.materials[hit.material];
+void RayTracer::prepareSurfaces() const {
+    std::call_once(impl_->surfacesOnce, [&] {
+        impl_->surfaces.resize(impl_->meshFirst.empty() ? 0
+                                                        : impl_->meshFirst.back() + scene_.meshes.back().triangleCount());
+        tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
+            const Mesh& mesh = scene_.meshes[m];
+            TriangleSurface* out = &impl_->surfaces[impl_->meshFirst[m]];
+            for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+                const std::uint32_t* tri = &mesh.indices[3 * t];
+                for (int k = 0; k < 3; ++k) {
+                    if (!mesh.normals.empty()) out[t].normals[k] = mesh.normals[tri[k]];
+                    if (!mesh.uvs.empty()) out[t].uvs[k] = mesh.uvs[tri[k]];
+                }
+                out[t].material = mesh.materialIds[t];
+            }
+        });
+        impl_->surfacesBuilt.store(true, std::memory_order_release);
+    });
+}
+
+const TriangleSurface& RayTracer::surface(const RawHit& hit) const {
+    if (!impl_->surfacesBuilt.load(std::memory_order_acquire)) prepareSurfaces();
+    return impl_->surfaces[impl_->meshFirst[hit.mesh] + hit.triangle];
+}
+
+glm::vec3 RayTracer::coneAlbedo(std::uint32_t material, std::size_t triangle, glm::vec2 uv, float t, float cosine,
+                                float spread) const {
+    const Material& m = scene_.materials[material];
     if (m.albedoTexture < 0) return m.albedo;
     if (!impl_->conesBuilt.load(std::memory_order_acquire)) prepareCones();
     const TexturePyramid& pyramid = *impl_->pyramids[std::size_t(m.albedoTexture)];
-    const float scale = impl_->texelScale[impl_->meshFirst[hit.mesh] + hit.triangle];
-    if (!(scale > 0.0f)) return m.albedo * scene_.textures[std::size_t(m.albedoTexture)].sampleLinear(hit.uv);
-    const float footprint = rayConeFootprint(scale, hit.t * spread, glm::dot(hit.geometricNormal, direction));
-    return m.albedo * pyramid.sample(hit.uv, pyramid.levelForFootprint(footprint));
+    const float scale = impl_->texelScale[triangle];
+    if (!(scale > 0.0f)) return m.albedo * scene_.textures[std::size_t(m.albedoTexture)].sampleLinear(uv);
+    const float footprint = rayConeFootprint(scale, t * spread, cosine);
+    return m.albedo * pyramid.sample(uv, pyramid.levelForFootprint(footprint));
+}
+
+glm::vec3 RayTracer::albedoInCone(const RayHit& hit, glm::vec3 direction, float spread) const {
+    return coneAlbedo(hit.material, impl_->meshFirst[hit.mesh] + hit.triangle, hit.uv, hit.t,
+                      glm::dot(hit.geometricNormal, direction), spread);
+}
+
+glm::vec3 RayTracer::albedoInCone(const RawHit& hit, const TriangleSurface& surface, glm::vec3 direction,
+                                  float spread) const {
+    return coneAlbedo(surface.material, impl_->meshFirst[hit.mesh] + hit.triangle, surface.uv(hit.u, hit.v), hit.t,
+                      glm::dot(hit.normal, direction) / glm::length(hit.normal), spread);
 }
 
 glm::vec3 RayTracer::albedoAt(const RayHit& hit) const {

@@ -36,6 +36,19 @@ struct RawHit {
     bool hit() const { return mesh != kNoMesh; }
 };
 
+// A copy of one triangle's surface attributes in one cache line, for batches of rays that hit
+// random triangles of big meshes (probe rays): one cache miss per hit, prefetched while later
+// rays are traced, instead of a chain of misses (indices, then each vertex attribute).
+struct alignas(64) TriangleSurface {
+    glm::vec3 normals[3]{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};  // zero without vertex normals
+    glm::vec2 uvs[3]{glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)};        // zero without uvs
+    std::uint32_t material = 0;
+
+    // The interpolated vertex normal at barycentric (u, v), not normalised (zero without them).
+    glm::vec3 normal(float u, float v) const { return (1.0f - u - v) * normals[0] + u * normals[1] + v * normals[2]; }
+    glm::vec2 uv(float u, float v) const { return (1.0f - u - v) * uvs[0] + u * uvs[1] + v * uvs[2]; }
+};
+
 class RayTracer {
 public:
     explicit RayTracer(const Scene& scene);
@@ -44,8 +57,10 @@ public:
     RayTracer& operator=(const RayTracer&) = delete;
 
     RayHit intersect(glm::vec3 origin, glm::vec3 direction, float tMin = 0.0f, float tMax = 1e30f) const;
-    // Embree's nearest hits of n rays from one origin (tMin 0, tMax 1e30).
-    void traceFan(glm::vec3 origin, const glm::vec3* directions, int n, RawHit* hits) const;
+    // Embree's nearest hits of n rays from one origin (tMin 0, tMax 1e30). With `surfaces`, also
+    // each hit's TriangleSurface (null for a miss), prefetched while the next rays are traced.
+    void traceFan(glm::vec3 origin, const glm::vec3* directions, int n, RawHit* hits,
+                  const TriangleSurface** surfaces = nullptr) const;
     // intersect() of n rays from one origin (tMin 0, tMax 1e30), hits[i] for directions[i]:
     // the same records, in less time than n calls (they are built after a batch is traced).
     void intersectFan(glm::vec3 origin, const glm::vec3* directions, int n, RayHit* hits) const;
@@ -59,12 +74,20 @@ public:
     // The same averaged over the footprint of a ray cone of apex angle `spread` (radians) that
     // travelled hit.t along unit `direction` (texture mip pyramids, gi/raytrace/texture_pyramid.h).
     glm::vec3 albedoInCone(const RayHit& hit, glm::vec3 direction, float spread) const;
+    // The surface of a raw hit's triangle (the table is built on first use: 64 bytes per
+    // triangle of the scene).
+    const TriangleSurface& surface(const RawHit& hit) const;
+    // albedoInCone at a raw hit on `surface`, its triangle.
+    glm::vec3 albedoInCone(const RawHit& hit, const TriangleSurface& surface, glm::vec3 direction, float spread) const;
     const Scene& scene() const { return scene_; }
     // Triangles Embree accepted (NaN or degenerate ones are left out).
     std::size_t triangleCount() const { return triangles_; }
 
 private:
     void prepareCones() const;
+    void prepareSurfaces() const;
+    glm::vec3 coneAlbedo(std::uint32_t material, std::size_t triangle, glm::vec2 uv, float t, float cosine,
+                         float spread) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
     const Scene& scene_;
