@@ -260,3 +260,26 @@ TEST(DdgiHitCache, RefreshingCellsEveryOtherFrameKeepsTheConvergedField) {
                 (long long)evaluated2, (long long)groups2, 100.0 * difference);
     EXPECT_LT(difference, 0.01);
 }
+
+TEST(DdgiHitCache, ChangedLightsReevaluateEveryCell) {
+    // Re-used values saw last frame's lights: when a light moves or changes colour, the frame
+    // after evaluates every group again (then alternates as before).
+    Scene scene = test::openYard();
+    ASSERT_FALSE(scene.lights.empty());
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, test::descFrom({{"probes", "6,3,6"}, {"spacing", "0.6"}, {"rays", "128"},
+                                            {"relocate", "false"}, {"classify", "false"}, {"hit_cache_refresh", "2"}}));
+    for (int f = 0; f < 4; ++f) ddgi.update(glm::vec3(0.0f));
+    DdgiFrameStats steady = ddgi.update(glm::vec3(0.0f));
+    EXPECT_LT(steady.cacheGroupsEvaluated, steady.cacheGroups * 3 / 4);
+    scene.lights[0].color *= 0.5f;
+    DdgiFrameStats changed = ddgi.update(glm::vec3(0.0f));
+    EXPECT_GT(changed.cacheGroups, 100);
+    EXPECT_EQ(changed.cacheGroupsEvaluated, changed.cacheGroups);
+    DdgiFrameStats after = ddgi.update(glm::vec3(0.0f));
+    EXPECT_LT(after.cacheGroupsEvaluated, after.cacheGroups * 3 / 4);
+    scene.lights[0].direction = glm::normalize(scene.lights[0].direction + glm::vec3(0.1f, 0.0f, 0.0f));
+    scene.lights[0].position += glm::vec3(0.05f, 0.0f, 0.0f);
+    DdgiFrameStats moved = ddgi.update(glm::vec3(0.0f));
+    EXPECT_EQ(moved.cacheGroupsEvaluated, moved.cacheGroups);
+}

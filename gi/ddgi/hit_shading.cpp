@@ -207,6 +207,18 @@ struct GroupValues {
     std::vector<glm::vec4>& values;  // group * stride + ...
 };
 
+// Every parameter of the scene's lights, to tell whether last frame's group values saw the
+// same lights.
+std::vector<float> lightFingerprint(const Scene& scene) {
+    std::vector<float> f;
+    for (const Light& l : scene.lights) {
+        f.push_back(float(int(l.type)));
+        for (const glm::vec3& v : {l.position, l.direction, l.color, l.edgeU, l.edgeV}) f.insert(f.end(), {v.x, v.y, v.z});
+        f.insert(f.end(), {l.innerConeDegrees, l.outerConeDegrees});
+    }
+    return f;
+}
+
 // Evaluates each group at its representative hit, or copies last frame's values for a cell
 // that had a group last frame and is not due (every `refresh` frames, staggered by key).
 // Returns the groups evaluated.
@@ -216,8 +228,10 @@ std::int64_t evaluateGroups(const ShadeContext& c, const HitCache& cache, bool s
     out.lights = shareLights ? std::min<int>(int(c.lights.size()), kSharedLights) : 0;
     out.stride = 1 + out.lights;
     std::swap(workspace.previousValues, out.values);
-    const bool reuse = refresh > 1 && workspace.previousStride == out.stride;
+    std::vector<float> lights = lightFingerprint(c.scene);
+    const bool reuse = refresh > 1 && workspace.previousStride == out.stride && workspace.previousLights == lights;
     workspace.previousStride = out.stride;
+    workspace.previousLights = std::move(lights);
     out.values.resize(groups * std::size_t(out.stride));
     const std::size_t stride = std::size_t(out.stride);
     // Copies first: what is left to evaluate goes in cage order below.

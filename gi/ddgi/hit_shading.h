@@ -75,6 +75,8 @@ struct ShadeWorkspace {
     // Last frame's, for cells that are not due for evaluation (hit_cache_refresh).
     std::vector<glm::vec4> previousValues;
     int previousStride = 0;
+    // The lights those values saw: a light that moved or changed re-evaluates every group.
+    std::vector<float> previousLights;
     std::vector<std::uint32_t> cage, start, order, due;
 };
 
