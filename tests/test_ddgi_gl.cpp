@@ -61,6 +61,25 @@ TEST_F(DdgiGl, BlendAndBorderMatchTheCpuReference) {
     EXPECT_LT(dist, 1e-3f);
 }
 
+TEST_F(DdgiGl, AtlasesGoUpOnlyAfterCpuWrites) {
+    // The GPU copy is read back after every update; the next blend uploads the atlases again
+    // only when the CPU changed them since (here: probe planes reset by scrolling).
+    Scene scene = test::openYard();
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "4,3,4"}, {"rays", "64"}, {"scroll", "true"}}));
+    DdgiGpu backend(ddgi.field());
+    glm::vec3 eye(0.1f, 1.0f, 0.0f);
+    ddgi.update(eye, &backend);
+    ddgi.update(eye, &backend);
+    EXPECT_FALSE(backend.lastTimes().atlasesUploaded);
+    const std::uint64_t before = ddgi.field().atlasVersion();
+    ddgi.update(eye + glm::vec3(2.0f, 0.0f, 0.0f), &backend);
+    EXPECT_GT(ddgi.field().atlasVersion(), before);
+    EXPECT_TRUE(backend.lastTimes().atlasesUploaded);
+    ddgi.update(eye + glm::vec3(2.0f, 0.0f, 0.0f), &backend);
+    EXPECT_FALSE(backend.lastTimes().atlasesUploaded);
+}
+
 TEST_F(DdgiGl, ApplyMatchesCpuSamplingWithCascadesAndScrolling) {
     Scene scene = test::openYard();
     RayTracer tracer(scene);

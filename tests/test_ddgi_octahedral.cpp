@@ -1,6 +1,7 @@
-// The octahedral mapping and tile borders shared by the DDGI atlases.
+// The octahedral mapping and tile borders shared by the DDGI atlases, and the atlases' layout.
 #include <gtest/gtest.h>
 
+#include "gi/ddgi/probe_field.h"
 #include "gi/octahedral/octahedral.h"
 #include "gi/sampling/sequences.h"
 
@@ -53,4 +54,23 @@ TEST(Octahedral, TileCoordinatesStayInsideTheBorder) {
         EXPECT_GE(c.y, 1.0f);
         EXPECT_LE(c.y, 9.0f);
     }
+}
+
+TEST(Octahedral, AtlasRowsMatchTheTiledLayout) {
+    // The GL textures are row-major, the CPU atlas tile-major: toRows / fromRows move whole
+    // tile rows, and must put every texel where at(x, y) has it.
+    Atlas atlas;
+    atlas.resize(5, 3, 6, glm::vec4(0.0f));
+    for (int y = 0; y < atlas.height; ++y)
+        for (int x = 0; x < atlas.width; ++x) atlas.at(x, y) = glm::vec4(float(x), float(y), float(x * 1000 + y), 1.0f);
+    std::vector<glm::vec4> rows;
+    atlas.toRows(rows);
+    ASSERT_EQ(rows.size(), std::size_t(atlas.width * atlas.height));
+    for (int y = 0; y < atlas.height; ++y)
+        for (int x = 0; x < atlas.width; ++x) ASSERT_EQ(rows[std::size_t(y * atlas.width + x)], atlas.at(x, y));
+    for (glm::vec4& t : rows) t.w = 2.0f;
+    atlas.fromRows(rows);
+    for (int y = 0; y < atlas.height; ++y)
+        for (int x = 0; x < atlas.width; ++x)
+            ASSERT_EQ(atlas.at(x, y), glm::vec4(float(x), float(y), float(x * 1000 + y), 2.0f));
 }

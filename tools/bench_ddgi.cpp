@@ -168,8 +168,9 @@ double sampleNsPerPoint(const DdgiSystem& ddgi, int* points) {
     return msSince(t0) * 1e6 / double(pts.size());
 }
 
-// GL apply over a width x height G-buffer of probe-ray hits; median of `frames` (glFinish).
-double glApplyMs(DdgiSystem& ddgi, int width, int height, int frames) {
+// GL apply over a width x height G-buffer of probe-ray hits: median wall time of `frames`
+// (glFinish) after three untimed ones (drivers compile lazily), and the median GPU time.
+double glApplyMs(DdgiSystem& ddgi, int width, int height, int frames, double* gpuMs) {
     const ProbeTrace& trace = ddgi.lastTrace();
     std::vector<glm::vec4> pos(std::size_t(width * height), glm::vec4(0.0f)), nrm(pos.size()), alb(pos.size(), glm::vec4(0.7f, 0.7f, 0.7f, 0.0f)),
         emi(pos.size(), glm::vec4(0.0f));
@@ -183,14 +184,20 @@ double glApplyMs(DdgiSystem& ddgi, int width, int height, int frames) {
     }
     UploadedGBuffer g = uploadGBuffer(pos, nrm, alb, emi, width, height, ddgi.tracer().scene().camera.eye);
     DdgiGpu gpu(ddgi.field());
-    std::vector<double> ms;
-    for (int f = 0; f < frames; ++f) {
+    gl::Handle query = gl::createTimerQuery();
+    std::vector<double> ms, gpuTimes;
+    for (int f = 0; f < frames + 3; ++f) {
         glFinish();
         auto t0 = Clock::now();
+        glBeginQuery(GL_TIME_ELAPSED, query.id());
         gpu.apply(ddgi.field(), g.view);
+        glEndQuery(GL_TIME_ELAPSED);
         glFinish();
+        if (f < 3) continue;
         ms.push_back(msSince(t0));
+        gpuTimes.push_back(gl::timerQueryMs(query.id()));
     }
+    *gpuMs = median(gpuTimes);
     return median(ms);
 }
 
@@ -342,10 +349,25 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
         DdgiSystem gpuSystem(tracer, all);
         DdgiGpu backend(gpuSystem.field());
         runFrames(gpuSystem, eye, 2, &backend);
-        StageMedians g = runFrames(gpuSystem, eye, std::min(frames, 3), &backend);
-        std::printf("GL (%s):\n", context->description().c_str());
-        std::printf("  blend %.2f ms, border + readback %.2f ms (culling off)\n", g.blend, g.border);
-        std::printf("  sample (apply pass, 512x512 G-buffer) %.2f ms\n", glApplyMs(gpuSystem, 512, 512, 3));
+        std::vector<StageMedians> frameStages;
+        std::vector<double> upload, blendGpu, borderGpu, readback;
+        for (int i = 0; i < std::min(frames, 5); ++i) {
+            frameStages.push_back(runFrames(gpuSystem, eye, 1, &backend));
+            const DdgiGpu::Times& t = backend.lastTimes();
+            upload.push_back(t.uploadMs);
+            blendGpu.push_back(t.blendGpuMs);
+            borderGpu.push_back(t.borderGpuMs);
+            readback.push_back(t.readbackMs);
+        }
+        StageMedians g = med(frameStages);
+        double applyGpu = 0.0;
+        const double applyWall = glApplyMs(gpuSystem, 512, 512, 10, &applyGpu);
+        std::printf("GL (%s), medians, culling off:\n", context->description().c_str());
+        std::printf("  blend %.2f ms wall: uploads %.2f ms (atlases, shaded rays), kernels %.3f ms GPU\n", g.blend,
+                    median(upload), median(blendGpu));
+        std::printf("  border + readback %.2f ms wall: kernels %.3f ms GPU, readback %.2f ms\n", g.border,
+                    median(borderGpu), median(readback));
+        std::printf("  sample (apply pass, 512x512 G-buffer) %.2f ms wall, %.3f ms GPU\n", applyWall, applyGpu);
     }
 }
 

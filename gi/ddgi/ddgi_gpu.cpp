@@ -1,5 +1,6 @@
 #include "gi/ddgi/ddgi_gpu.h"
 
+#include <chrono>
 #include <string>
 
 #include "render/gl/context.h"
@@ -14,14 +15,14 @@ gl::Handle makeAtlasTexture(const Atlas& atlas) {
     return t;
 }
 
-void uploadAtlas(GLuint texture, const Atlas& atlas) {
-    std::vector<glm::vec4> rows;
+// `rows`: staging memory kept between frames (a fresh 10 MB buffer costs its page faults).
+void uploadAtlas(GLuint texture, const Atlas& atlas, std::vector<glm::vec4>& rows) {
     atlas.toRows(rows);
     glTextureSubImage2D(texture, 0, 0, 0, atlas.width, atlas.height, GL_RGBA, GL_FLOAT, rows.data());
 }
 
-void downloadAtlas(GLuint texture, Atlas& atlas) {
-    std::vector<glm::vec4> rows(atlas.texels.size());
+void downloadAtlas(GLuint texture, Atlas& atlas, std::vector<glm::vec4>& rows) {
+    rows.resize(atlas.texels.size());
     glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(rows.size() * sizeof(glm::vec4)), rows.data());
     atlas.fromRows(rows);
 }
@@ -38,6 +39,8 @@ DdgiGpu::DdgiGpu(const ProbeField& field) {
     irradiance_ = makeAtlasTexture(field.irradiance);
     distance_ = makeAtlasTexture(field.distance);
     emptyVao_ = gl::createVertexArray();
+    blendQuery_ = gl::createTimerQuery();
+    borderQuery_ = gl::createTimerQuery();
     upload(field);
 }
 
@@ -49,8 +52,10 @@ void DdgiGpu::ensureBuffer(gl::Handle& buffer, std::size_t& capacity, std::size_
 }
 
 void DdgiGpu::upload(const ProbeField& field) {
-    uploadAtlas(irradiance_.id(), field.irradiance);
-    uploadAtlas(distance_.id(), field.distance);
+    uploadAtlas(irradiance_.id(), field.irradiance, staging_);
+    uploadAtlas(distance_.id(), field.distance, staging_);
+    synced_ = &field;
+    syncedVersion_ = field.atlasVersion();
     uploadProbeData(field);
 }
 
@@ -63,15 +68,25 @@ void DdgiGpu::uploadProbeData(const ProbeField& field) {
 }
 
 void DdgiGpu::readBack(ProbeField& field) {
-    downloadAtlas(irradiance_.id(), field.irradiance);
-    downloadAtlas(distance_.id(), field.distance);
+    downloadAtlas(irradiance_.id(), field.irradiance, staging_);
+    downloadAtlas(distance_.id(), field.distance, staging_);
+    synced_ = &field;  // the CPU copy is the GPU's again
+    syncedVersion_ = field.atlasVersion();
 }
 
 void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& shaded,
                     const std::vector<BlendJob>& jobs) {
-    // The CPU may have reset probes (scrolling) since the last frame.
-    uploadAtlas(irradiance_.id(), field.irradiance);
-    uploadAtlas(distance_.id(), field.distance);
+    times_ = Times{};
+    const auto start = std::chrono::steady_clock::now();
+    // Only when the CPU wrote to the atlases (probe resets when scrolling) since the GPU copy
+    // was made: on real hardware the upload took 7 times as long as the kernels.
+    if (synced_ != &field || syncedVersion_ != field.atlasVersion()) {
+        uploadAtlas(irradiance_.id(), field.irradiance, staging_);
+        uploadAtlas(distance_.id(), field.distance, staging_);
+        synced_ = &field;
+        syncedVersion_ = field.atlasVersion();
+        times_.atlasesUploaded = true;
+    }
     if (jobs.empty()) return;
     std::vector<glm::vec4> dirs;
     dirs.reserve(std::size_t(rays.blendRays));
@@ -85,6 +100,8 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
+    glFinish();  // the transfers end here, so the kernels' timing holds only the kernels
+    times_.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
     const BlendParams bp = BlendParams::from(field.desc());
     auto run = [&](gl::Program& program, GLuint atlas, int texels) {
@@ -100,10 +117,13 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
         GLuint groups = GLuint((texels + 7) / 8);
         glDispatchCompute(groups, groups, GLuint(jobs.size()));
     };
+    glBeginQuery(GL_TIME_ELAPSED, blendQuery_.id());
     run(blendIrradiance_, irradiance_.id(), bp.irradianceTexels);
     run(blendDistance_, distance_.id(), bp.distanceTexels);
+    glEndQuery(GL_TIME_ELAPSED);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glFinish();
+    times_.blendGpuMs = gl::timerQueryMs(blendQuery_.id());
 }
 
 void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
@@ -117,11 +137,17 @@ void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
             GLuint groups = GLuint((texels + 2 + 7) / 8);
             glDispatchCompute(groups, groups, GLuint(jobs.size()));
         };
+        glBeginQuery(GL_TIME_ELAPSED, borderQuery_.id());
         run(irradiance_.id(), field.desc().irradianceTexels, 0);
         run(distance_.id(), field.desc().distanceTexels, 1);
+        glEndQuery(GL_TIME_ELAPSED);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+        glFinish();
+        times_.borderGpuMs = gl::timerQueryMs(borderQuery_.id());
     }
+    const auto start = std::chrono::steady_clock::now();
     readBack(field);
+    times_.readbackMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void DdgiGpu::apply(const ProbeField& field, const GBufferView& g) {

@@ -1,7 +1,7 @@
 // The GL side of DDGI: the probe atlases as textures, the update kernels (blend.comp,
 // border.comp) as a BlendBackend, and the fullscreen apply pass. The CPU ProbeField stays the
-// master copy: atlases go up before blending and come back after the border pass, because the
-// next frame's ray shading reads them on the CPU.
+// master copy: atlases come back after the border pass, because the next frame's ray shading
+// reads them on the CPU, and go up before blending only when the CPU changed them since.
 #pragma once
 
 #include "gi/ddgi/probe_blend.h"
@@ -19,7 +19,8 @@ public:
                const std::vector<BlendJob>& jobs) override;
     void border(ProbeField& field, const std::vector<BlendJob>& jobs) override;
 
-    // Uploads both atlases and the per-probe data (offsets, states).
+    // Uploads both atlases and the per-probe data (offsets, states). blend() uploads the
+    // atlases itself when the CPU changed them (ProbeField::atlasVersion).
     void upload(const ProbeField& field);
     void uploadProbeData(const ProbeField& field);
     // Draws (1-m)(1-s) albedo/pi * E for every G-buffer pixel into the bound framebuffer.
@@ -27,6 +28,15 @@ public:
 
     GLuint irradianceTexture() const { return irradiance_.id(); }
     GLuint distanceTexture() const { return distance_.id(); }
+
+    // Where the last blend() and border() spent their time: CPU wall time of the transfers
+    // (the atlases and shaded rays going up, the atlases coming back) and GPU time of the
+    // kernels (GL_TIME_ELAPSED queries).
+    struct Times {
+        double uploadMs = 0.0, blendGpuMs = 0.0, borderGpuMs = 0.0, readbackMs = 0.0;
+        bool atlasesUploaded = false;  // false: the GPU copy was current (no CPU write since)
+    };
+    const Times& lastTimes() const { return times_; }
 
 private:
     void readBack(ProbeField& field);
@@ -36,6 +46,12 @@ private:
     gl::Handle irradiance_, distance_, emptyVao_;
     gl::Handle jobs_, directions_, rays_, probeData_;
     std::size_t jobsBytes_ = 0, directionsBytes_ = 0, raysBytes_ = 0, probeDataBytes_ = 0;
+    gl::Handle blendQuery_, borderQuery_;
+    Times times_;
+    // The field (and its atlasVersion) the GPU atlases hold, after an upload or a read-back.
+    std::vector<glm::vec4> staging_;  // atlas rows on their way up or down
+    const ProbeField* synced_ = nullptr;
+    std::uint64_t syncedVersion_ = 0;
 };
 
 }  // namespace voxgi

@@ -138,6 +138,7 @@ std::vector<BlendJob> makeBlendJobs(const ProbeField& field, const std::vector<i
 
 void CpuBlend::blend(ProbeField& field, const RaySet& rays, const ShadedRays& shaded,
                      const std::vector<BlendJob>& jobs) {
+    field.atlasesChanged();
     const BlendParams bp = BlendParams::from(field.desc());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, jobs.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         RayLanes lanes;
@@ -161,6 +162,7 @@ void CpuBlend::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sh
 }
 
 void CpuBlend::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
+    field.atlasesChanged();
     const int ni = field.desc().irradianceTexels, nd = field.desc().distanceTexels;
     auto refresh = [](Atlas& atlas, int ox, int oy, int n) {
         for (int y = 0; y < n + 2; ++y)

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "gi/octahedral/octahedral.h"
 
 namespace voxgi {
@@ -69,15 +71,33 @@ glm::vec4 Atlas::bilinearInTile(glm::ivec2 tileIndex, glm::vec2 local) const {
     return glm::mix(glm::mix(q[0], q[1], t.x), glm::mix(q[tile], q[tile + 1], t.x), t.y);
 }
 
+namespace {
+// Calls copy(row texel, tile texel, count) for each run of one tile's row: the texels are
+// tile-major here and row-major in GL, and a run is contiguous in both (every frame on the GL
+// path moves whole atlases, so no per-texel index arithmetic).
+template <typename Copy>
+void forEachTileRow(const Atlas& a, Copy&& copy) {
+    tbb::parallel_for(0, a.height, [&](int y) {
+        const int ty = y / a.tile, ry = y - ty * a.tile;
+        for (int tx = 0; tx < a.tilesX; ++tx)
+            copy(std::size_t(y) * std::size_t(a.width) + std::size_t(tx * a.tile),
+                 (std::size_t(ty * a.tilesX + tx) * std::size_t(a.tile) + std::size_t(ry)) * std::size_t(a.tile),
+                 std::size_t(a.tile));
+    });
+}
+}  // namespace
+
 void Atlas::toRows(std::vector<glm::vec4>& rows) const {
     rows.resize(texels.size());
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) rows[std::size_t(y) * std::size_t(width) + std::size_t(x)] = at(x, y);
+    forEachTileRow(*this, [&](std::size_t row, std::size_t tiled, std::size_t n) {
+        std::copy_n(&texels[tiled], n, &rows[row]);
+    });
 }
 
 void Atlas::fromRows(const std::vector<glm::vec4>& rows) {
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) at(x, y) = rows[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    forEachTileRow(*this, [&](std::size_t row, std::size_t tiled, std::size_t n) {
+        std::copy_n(&rows[row], n, &texels[tiled]);
+    });
 }
 
 std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye) {
@@ -156,6 +176,7 @@ glm::ivec2 ProbeField::distanceTile(int probe) const {
 
 void ProbeField::resetProbe(int probe) {
     // No light yet, and every direction open up to the clamp distance (no visibility cut).
+    atlasesChanged();
     const ProbeVolume& v = volumes_[std::size_t(volumeOf(probe))];
     float far = v.maxDistance();
     glm::ivec2 it = irradianceTile(probe), dt = distanceTile(probe);

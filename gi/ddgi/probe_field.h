@@ -99,6 +99,11 @@ public:
     // planes that enter. Returns the shift in cells.
     glm::ivec3 scrollTo(int volume, glm::vec3 eye);
 
+    // Every CPU write to `irradiance` or `distance` (probe resets, the CPU blend) bumps this, so
+    // that a GPU copy of the atlases uploads them again only when they changed.
+    std::uint64_t atlasVersion() const { return atlasVersion_; }
+    void atlasesChanged() { ++atlasVersion_; }
+
     Atlas irradiance;
     Atlas distance;
     // Occlusion probes: per-light visibility (up to 4 lights, rgba) of the surfaces each probe
@@ -109,6 +114,7 @@ public:
 private:
     DdgiDesc desc_;
     std::vector<ProbeVolume> volumes_;
+    std::uint64_t atlasVersion_ = 0;
 };
 
 }  // namespace voxgi

@@ -40,6 +40,18 @@ Handle createVertexArray() {
     return Handle(id, [](GLuint i) { glDeleteVertexArrays(1, &i); });
 }
 
+Handle createTimerQuery() {
+    GLuint id = 0;
+    glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+    return Handle(id, [](GLuint i) { glDeleteQueries(1, &i); });
+}
+
+double timerQueryMs(GLuint query) {
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+    return double(ns) * 1e-6;
+}
+
 Handle createFramebuffer(std::initializer_list<GLuint> colors, GLuint depth, const char* what) {
     Handle fbo = createFramebuffer();
     std::vector<GLenum> buffers;

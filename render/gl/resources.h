@@ -45,6 +45,10 @@ Handle createTexture(GLenum target, GLenum internalFormat, int width, int height
 Handle createBuffer(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
 Handle createFramebuffer();
 Handle createVertexArray();
+// A GL_TIME_ELAPSED query object.
+Handle createTimerQuery();
+// Its result in milliseconds; waits for it (call after the bracketed work is finished).
+double timerQueryMs(GLuint query);
 // A framebuffer drawing to `colors` (attachments 0.., all enabled as draw buffers) with an
 // optional `depth` texture (0 = none); throws GlError naming `what` if incomplete.
 Handle createFramebuffer(std::initializer_list<GLuint> colors, GLuint depth, const char* what);
