@@ -30,7 +30,8 @@ Scene triangleSoup(std::uint32_t seed) {
             for (int k = 0; k < 3; ++k) {
                 mesh.positions.push_back(centre + 0.6f * glm::vec3(u(rng), u(rng), u(rng)));
                 if (m % 2) {
-                    mesh.normals.push_back(glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, 0.0f, 0.01f)));
+                    const glm::vec3 n(u(rng), u(rng), u(rng));
+                    mesh.normals.push_back(glm::normalize(n + glm::vec3(0.0f, 0.0f, 0.01f)));
                     mesh.uvs.push_back(glm::vec2(u(rng), u(rng)));
                 }
                 mesh.indices.push_back(std::uint32_t(mesh.indices.size()));
@@ -83,7 +84,8 @@ TEST(RayTracer, FansFindTheHitsOfSingleRays) {
             if (scene.meshes[one.mesh].normals.empty()) {
                 EXPECT_EQ(surface->normal(r.u, r.v), glm::vec3(0.0f));
             } else {
-                EXPECT_GT(glm::dot(glm::normalize(surface->normal(r.u, r.v)), one.shadingNormal), 0.99999f) << "ray " << i;
+                const glm::vec3 n = glm::normalize(surface->normal(r.u, r.v));
+                EXPECT_GT(glm::dot(n, one.shadingNormal), 0.99999f) << "ray " << i;
             }
             // The batched records are the one-ray records, bit for bit.
             EXPECT_EQ(fan.t, one.t);

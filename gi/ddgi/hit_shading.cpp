@@ -213,7 +213,8 @@ std::vector<float> lightFingerprint(const Scene& scene) {
     std::vector<float> f;
     for (const Light& l : scene.lights) {
         f.push_back(float(int(l.type)));
-        for (const glm::vec3& v : {l.position, l.direction, l.color, l.edgeU, l.edgeV}) f.insert(f.end(), {v.x, v.y, v.z});
+        for (const glm::vec3& v : {l.position, l.direction, l.color, l.edgeU, l.edgeV})
+            f.insert(f.end(), {v.x, v.y, v.z});
         f.insert(f.end(), {l.innerConeDegrees, l.outerConeDegrees});
     }
     return f;
@@ -369,9 +370,12 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                     continue;
                 }
                 const std::uint32_t g = groups[i];
+                auto hitPosition = [&] {
+                    return trace.origins[std::size_t(probes[job])] + s.distance * rays.blendDirection(int(i));
+                };
                 // One light exactly at this hit: its own light point and shadow ray.
                 auto exact = [&](int k) {
-                    const glm::vec3 position = trace.origins[std::size_t(probes[job])] + s.distance * rays.blendDirection(int(i));
+                    const glm::vec3 position = hitPosition();
                     glm::vec3 e, l;
                     float range;
                     if (!prepared[std::size_t(k)].unshadowed(position, s.normal, c.quadSample(int(i), probes[job]), &e,
@@ -384,7 +388,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 int firstExact = 0;
                 if (g == HitCache::kNone) {
                     if (c.energy > 0.0f) {
-                        const glm::vec3 position = trace.origins[std::size_t(probes[job])] + s.distance * rays.blendDirection(int(i));
+                        const glm::vec3 position = hitPosition();
                         e = c.energy * previous.irradiance(position, s.normal, -rays.blendDirection(int(i)));
                     }
                 } else {

@@ -149,7 +149,8 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
                 ProbeSurfel& s = trace.surfels[std::size_t(p) * std::size_t(trace.stride) + std::size_t(i)];
                 const bool blend = i >= rays.fixedRays;
                 glm::vec3 position;
-                toSurfel(tracer, emitters, hits[i - first], surfaces[i - first], origin, d, blend ? spread : -1.0f, s, &position);
+                toSurfel(tracer, emitters, hits[i - first], surfaces[i - first], origin, d, blend ? spread : -1.0f, s,
+                         &position);
                 if (writer && blend) {
                     const std::size_t h = std::size_t(p) * std::size_t(rays.blendRays) + std::size_t(i - rays.fixedRays);
                     if (shadedHit(s)) writer->add(h, position, s.normal);

@@ -244,8 +244,9 @@ void RayTracer::prepareCones() const {
 
 void RayTracer::prepareSurfaces() const {
     std::call_once(impl_->surfacesOnce, [&] {
-        impl_->surfaces.resize(impl_->meshFirst.empty() ? 0
-                                                        : impl_->meshFirst.back() + scene_.meshes.back().triangleCount());
+        const std::size_t total =
+            impl_->meshFirst.empty() ? 0 : impl_->meshFirst.back() + scene_.meshes.back().triangleCount();
+        impl_->surfaces.resize(total);
         tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
             const Mesh& mesh = scene_.meshes[m];
             TriangleSurface* out = &impl_->surfaces[impl_->meshFirst[m]];
