@@ -52,11 +52,15 @@ void DdgiGpu::ensureBuffer(gl::Handle& buffer, std::size_t& capacity, std::size_
 }
 
 void DdgiGpu::upload(const ProbeField& field) {
+    uploadAtlases(field);
+    uploadProbeData(field);
+}
+
+void DdgiGpu::uploadAtlases(const ProbeField& field) {
     uploadAtlas(irradiance_.id(), field.irradiance, staging_);
     uploadAtlas(distance_.id(), field.distance, staging_);
     synced_ = &field;
     syncedVersion_ = field.atlasVersion();
-    uploadProbeData(field);
 }
 
 void DdgiGpu::uploadProbeData(const ProbeField& field) {
@@ -81,10 +85,7 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
     // Only when the CPU wrote to the atlases (probe resets when scrolling) since the GPU copy
     // was made: on real hardware the upload took 7 times as long as the kernels.
     if (synced_ != &field || syncedVersion_ != field.atlasVersion()) {
-        uploadAtlas(irradiance_.id(), field.irradiance, staging_);
-        uploadAtlas(distance_.id(), field.distance, staging_);
-        synced_ = &field;
-        syncedVersion_ = field.atlasVersion();
+        uploadAtlases(field);
         times_.atlasesUploaded = true;
     }
     if (jobs.empty()) return;

@@ -39,6 +39,7 @@ public:
     const Times& lastTimes() const { return times_; }
 
 private:
+    void uploadAtlases(const ProbeField& field);
     void readBack(ProbeField& field);
     void ensureBuffer(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes);
 

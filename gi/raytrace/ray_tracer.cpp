@@ -27,6 +27,7 @@ struct RayTracer::Impl {
     // or untextured); a mesh's triangles start at meshFirst[mesh].
     std::vector<float> texelScale;
     std::vector<std::size_t> meshFirst;  // set by the constructor
+    std::size_t allTriangles = 0;        // over all meshes, degenerate ones included
     std::once_flag surfacesOnce;
     std::atomic<bool> surfacesBuilt{false};
     std::vector<TriangleSurface> surfaces;  // per triangle, from meshFirst
@@ -67,10 +68,9 @@ RayTracer::RayTracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scen
     rtcSetDeviceErrorFunction(impl_->device, errorHandler, nullptr);
     impl_->scene = rtcNewScene(impl_->device);
     impl_->meshFirst.resize(scene.meshes.size());
-    std::size_t first = 0;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-        impl_->meshFirst[m] = first;
-        first += scene.meshes[m].triangleCount();
+        impl_->meshFirst[m] = impl_->allTriangles;
+        impl_->allTriangles += scene.meshes[m].triangleCount();
     }
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -110,6 +110,16 @@ RayTracer::RayTracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scen
 RayTracer::~RayTracer() = default;
 
 namespace {
+// Embree's nearest hit along one ray.
+RTCRayHit nearest(RTCScene scene, RTCIntersectContext& context, glm::vec3 o, glm::vec3 d, float tMin, float tMax) {
+    RTCRayHit rh;
+    rh.ray = makeRay(o, d, tMin, tMax);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    return rh;
+}
+
 RawHit toRawHit(const RTCRayHit& rh) {
     RawHit raw;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return raw;
@@ -154,13 +164,8 @@ void makeHit(const Scene& scene, const RawHit& raw, glm::vec3 d, RayHit& hit) {
 RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray = makeRay(o, d, tMin, tMax);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->scene, &context, &rh);
     RayHit hit;
-    makeHit(scene_, toRawHit(rh), d, hit);
+    makeHit(scene_, toRawHit(nearest(impl_->scene, context, o, d, tMin, tMax)), d, hit);
     return hit;
 }
 
@@ -169,12 +174,7 @@ void RayTracer::traceFan(glm::vec3 o, const glm::vec3* d, int n, RawHit* hits, c
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     for (int i = 0; i < n; ++i) {
-        RTCRayHit rh;
-        rh.ray = makeRay(o, d[i], 0.0f, 1e30f);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(impl_->scene, &context, &rh);
-        hits[i] = toRawHit(rh);
+        hits[i] = toRawHit(nearest(impl_->scene, context, o, d[i], 0.0f, 1e30f));
         if (!surfaces) continue;
         // The line's miss overlaps with the next traversals instead of stalling its reader.
         const TriangleSurface* surface =
@@ -200,11 +200,7 @@ void RayTracer::intersectFan(glm::vec3 o, const glm::vec3* d, int n, RayHit* hit
 float RayTracer::nearestHit(glm::vec3 o, glm::vec3 d) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray = makeRay(o, d, 0.0f, 1e30f);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->scene, &context, &rh);
+    const RTCRayHit rh = nearest(impl_->scene, context, o, d, 0.0f, 1e30f);
     return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? INFINITY : rh.ray.tfar;
 }
 
@@ -222,9 +218,7 @@ void RayTracer::prepareCones() const {
         tbb::parallel_for(std::size_t(0), scene_.textures.size(), [&](std::size_t i) {
             impl_->pyramids[i] = std::make_unique<TexturePyramid>(scene_.textures[i]);
         });
-        std::size_t total = 0;
-        for (const Mesh& mesh : scene_.meshes) total += mesh.triangleCount();
-        impl_->texelScale.assign(total, 0.0f);
+        impl_->texelScale.assign(impl_->allTriangles, 0.0f);
         tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
             const Mesh& mesh = scene_.meshes[m];
             if (mesh.uvs.empty()) return;
@@ -244,9 +238,7 @@ void RayTracer::prepareCones() const {
 
 void RayTracer::prepareSurfaces() const {
     std::call_once(impl_->surfacesOnce, [&] {
-        const std::size_t total =
-            impl_->meshFirst.empty() ? 0 : impl_->meshFirst.back() + scene_.meshes.back().triangleCount();
-        impl_->surfaces.resize(total);
+        impl_->surfaces.resize(impl_->allTriangles);
         tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
             const Mesh& mesh = scene_.meshes[m];
             TriangleSurface* out = &impl_->surfaces[impl_->meshFirst[m]];
