@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "gi/technique.h"
-#include "render/gl/resources.h"
+#include "gl/resources.h"
 
 namespace voxgi {
 

@@ -9,7 +9,7 @@
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
 
-#include "render/gl/timers.h"
+#include "gl/timers.h"
 #include "scenes/scene.h"
 
 namespace voxgi {

@@ -11,7 +11,7 @@
 #include "gi/ddgi/ddgi_technique.h"
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "support/test_support.h"
 #include "test_ddgi_scenes.h"
 

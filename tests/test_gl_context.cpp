@@ -2,10 +2,10 @@
 // queries, shader includes and clear compile errors.
 #include <gtest/gtest.h>
 
-#include "render/gl/context.h"
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
-#include "render/gl/timers.h"
+#include "gl/context.h"
+#include "gl/program.h"
+#include "gl/resources.h"
+#include "gl/timers.h"
 
 using namespace voxgi;
 

@@ -9,9 +9,9 @@
 #include "gi/lpv/injection.h"
 #include "gi/lpv/propagation.h"
 #include "gi/sh/sh.h"
-#include "render/gl/context.h"
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
+#include "gl/context.h"
+#include "gl/program.h"
+#include "gl/resources.h"
 
 #include "support/test_support.h"
 

@@ -23,8 +23,8 @@
 #include "gi/lpv/lpv_technique.h"
 #include "gi/lpv/rsm.h"
 #include "gi/sh/sh.h"
-#include "render/gl/resources.h"
-#include "render/gl/scene_gpu.h"
+#include "gl/resources.h"
+#include "gl/scene_gpu.h"
 #include "scenes/image.h"
 #include "support/test_support.h"
 

@@ -9,7 +9,7 @@
 #include "gi/sh/sh.h"
 #include "render/frame/frame_renderer.h"
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
 

@@ -8,7 +8,7 @@
 
 #include "gi/pathtrace/path_tracer.h"
 #include "render/frame/frame_renderer.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "render/frame/frame_renderer.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
 

@@ -17,7 +17,7 @@
 
 #include "render/frame/frame_renderer.h"
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "render/view/fly_camera.h"
 #include "render/view/sphere_set.h"
 #include "render/view/light_controls.h"

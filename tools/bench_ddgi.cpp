@@ -21,7 +21,7 @@
 #include "gi/ddgi/ddgi_system.h"
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_registry.h"

@@ -9,7 +9,7 @@
 
 #include "render/frame/frame_renderer.h"
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "scenes/scene_loader.h"

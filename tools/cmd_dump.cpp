@@ -4,7 +4,7 @@
 
 #include "render/frame/frame_renderer.h"
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
 #include "tools/scene_arg.h"

@@ -13,7 +13,7 @@
 #include "gi/metrics/flip.h"
 #include "render/frame/frame_renderer.h"
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
 #include "tools/eval_report.h"

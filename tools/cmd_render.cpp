@@ -7,7 +7,7 @@
 #include "render/frame/frame_plan.h"
 #include "render/frame/frame_renderer.h"
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "tools/commands.h"

@@ -14,7 +14,7 @@
 #include "gi/pathtrace/path_tracer.h"
 #include "render/frame/frame_renderer.h"
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/errors.h"
 #include "scenes/primitives.h"
 #include "scenes/scene_loader.h"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
 

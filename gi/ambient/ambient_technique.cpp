@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "render/gl/program.h"
+#include "gl/program.h"
 #include "scenes/errors.h"
 
 namespace voxgi {

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <string>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 namespace voxgi {
 

@@ -6,8 +6,8 @@
 
 #include "gi/ddgi/probe_blend.h"
 #include "gi/technique.h"
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
+#include "gl/program.h"
+#include "gl/resources.h"
 
 namespace voxgi {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "gi/sh/sh.h"
-#include "render/gl/program.h"
+#include "gl/program.h"
 
 namespace voxgi {
 

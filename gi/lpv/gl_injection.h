@@ -19,7 +19,7 @@
 #include "gi/lpv/light_volume.h"
 #include "gi/lpv/rsm.h"
 #include "gi/technique.h"
-#include "render/gl/resources.h"
+#include "gl/resources.h"
 
 namespace voxgi {
 

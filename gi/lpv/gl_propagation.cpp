@@ -3,8 +3,8 @@
 #include <array>
 #include <string>
 
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
+#include "gl/program.h"
+#include "gl/resources.h"
 
 namespace voxgi {
 

@@ -12,9 +12,9 @@
 #include "gi/lpv/propagation.h"
 #include "gi/lpv/rsm.h"
 #include "gi/lpv/static_blockers.h"
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
-#include "render/gl/scene_gpu.h"
+#include "gl/program.h"
+#include "gl/resources.h"
+#include "gl/scene_gpu.h"
 #include "scenes/errors.h"
 
 namespace voxgi {

@@ -5,9 +5,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
-#include "render/gl/scene_gpu.h"
+#include "gl/program.h"
+#include "gl/resources.h"
+#include "gl/scene_gpu.h"
 
 namespace voxgi {
 

@@ -5,10 +5,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gi/sampling/sequences.h"
-#include "render/gl/scene_gpu.h"
-#include "render/gl/context.h"
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
+#include "gl/scene_gpu.h"
+#include "gl/context.h"
+#include "gl/program.h"
+#include "gl/resources.h"
 
 namespace voxgi {
 

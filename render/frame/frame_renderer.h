@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "gi/technique.h"
-#include "render/gl/timers.h"
+#include "gl/timers.h"
 #include "scenes/image.h"
 #include "scenes/scene.h"
 

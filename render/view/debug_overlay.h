@@ -6,8 +6,8 @@
 
 #include <glm/glm.hpp>
 
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
+#include "gl/program.h"
+#include "gl/resources.h"
 #include "render/view/sphere_set.h"
 #include "scenes/scene.h"
 

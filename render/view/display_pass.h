@@ -3,8 +3,8 @@
 #pragma once
 
 #include "render/frame/frame_renderer.h"
-#include "render/gl/program.h"
-#include "render/gl/resources.h"
+#include "gl/program.h"
+#include "gl/resources.h"
 
 namespace voxgi::view {
 

@@ -18,7 +18,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "render/frame/techniques.h"
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "render/view/view_script.h"
 #include "render/view/viewer_state.h"
 #include "scenes/errors.h"

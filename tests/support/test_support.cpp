@@ -9,7 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 #include "scenes/scene_loader.h"
 
 namespace voxgi::test {

@@ -6,7 +6,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 namespace voxgi::gl {
 

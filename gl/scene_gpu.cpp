@@ -1,11 +1,11 @@
-#include "render/gl/scene_gpu.h"
+#include "gl/scene_gpu.h"
 
 #include <vector>
 
 #define STB_IMAGE_RESIZE_IMPLEMENTATION
 #include <stb/stb_image_resize.h>
 
-#include "render/gl/gpu_layout.h"
+#include "gl/gpu_layout.h"
 
 namespace voxgi {
 

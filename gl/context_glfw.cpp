@@ -3,7 +3,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 namespace voxgi::gl {
 

@@ -1,8 +1,8 @@
-#include "render/gl/resources.h"
+#include "gl/resources.h"
 
 #include <string>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 namespace voxgi::gl {
 

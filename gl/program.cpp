@@ -1,4 +1,4 @@
-#include "render/gl/program.h"
+#include "gl/program.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -8,7 +8,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 namespace voxgi::gl {
 

@@ -2,7 +2,7 @@
 // per-triangle material ids, the material table and a texture array of albedo maps.
 #pragma once
 
-#include "render/gl/resources.h"
+#include "gl/resources.h"
 #include "scenes/scene.h"
 
 namespace voxgi {

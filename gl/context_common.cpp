@@ -4,7 +4,7 @@
 
 #include <epoxy/gl.h>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 namespace voxgi::gl {
 

@@ -1,10 +1,10 @@
-#include "render/gl/timers.h"
+#include "gl/timers.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
 
-#include "render/gl/context.h"
+#include "gl/context.h"
 
 namespace voxgi::gl {
 
