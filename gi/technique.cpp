@@ -8,4 +8,6 @@ void GiTechnique::dumpVdb(const std::string&) const {
     throw NotImplementedError("method '" + name() + "' has no .vdb dump yet");
 }
 
+DebugDrawing GiTechnique::debugView(const std::string&, const DebugViewContext&) const { return {}; }
+
 }  // namespace voxgi

@@ -1,14 +1,19 @@
-// A GI method as the frame renderer sees it (Capsaicin's "render technique"): settings with
-// defaults read from the scene's gi block, an update per frame, an apply pass that adds the
-// indirect light it computed, timers, and a dump of its volumes to .vdb.
+// A GI method as the frame renderer and the tools see it (Capsaicin's "render technique"): it
+// updates its light each frame through the passes its plan lists, adds the indirect light it
+// computed, draws the debug views its method declares, reports its stats, and dumps its volumes
+// to .vdb. What a method is before it runs (settings, presets, plan, views) is gi/method.h.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
 
+#include "gi/debug_view.h"
+#include "gi/technique_plan.h"
+#include "gi/technique_stat.h"
 #include "gl/timers.h"
 #include "scenes/scene.h"
 
@@ -32,7 +37,8 @@ struct FrameInput {
     const Scene& scene;
     const SceneGpu& sceneGpu;  // the scene's GL buffers (draw() rasterizes every triangle)
     int frameIndex = 0;        // 0 for the first frame after init
-    gl::StageTimers& timers;   // bracket each stage: timers.begin("lpv.propagate") ... end()
+    gl::StageTimers& timers;   // bracket each pass: timers.begin("lpv.propagate") ... end()
+    const TechniquePlan& plan; // the passes to run (their names are the timer stages)
 };
 
 class GiTechnique {
@@ -46,6 +52,10 @@ public:
     virtual void applyIndirect(const FrameInput& input, const GBufferView& gbuffer) = 0;
     // Writes the technique's volumes as OpenVDB grids.
     virtual void dumpVdb(const std::string& path) const;
+    // One of the debug views its method declares (empty for a name it does not know).
+    virtual DebugDrawing debugView(const std::string& view, const DebugViewContext& context) const;
+    // What its last update did, for benchmarks and the viewer.
+    virtual std::vector<TechniqueStat> stats() const { return {}; }
 };
 
 }  // namespace voxgi

@@ -1,8 +1,8 @@
 #include "gl/timers.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "gl/context.h"
 
@@ -48,46 +48,47 @@ void StageTimers::end() {
 
 void StageTimers::addCpu(const std::string& stage, double ms) {
     if (std::find(order_.begin(), order_.end(), stage) == order_.end()) order_.push_back(stage);
-    samples_[stage].cpuMs.push_back(ms);
+    pendingCpu_[stage] += ms;
 }
 
 void StageTimers::collect() {
+    struct FrameSum {
+        double gpuMs = 0.0, cpuMs = 0.0;
+    };
+    std::map<std::string, FrameSum> gpuStages;
     for (const Pending& p : pending_) {
         GLuint64 ns = 0;
         glGetQueryObjectui64v(p.query, GL_QUERY_RESULT, &ns);
-        StageSamples& s = samples_[p.stage];
-        s.gpuMs.push_back(double(ns) * 1e-6);
-        s.cpuMs.push_back(p.cpuMs);
+        FrameSum& f = gpuStages[p.stage];
+        f.gpuMs += double(ns) * 1e-6;
+        f.cpuMs += p.cpuMs;
         freeQueries_.push_back(p.query);
     }
     pending_.clear();
+    for (const auto& [stage, f] : gpuStages) {
+        samples_[stage].gpuMs.push_back(f.gpuMs);
+        samples_[stage].cpuMs.push_back(f.cpuMs);
+    }
+    for (const auto& [stage, ms] : pendingCpu_) samples_[stage].cpuMs.push_back(ms);
+    pendingCpu_.clear();
 }
 
 std::string StageTimers::toJson() const {
-    std::ostringstream out;
-    auto summary = [&](const char* key, const std::vector<double>& v) {
+    auto summary = [](const std::vector<double>& v) {
         Summary s = summarize(v);
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "\"%s\": {\"min\": %.4f, \"median\": %.4f, \"max\": %.4f}", key, s.min,
-                      s.median, s.max);
-        out << buf;
+        return nlohmann::ordered_json{{"min", s.min}, {"median", s.median}, {"max", s.max}};
     };
-    out << "{\n  \"stages\": {\n";
-    bool first = true;
+    nlohmann::ordered_json stages = nlohmann::ordered_json::object();
     for (const std::string& stage : order_) {
         auto it = samples_.find(stage);
         if (it == samples_.end()) continue;
-        out << (first ? "" : ",\n") << "    \"" << stage << "\": {";
-        first = false;
-        if (!it->second.gpuMs.empty()) {
-            summary("gpu_ms", it->second.gpuMs);
-            out << ", ";
-        }
-        summary("cpu_ms", it->second.cpuMs);
-        out << ", \"frames\": " << it->second.cpuMs.size() << "}";
+        nlohmann::ordered_json j;
+        if (!it->second.gpuMs.empty()) j["gpu_ms"] = summary(it->second.gpuMs);
+        j["cpu_ms"] = summary(it->second.cpuMs);
+        j["frames"] = it->second.cpuMs.size();
+        stages[stage] = j;
     }
-    out << "\n  }\n}\n";
-    return out.str();
+    return nlohmann::ordered_json{{"stages", stages}}.dump(2) + "\n";
 }
 
 }  // namespace voxgi::gl

@@ -1,5 +1,6 @@
-// Per-stage timings: GPU time from GL_TIME_ELAPSED queries and CPU wall time, collected per
-// frame and summarised as min / median / max for benchmarks and --timings files.
+// Per-stage timings: GPU time from GL_TIME_ELAPSED queries and CPU wall time, one sample per
+// stage and frame (a stage bracketed several times in a frame, once per light say, adds up), and
+// summarised as min / median / max for benchmarks and --timings files.
 #pragma once
 
 #include <chrono>
@@ -33,7 +34,7 @@ public:
     void end();
     // Adds a CPU-only stage measured elsewhere (e.g. Embree tracing).
     void addCpu(const std::string& stage, double ms);
-    // Waits for outstanding queries and moves their results into the samples.
+    // Ends the frame: waits for outstanding queries and adds one sample per stage that ran.
     void collect();
 
     const std::map<std::string, StageSamples>& samples() const { return samples_; }
@@ -48,6 +49,7 @@ private:
         double cpuMs;
     };
     std::vector<Pending> pending_;
+    std::map<std::string, double> pendingCpu_;  // CPU-only stages of the frame
     std::vector<GLuint> freeQueries_;
     std::map<std::string, StageSamples> samples_;
     std::vector<std::string> order_;

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <random>
-#include <system_error>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -14,6 +12,7 @@
 #include <ImfOutputFile.h>
 #include <ImathBox.h>
 
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
@@ -56,32 +55,11 @@ void Image::setRgb(const std::string& name, int x, int y, glm::vec3 v) {
     l.data[i + 2] = v.z;
 }
 
-std::string temporaryPathFor(const std::string& path) {
-    std::random_device rd;
-    fs::path p(path);
-    return (p.parent_path() / ("." + p.filename().string() + ".tmp" + std::to_string(rd() % 1000000))).string();
-}
-
-void renameInto(const std::string& temporary, const std::string& path) {
-    std::error_code ec;
-    fs::rename(temporary, path, ec);
-    if (ec) {
-        fs::remove(temporary, ec);
-        throw InputError(path + ": cannot write (" + ec.message() + ")");
-    }
-}
-
 namespace {
-void ensureParentExists(const std::string& path) {
-    fs::path parent = fs::path(path).parent_path();
-    if (!parent.empty() && !fs::is_directory(parent))
-        throw InputError(path + ": output directory does not exist");
-}
 const char* kRgb[3] = {"R", "G", "B"};
 }  // namespace
 
 void writeExr(const std::string& path, const Image& image) {
-    ensureParentExists(path);
     Imf::Header header(image.width(), image.height());
     Imf::FrameBuffer fb;
     const std::size_t xStride = sizeof(float);
@@ -95,17 +73,11 @@ void writeExr(const std::string& path, const Image& image) {
                                        xStride * std::size_t(l.channels) * std::size_t(image.width())));
         }
     }
-    std::string tmp = temporaryPathFor(path);
-    try {
-        Imf::OutputFile file(tmp.c_str(), header);
+    writeFileAtomically(path, [&](const std::string& temporary) {
+        Imf::OutputFile file(temporary.c_str(), header);
         file.setFrameBuffer(fb);
         file.writePixels(image.height());
-    } catch (const std::exception& e) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw InputError(path + ": cannot write EXR (" + e.what() + ")");
-    }
-    renameInto(tmp, path);
+    });
 }
 
 Image readExr(const std::string& path) {
@@ -166,14 +138,10 @@ glm::vec3 toneMapToSrgb(glm::vec3 x, float exposureStops) {
 }
 
 void writePngRgb8(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
-    ensureParentExists(path);
-    std::string tmp = temporaryPathFor(path) + ".png";
-    if (!stbi_write_png(tmp.c_str(), width, height, 3, rgb.data(), width * 3)) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw InputError(path + ": cannot write PNG");
-    }
-    renameInto(tmp, path);
+    writeFileAtomically(path, [&](const std::string& temporary) {
+        if (!stbi_write_png(temporary.c_str(), width, height, 3, rgb.data(), width * 3))
+            throw std::runtime_error("PNG encoder failed");
+    });
 }
 
 void writePng(const std::string& path, const Image& image, const std::string& layer, float exposureStops) {

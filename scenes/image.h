@@ -53,8 +53,5 @@ void writePngRgb8(const std::string& path, int width, int height, const std::vec
 // The tone curve used for previews: ACES filmic fit (Narkowicz 2015) then the sRGB transfer.
 glm::vec3 toneMapToSrgb(glm::vec3 linear, float exposureStops);
 
-// A temporary sibling of `path` for atomic writes; renameInto moves it over `path`.
-std::string temporaryPathFor(const std::string& path);
-void renameInto(const std::string& temporary, const std::string& path);
 
 }  // namespace voxgi

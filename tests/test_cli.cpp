@@ -82,5 +82,39 @@ TEST(Cli, RenderWritesExrPngAndTimings) {
     EXPECT_TRUE(fileExists(dir + "/t.json"));
     auto plan = runVoxgi("render cornell-box --plan");
     EXPECT_EQ(plan.exitCode, 0);
-    EXPECT_NE(plan.output.find("reflections: no glossy"), std::string::npos) << plan.output;
+    EXPECT_NE(plan.output.find("+ gbuffer"), std::string::npos) << plan.output;
+    // Only passes that exist are listed (no reflection tracing is built).
+    EXPECT_EQ(plan.output.find("reflections"), std::string::npos) << plan.output;
+}
+
+// One backend vocabulary: --backend cpu|gl reaches every method that has a back end.
+TEST(Cli, BackendOptionWorksForEveryMethod) {
+    std::string dir = makeTempDir("cli-backend");
+    for (const char* method : {"lpv", "ddgi"})
+        for (const char* backend : {"cpu", "gl"}) {
+            auto r = runVoxgi(std::string("render cornell-box --method ") + method + " --backend " + backend +
+                              " --width 16 --height 16 --frames 1 --set ddgi.rays=16 -o " + dir + "/x.exr");
+            EXPECT_EQ(r.exitCode, 0) << method << " " << backend << ": " << r.output;
+        }
+    auto bad = runVoxgi("render cornell-box --method ddgi --backend gpu -o " + dir + "/y.exr");
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--backend gpu"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fileExists(dir + "/y.exr"));
+}
+
+// The method list and a method's settings come from its declaration.
+TEST(Cli, MethodsListsMethodsAndSettings) {
+    auto all = runVoxgi("methods");
+    EXPECT_EQ(all.exitCode, 0) << all.output;
+    for (const char* m : {"direct", "ambient", "lpv", "clpv", "ddgi", "isr"}) EXPECT_NE(all.output.find(m), std::string::npos) << m;
+    auto lpv = runVoxgi("methods clpv");
+    EXPECT_EQ(lpv.exitCode, 0) << lpv.output;
+    EXPECT_NE(lpv.output.find("lpv.steps"), std::string::npos) << lpv.output;
+    EXPECT_NE(lpv.output.find("[0, 100000]"), std::string::npos) << lpv.output;
+    auto help = runVoxgi("render --help");
+    EXPECT_NE(help.output.find("ddgi.rays=256"), std::string::npos) << help.output;
+    EXPECT_EQ(runVoxgi("methods magic").exitCode, 2);
+    auto refused = runVoxgi("render cornell-box --method lpv --set lpv.resolution=10 -o /tmp/never.exr");
+    EXPECT_EQ(refused.exitCode, 2);
+    EXPECT_NE(refused.output.find("gi.lpv.resolution"), std::string::npos) << refused.output;
 }

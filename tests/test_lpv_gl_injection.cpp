@@ -41,7 +41,7 @@ constexpr float kTolerance = 1e-4f;
 
 // Cascades centred in the box, so that even the finest one holds light and walls.
 std::vector<CascadePlacement> cornellCascades(const Scene& scene, int resolution) {
-    LpvDesc desc = LpvDesc::fromSettings(scene.gi, true);
+    LpvDesc desc = readLpvDesc(scene.gi, true);
     desc.resolution = resolution;
     glm::vec3 inside = scene.bounds().center() + glm::vec3(0.03f, -0.05f, 0.02f);
     return placeCascades(desc, scene.bounds(), inside, scene.camera.target - scene.camera.eye);

@@ -8,7 +8,6 @@
 
 #include "gi/sh/sh.h"
 #include "render/frame/frame_renderer.h"
-#include "render/frame/techniques.h"
 #include "gl/context.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
@@ -23,7 +22,7 @@ protected:
 };
 
 Image render(const Scene& scene, const std::string& method, int frames = 1) {
-    FrameRenderer r(scene, FrameOptions{}, createTechnique(method, scene));
+    FrameRenderer r(scene, FrameOptions{}, method);
     for (int i = 0; i < frames; ++i) r.renderFrame();
     return r.resolve();
 }

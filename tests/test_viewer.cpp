@@ -15,11 +15,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "render/frame/frame_renderer.h"
-#include "render/frame/techniques.h"
+#include "gi/methods.h"
 #include "gl/context.h"
+#include "render/frame/frame_renderer.h"
 #include "render/view/fly_camera.h"
-#include "render/view/sphere_set.h"
 #include "render/view/light_controls.h"
 #include "render/view/view_script.h"
 #include "render/view/viewer_state.h"
@@ -149,8 +148,54 @@ TEST(ViewerKeys, KeysRequestTheDocumentedActions) {
     float speed = s.speed;
     view::handleKey(s, GLFW_KEY_EQUAL, 0);
     EXPECT_FLOAT_EQ(s.speed, 1.5f * speed);
-    for (int key : {GLFW_KEY_G, GLFW_KEY_B, GLFW_KEY_O, GLFW_KEY_C, GLFW_KEY_H}) view::handleKey(s, key, 0);
-    EXPECT_TRUE(s.debug.voxels && s.debug.bounds && s.debug.probes && s.debug.cascades && s.debug.lpvCells);
+    for (int key : {GLFW_KEY_G, GLFW_KEY_B}) view::handleKey(s, key, 0);
+    EXPECT_TRUE(s.debug.voxels && s.debug.bounds);
+    // Other letters toggle the current method's views, as the method declares them.
+    view::handleKey(s, GLFW_KEY_H, 0);
+    EXPECT_FALSE(s.methodViews["lpv_cells"].on) << "direct has no LPV cells";
+    s.method = "lpv";
+    for (int key : {GLFW_KEY_C, GLFW_KEY_H}) view::handleKey(s, key, 0);
+    EXPECT_TRUE(s.methodViews["cascades"].on && s.methodViews["lpv_cells"].on);
+    s.method = "ddgi";
+    view::handleKey(s, GLFW_KEY_O, 0);
+    EXPECT_TRUE(s.methodViews["probes"].on);
+    view::handleKey(s, GLFW_KEY_C, 0);
+    EXPECT_FALSE(s.methodViews["cascades"].on) << "C toggles the bounds view back off";
+}
+
+// A method's view keys are letters the viewer leaves free, one view per key within a method.
+TEST(ViewerKeys, MethodViewKeysDoNotCollide) {
+    for (const MethodInfo& m : methods()) {
+        std::string used;
+        for (const DebugViewInfo& v : m.debugViews) {
+            if (!v.key) continue;
+            EXPECT_TRUE(v.key >= 'A' && v.key <= 'Z') << m.name << " " << v.name;
+            EXPECT_EQ(std::string(view::kViewerKeys).find(v.key), std::string::npos) << m.name << " " << v.name;
+            EXPECT_EQ(used.find(v.key), std::string::npos) << m.name << " " << v.name;
+            used += v.key;
+        }
+    }
+}
+
+// Script `show` events reach a method's views with their options, checked against the view's
+// declaration.
+TEST(ViewerShow, MethodViewsWithOptions) {
+    Scene scene = test::cornellBox();
+    view::ViewerOptions options;
+    options.method = "clpv";
+    view::ViewerState s(scene, options);
+    view::applyShow(s, "lpv_cells:cascade=2,stride=3");
+    EXPECT_TRUE(s.methodViews["lpv_cells"].on);
+    EXPECT_EQ(s.methodViews["lpv_cells"].options.getString("lpv_cells.cascade", ""), "2");
+    EXPECT_EQ(s.methodViews["lpv_cells"].options.getString("lpv_cells.stride", ""), "3");
+    view::applyShow(s, "probes:color=state");
+    EXPECT_EQ(s.methodViews["probes"].options.getString("probes.color", ""), "state");
+    view::applyShow(s, "cascades");
+    EXPECT_TRUE(s.methodViews["cascades"].on);
+    EXPECT_THROW(view::applyShow(s, "lpv_cells:cascade=9"), InputError);  // outside [0, 5]
+    EXPECT_THROW(view::applyShow(s, "lpv_cells:colour=red"), InputError);
+    EXPECT_THROW(view::applyShow(s, "probes:color=pink"), InputError);
+    EXPECT_THROW(view::applyShow(s, "no_such_view"), InputError);
 }
 
 // ---- light controls ----
@@ -184,8 +229,13 @@ TEST(LightControls, AnimationCirclesTheRestPositionAndLoops) {
 
 // ---- debug-view data (headless GL) ----
 
-bool inside(glm::vec3 p, const view::DebugBox& box, float slack) {
+bool inside(glm::vec3 p, const DebugBox& box, float slack) {
     return glm::all(glm::greaterThanEqual(p, box.min - slack)) && glm::all(glm::lessThanEqual(p, box.max + slack));
+}
+
+DebugDrawing drawView(FrameRenderer& renderer, const std::string& view, const Camera& camera,
+                      const GiSettings& options = {}) {
+    return renderer.technique()->debugView(view, DebugViewContext{camera, 0.0f, options});
 }
 
 // The LPV cell spheres come from the technique's light volume: inside the cascade box, and the
@@ -195,17 +245,17 @@ TEST(DebugViewData, LpvCellsSitInTheCascadeAndCarryColourBleeding) {
     auto context = gl::Context::createHeadless();
     Scene scene = test::cornellBox();
     scene.camera.width = scene.camera.height = 64;
-    FrameRenderer renderer(scene, FrameOptions{}, createTechnique("lpv", scene));
+    FrameRenderer renderer(scene, FrameOptions{}, "lpv");
     renderer.renderFrame();
-    std::vector<view::DebugBox> boxes = view::cascadeBoxes(renderer.technique(), scene.bounds(), scene.camera);
+    std::vector<DebugBox> boxes = drawView(renderer, "cascades", scene.camera).boxes;
     ASSERT_EQ(boxes.size(), 1u);
-    std::string scratch = test::makeTempDir("view-lpv") + "/lpv.vdb";
-    view::SphereSet set = view::lpvCellSpheres(renderer.technique(), 0, 1, 0.0f, scratch);
+    GiSettings everyCell;
+    everyCell.set("lpv_cells.stride", "1");
+    DebugDrawing set = drawView(renderer, "lpv_cells", scene.camera, everyCell);
     ASSERT_FALSE(set.spheres.empty());
-    EXPECT_TRUE(set.sh);
-    EXPECT_FALSE(test::fileExists(scratch)) << "scratch dump left behind";
+    EXPECT_TRUE(set.shSpheres);
     glm::vec3 nearRed(0.0f), nearGreen(0.0f);
-    for (const view::SphereInstance& s : set.spheres) {
+    for (const DebugSphere& s : set.spheres) {
         glm::vec3 c(s.centerRadius);
         EXPECT_TRUE(inside(c, boxes[0], 1e-4f)) << c.x << " " << c.y << " " << c.z;
         glm::vec3 mean(s.r.x, s.g.x, s.b.x);
@@ -214,27 +264,28 @@ TEST(DebugViewData, LpvCellsSitInTheCascadeAndCarryColourBleeding) {
     }
     EXPECT_GT(nearRed.r / nearRed.g, nearGreen.r / nearGreen.g);
     EXPECT_GT(nearGreen.g / nearGreen.r, nearRed.g / nearRed.r);
-    // Other methods have no light volume.
-    EXPECT_TRUE(view::lpvCellSpheres(nullptr, 0, 1, 0.0f, scratch).spheres.empty());
+    // A view the technique does not declare draws nothing.
+    EXPECT_TRUE(drawView(renderer, "probes", scene.camera).spheres.empty());
 }
 
 TEST(DebugViewData, ClpvShowsNestedCascades) {
     auto context = gl::Context::createHeadless();
     Scene scene = test::cornellBox();
     scene.camera.width = scene.camera.height = 64;
-    FrameRenderer renderer(scene, FrameOptions{}, createTechnique("clpv", scene));
+    FrameRenderer renderer(scene, FrameOptions{}, "clpv");
     renderer.renderFrame();
-    std::vector<view::DebugBox> boxes = view::cascadeBoxes(renderer.technique(), scene.bounds(), scene.camera);
+    std::vector<DebugBox> boxes = drawView(renderer, "cascades", scene.camera).boxes;
     ASSERT_GE(boxes.size(), 2u);
     for (std::size_t i = 1; i < boxes.size(); ++i) {
         glm::vec3 fine = boxes[i - 1].max - boxes[i - 1].min, coarse = boxes[i].max - boxes[i].min;
         EXPECT_NEAR(coarse.x / fine.x, 2.0f, 1e-3f) << "cascade " << i;  // cell size doubles per cascade
     }
-    // Every cascade's dumped cells lie in its box.
-    std::string scratch = test::makeTempDir("view-clpv") + "/lpv.vdb";
+    // Every cascade's cells lie in its box.
     for (std::size_t c = 0; c < boxes.size(); ++c) {
-        view::SphereSet set = view::lpvCellSpheres(renderer.technique(), int(c), 2, 0.0f, scratch);
-        for (const view::SphereInstance& s : set.spheres)
+        GiSettings options;
+        options.set("lpv_cells.cascade", std::to_string(c));
+        DebugDrawing set = drawView(renderer, "lpv_cells", scene.camera, options);
+        for (const DebugSphere& s : set.spheres)
             EXPECT_TRUE(inside(glm::vec3(s.centerRadius), boxes[c], 1e-4f)) << "cascade " << c;
     }
 }
@@ -246,12 +297,14 @@ TEST(DebugViewData, DdgiProbesOnePerProbeInsideTheVolume) {
     Scene scene = test::cornellBox();
     scene.camera.width = scene.camera.height = 64;
     scene.gi.set("ddgi.rays", "32");
-    FrameRenderer renderer(scene, FrameOptions{}, createTechnique("ddgi", scene));
+    FrameRenderer renderer(scene, FrameOptions{}, "ddgi");
     renderer.renderFrame();
-    std::vector<view::DebugBox> boxes = view::cascadeBoxes(renderer.technique(), scene.bounds(), scene.camera);
+    std::vector<DebugBox> boxes = drawView(renderer, "cascades", scene.camera).boxes;
     ASSERT_EQ(boxes.size(), 1u);
-    view::SphereSet lit = view::ddgiProbeSpheres(renderer.technique(), view::ProbeColor::Irradiance, 0.0f);
-    view::SphereSet states = view::ddgiProbeSpheres(renderer.technique(), view::ProbeColor::State, 0.0f);
+    GiSettings byState;
+    byState.set("probes.color", "state");
+    DebugDrawing lit = drawView(renderer, "probes", scene.camera);
+    DebugDrawing states = drawView(renderer, "probes", scene.camera, byState);
     ASSERT_FALSE(lit.spheres.empty());
     ASSERT_EQ(lit.spheres.size(), states.spheres.size());
     float slack = 0.5f * glm::length(boxes[0].max - boxes[0].min);  // generous: relocation only
@@ -264,7 +317,7 @@ TEST(DebugViewData, DdgiProbesOnePerProbeInsideTheVolume) {
         EXPECT_TRUE(known);
     }
     EXPECT_GT(brightness, 0.0) << "all probes black after a frame";
-    EXPECT_TRUE(view::ddgiProbeSpheres(nullptr, view::ProbeColor::State, 0.0f).spheres.empty());
+    EXPECT_TRUE(drawView(renderer, "lpv_cells", scene.camera).spheres.empty());
 }
 
 // ---- the window ----

@@ -19,6 +19,7 @@
 #include "gi/metrics/image_metrics.h"
 #include "gi/pathtrace/path_tracer.h"
 #include "gi/raytrace/ray_tracer.h"
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 #include "tools/bench_registry.h"
@@ -163,13 +164,7 @@ int runBench(const std::vector<std::string>& argv) {
         std::printf("sponza: %s not found, skipped\n", sponza.c_str());
     }
     if (auto c = args.value("--csv")) {
-        std::string tmp = temporaryPathFor(*c);
-        {
-            std::ofstream out(tmp);
-            out << csv.str();
-            if (!out) throw InputError(*c + ": cannot write");
-        }
-        renameInto(tmp, *c);
+        writeTextAtomically(*c, csv.str());
         std::printf("wrote %s\n", c->c_str());
     } else {
         std::printf("\n%s", csv.str().c_str());

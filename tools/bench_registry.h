@@ -6,6 +6,8 @@
 namespace voxgi::cli {
 
 bool registerBenchmark(const Command& benchmark);
+// `voxgi bench METHOD`: the method's own benchmark, else the frame benchmark (bench_frame.cpp).
+int runBenchForMethod(const std::string& method, const std::vector<std::string>& args);
 
 }  // namespace voxgi::cli
 

@@ -7,6 +7,7 @@
 
 #include "gi/metrics/flip.h"
 #include "gi/metrics/image_metrics.h"
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "tools/commands.h"
@@ -71,13 +72,7 @@ int runCompare(const std::vector<std::string>& argv) {
         std::printf("wrote %s\n", d->c_str());
     }
     if (auto j = args.value("--json")) {
-        std::string tmp = temporaryPathFor(*j);
-        {
-            std::ofstream out(tmp);
-            out << toJson(m) << "\n";
-            if (!out) throw InputError(*j + ": cannot write");
-        }
-        renameInto(tmp, *j);
+        writeTextAtomically(*j, toJson(m) + "\n");
         std::printf("wrote %s\n", j->c_str());
     }
     return kOk;

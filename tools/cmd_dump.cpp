@@ -2,11 +2,12 @@
 // as OpenVDB grids (`vdb_print`, Houdini, Blender and python-openvdb read them).
 #include <cstdio>
 
-#include "render/frame/frame_renderer.h"
-#include "render/frame/techniques.h"
+#include "gi/methods.h"
 #include "gl/context.h"
+#include "render/frame/frame_renderer.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
+#include "tools/method_help.h"
 #include "tools/scene_arg.h"
 
 namespace voxgi::cli {
@@ -14,7 +15,8 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi dump SCENE --method lpv|clpv|ddgi [--frame K] -o OUT.vdb [--width W --height H] [--backend cpu|gl] [--set section.key=value]...";
+    "voxgi dump SCENE --method NAME [--frame K] -o OUT.vdb [--width W --height H] [--backend cpu|gl] [--set section.key=value]...\n"
+    "  NAME: a method with volumes (default: the scene's gi.method)";
 
 int runDump(const std::vector<std::string>& argv) {
     Args args(argv, {"--method", "-o", "--frame", "--width", "--height", "--set", "--backend"}, {}, {"--set"});
@@ -22,14 +24,13 @@ int runDump(const std::vector<std::string>& argv) {
     auto out = args.value("-o");
     if (!out) throw InputError("-o OUT.vdb is required; usage: " + std::string(kUsage));
     requireWritable(*out, "-o");
-    const std::string method = args.value("--method", "clpv");
-    if (method == "direct") throw InputError("--method direct has no volumes to dump");
     const int frames = args.integer("--frame", 0, 0, 1 << 20) + 1;
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
-    validateMethod(method);
+    const std::string method = args.value("--method", scene.gi.getString("method", "direct"));
+    if (!validateMethod(method, scene).create) throw InputError("--method " + method + " has no volumes to dump");
     auto context = gl::Context::createHeadless();
-    FrameRenderer renderer(scene, FrameOptions{}, createTechnique(method, scene));
+    FrameRenderer renderer(scene, FrameOptions{}, method);
     for (int f = 0; f < frames; ++f) renderer.renderFrame();
     renderer.technique()->dumpVdb(*out);
     std::printf("wrote %s (%s after %d frame(s))\n", out->c_str(), method.c_str(), frames);
@@ -38,6 +39,6 @@ int runDump(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-VOXGI_REGISTER_COMMAND("dump", kUsage, runDump);
+VOXGI_REGISTER_COMMAND_WITH_DETAILS("dump", kUsage, runDump, methodList);
 
 }  // namespace voxgi::cli

@@ -9,11 +9,10 @@
 #include <filesystem>
 #include <sstream>
 
-#include "gi/ambient/ambient_fit.h"
+#include "gi/methods.h"
 #include "gi/metrics/flip.h"
-#include "render/frame/frame_renderer.h"
-#include "render/frame/techniques.h"
 #include "gl/context.h"
+#include "render/frame/frame_renderer.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
 #include "tools/eval_report.h"
@@ -25,10 +24,11 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi eval SCENE... -o DIR [--methods direct,ambient,lpv,clpv,ddgi] [--presets low,medium,high]\n"
+    "voxgi eval SCENE... -o DIR [--methods NAME,...] [--presets low,medium,high]\n"
     "       [--reference REF.exr | auto] [--spp N] [--cache DIR] [--frames N] [--warmup N] [--width W --height H]\n"
     "       [--set section.key=value]...\n"
     "  voxgi eval --stability -o DIR [--cases NAME,...]\n"
+    "  --methods: default every built method; --presets: each method's (voxgi methods NAME), one run for a method with none\n"
     "  --spp: reference samples per pixel (default 256); --cache: reference cache (default DIR/cache)\n"
     "  --frames: frames accumulated per run (default the scene's, at least warm-up + 5); --warmup: untimed frames (4)";
 
@@ -84,18 +84,37 @@ void makeOutputFolder(const std::string& dir) {
     if (ec || !std::filesystem::is_directory(dir)) throw InputError("-o " + dir + ": cannot create the folder");
 }
 
-std::string settingsText(const EvalPreset& p) {
-    std::string s;
-    for (const auto& [k, v] : p.settings) s += (s.empty() ? "" : " ") + k + "=" + v;
-    return s;
+// The method's presets among `wanted`, in the order asked; a method without presets runs once
+// with its defaults ("default").
+std::vector<Preset> presetsFor(const MethodInfo& method, const std::vector<std::string>& wanted) {
+    if (method.presets.empty()) return {{"default", {}}};
+    std::vector<Preset> out;
+    for (const std::string& w : wanted)
+        for (const Preset& p : method.presets)
+            if (p.name == w) out.push_back(p);
+    return out;
 }
 
-EvalRow measure(const EvalPreset& preset, MethodRun run, const Reference& ref, const std::string& dir,
+// Every name in `wanted` is some method's preset.
+void requireKnownPresets(const std::vector<std::string>& wanted) {
+    std::string known;
+    for (const std::string& w : wanted) {
+        bool found = false;
+        for (const MethodInfo& m : methods())
+            for (const Preset& p : m.presets) {
+                found = found || p.name == w;
+                if (known.find(p.name) == std::string::npos) known += (known.empty() ? "" : ", ") + p.name;
+            }
+        if (!found) throw InputError("--presets " + w + ": unknown preset (known: " + known + ")");
+    }
+}
+
+EvalRow measure(const std::string& method, const Preset& preset, MethodRun run, const Reference& ref, const std::string& dir,
                 const std::string& sceneDir, const RenderSettings& rs) {
     EvalRow row;
-    row.method = preset.method;
+    row.method = method;
     row.preset = preset.name;
-    row.settings = settingsText(preset);
+    row.settings = settingsText(preset.settings);
     row.frameMs = run.frameMs;
     row.frames = rs.frames;
     row.warmupFrames = run.warmupFrames;
@@ -104,7 +123,7 @@ EvalRow measure(const EvalPreset& preset, MethodRun run, const Reference& ref, c
     row.full = computeMetrics(run.image, ref.image, "beauty");
     row.indirect = computeMetrics(run.image, ref.image, "indirect");
     row.meanIndirect = layerMean(run.image, "indirect");
-    const std::string stem = preset.name == "default" ? preset.method : preset.method + "-" + preset.name;
+    const std::string stem = preset.name == "default" ? method : method + "-" + preset.name;
     row.imagePng = sceneDir + "/" + stem + ".png";
     row.flipPng = sceneDir + "/" + stem + "-flip.png";
     writePng(dir + "/" + row.imagePng, run.image, "beauty", 0.0f);
@@ -114,11 +133,13 @@ EvalRow measure(const EvalPreset& preset, MethodRun run, const Reference& ref, c
 
 int runEvaluation(const Args& args, const std::string& dir, const std::vector<std::string>& argv) {
     if (args.positional().empty()) throw InputError("give at least one SCENE; usage: " + std::string(kUsage));
-    const std::vector<std::string> methods = splitList(args.value("--methods", "direct,ambient,lpv,clpv,ddgi"));
+    std::string allBuilt;
+    for (const std::string& m : builtMethods()) allBuilt += (allBuilt.empty() ? "" : ",") + m;
+    const std::vector<std::string> methodNames = splitList(args.value("--methods", allBuilt));
     const std::vector<std::string> presetNames = splitList(args.value("--presets", "low,medium,high"));
-    if (methods.empty()) throw InputError("--methods: empty list");
-    for (const std::string& m : methods) validateMethod(m);
-    for (const std::string& m : methods) presetsFor(m, presetNames);  // checks the preset names early
+    if (methodNames.empty()) throw InputError("--methods: empty list");
+    for (const std::string& m : methodNames) findMethod(m);
+    requireKnownPresets(presetNames);
     const std::string refArg = args.value("--reference", "auto");
     if (refArg != "auto" && args.positional().size() != 1)
         throw InputError("--reference " + refArg + ": a reference file fits one scene; use auto for several");
@@ -130,6 +151,7 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
     for (const std::string& s : args.positional()) {
         scenes.push_back(loadSceneArgument(s));
         applySceneOverrides(args, scenes.back());
+        for (const std::string& m : methodNames) validateMethod(m, scenes.back());
     }
     // Only once every input has been read, so bad input leaves no folder behind.
     makeOutputFolder(dir);
@@ -169,24 +191,22 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
         rs.warmup = warmup;
         rs.frames = args.integer("--frames", std::max(defaultFrameCount(scene), warmup + 5), 1, 1 << 20);
         std::vector<Image> images;
-        for (const std::string& method : methods)
-            for (const EvalPreset& preset : presetsFor(method, presetNames)) {
+        for (const std::string& method : methodNames)
+            for (const Preset& preset : presetsFor(findMethod(method), presetNames)) {
                 std::printf("%s: %s %s...\n", se.name.c_str(), method.c_str(), preset.name.c_str());
                 std::fflush(stdout);
-                std::vector<std::pair<std::string, std::string>> extra;
-                std::string fitted;
-                if (method == "ambient") {
-                    // Linear in E: one render with E = 1 gives each pixel's response.
-                    MethodRun unit = renderMethod(scene, preset, rs, {{"ambient.irradiance", "1"}});
-                    glm::vec3 e = fitAmbientIrradiance(*unit.image.find("indirect"), *ref.image.find("indirect"));
-                    char buf[96];
-                    std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g", e.x, e.y, e.z);
-                    fitted = buf;
-                    extra.push_back({"ambient.irradiance", fitted});
+                const MethodInfo& info = findMethod(method);
+                SettingList fitted;
+                if (info.oracle()) {
+                    RenderWith render = [&](const SettingList& extra) {
+                        return renderMethod(scene, method, preset, rs, extra).image;
+                    };
+                    fitted = info.fitToReference(render, ref.image);
                 }
-                MethodRun run = renderMethod(scene, preset, rs, extra);
-                EvalRow row = measure(preset, run, ref, dir, se.name, rs);
-                row.ambientIrradiance = fitted;
+                MethodRun run = renderMethod(scene, method, preset, rs, fitted);
+                EvalRow row = measure(method, preset, run, ref, dir, se.name, rs);
+                row.oracle = info.oracle();
+                row.fitted = settingsText(fitted);
                 std::printf("  %.2f ms/frame, RMSE %.4g FLIP %.4g (full), RMSE %.4g FLIP %.4g (indirect)\n",
                             row.frameMs, row.full.rmse, row.full.flip, row.indirect.rmse, row.indirect.flip);
                 se.rows.push_back(row);

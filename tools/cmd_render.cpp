@@ -2,15 +2,15 @@
 // averaged HDR image (EXR with AOV layers), an optional PNG preview and per-stage timings.
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 
+#include "gl/context.h"
 #include "render/frame/frame_plan.h"
 #include "render/frame/frame_renderer.h"
-#include "render/frame/techniques.h"
-#include "gl/context.h"
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "tools/commands.h"
+#include "tools/method_help.h"
 #include "tools/scene_arg.h"
 
 namespace voxgi::cli {
@@ -18,20 +18,10 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi render SCENE [--method direct|lpv|clpv|ddgi] -o OUT.exr [--png OUT.png] [--width W --height H] [--frames N]\n"
+    "voxgi render SCENE [--method NAME] -o OUT.exr [--png OUT.png] [--width W --height H] [--frames N]\n"
     "       [--timings T.json] [--exposure STOPS] [--backend cpu|gl] [--set section.key=value]... [--plan]\n"
     "  SCENE: a scene .json, a mesh file, or a built-in scene name (cornell-box)\n"
     "  --frames: frames accumulated (default 64 with area lights, else 1)";
-
-void writeTextAtomically(const std::string& path, const std::string& text) {
-    std::string tmp = temporaryPathFor(path);
-    {
-        std::ofstream out(tmp);
-        out << text;
-        if (!out) throw InputError(path + ": cannot write");
-    }
-    renameInto(tmp, path);
-}
 
 int runRender(const std::vector<std::string>& argv) {
     Args args(argv, {"--method", "-o", "--png", "--width", "--height", "--frames", "--timings", "--exposure", "--set", "--backend"},
@@ -48,8 +38,8 @@ int runRender(const std::vector<std::string>& argv) {
     applySceneOverrides(args, scene);
     // --method, else the scene's gi.method, else direct light only.
     const std::string method = args.value("--method", scene.gi.getString("method", "direct"));
-    validateMethod(method);
     const int frames = args.integer("--frames", defaultFrameCount(scene), 1, 1 << 20);
+    // Printed and then run: the renderer runs exactly these passes.
     FramePlan plan = planFrame(scene, method, frames);
     if (args.flag("--plan")) {
         std::printf("%s", plan.describe().c_str());
@@ -58,7 +48,7 @@ int runRender(const std::vector<std::string>& argv) {
 
     auto start = std::chrono::steady_clock::now();
     auto context = gl::Context::createHeadless();
-    FrameRenderer renderer(scene, FrameOptions{}, createTechnique(method, scene));
+    FrameRenderer renderer(scene, FrameOptions{}, plan);
     for (int f = 0; f < frames; ++f) renderer.renderFrame();
     Image image = renderer.resolve();
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -75,6 +65,6 @@ int runRender(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-VOXGI_REGISTER_COMMAND("render", kUsage, runRender);
+VOXGI_REGISTER_COMMAND_WITH_DETAILS("render", kUsage, runRender, methodListWithSettings);
 
 }  // namespace voxgi::cli

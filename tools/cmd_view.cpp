@@ -2,10 +2,11 @@
 // frames and closes, which with --screenshot makes it scriptable for tests and captures.
 #include <cstdio>
 
-#include "render/frame/techniques.h"
+#include "gi/methods.h"
 #include "render/view/viewer.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
+#include "tools/method_help.h"
 #include "tools/scene_arg.h"
 
 namespace voxgi::cli {
@@ -13,7 +14,7 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi view SCENE [--method direct|lpv|clpv|ddgi] [--width W --height H] [--window WxH] [--exposure STOPS]\n"
+    "voxgi view SCENE [--method NAME] [--width W --height H] [--window WxH] [--exposure STOPS]\n"
     "       [--frames N --screenshot SHOT.png] [--script CAMERA.json] [--out-dir DIR] [--no-panel]\n"
     "       [--capture-window WINDOW.png] [--backend cpu|gl]\n"
     "       [--set section.key=value]...\n"
@@ -55,12 +56,12 @@ int runView(const std::vector<std::string>& argv) {
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
     options.method = args.value("--method", scene.gi.getString("method", "direct"));
-    validateMethod(options.method);
+    validateMethod(options.method, scene);
     return view::runViewer(scene, options);
 }
 
 }  // namespace
 
-VOXGI_REGISTER_COMMAND("view", kUsage, runView);
+VOXGI_REGISTER_COMMAND_WITH_DETAILS("view", kUsage, runView, methodList);
 
 }  // namespace voxgi::cli

@@ -16,6 +16,7 @@ struct Command {
     std::string name;
     std::string usage;  // one line: "voxgi render SCENE --method M -o OUT.exr ..."
     CommandFn run;
+    std::string (*details)() = nullptr;  // more --help text made at run time (the method list)
 };
 
 bool registerCommand(const Command& command);
@@ -25,3 +26,5 @@ const Command* findCommand(const std::string& name);
 
 #define VOXGI_REGISTER_COMMAND(name, usage, fn) \
     static const bool voxgi_registered_##fn = ::voxgi::cli::registerCommand({name, usage, fn})
+#define VOXGI_REGISTER_COMMAND_WITH_DETAILS(name, usage, fn, details) \
+    static const bool voxgi_registered_##fn = ::voxgi::cli::registerCommand({name, usage, fn, details})

@@ -11,19 +11,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 
 namespace voxgi::cli {
 
-void writeTextFile(const std::string& path, const std::string& text) {
-    std::string tmp = temporaryPathFor(path);
-    {
-        std::ofstream out(tmp);
-        out << text;
-        if (!out) throw InputError(path + ": cannot write");
-    }
-    renameInto(tmp, path);
-}
 
 glm::dvec3 layerMean(const Image& image, const std::string& layer) {
     const ImageLayer* l = image.find(layer);
@@ -70,6 +62,9 @@ nlohmann::json metricsJson(const ImageMetrics& m) { return nlohmann::json::parse
 
 std::string label(const EvalRow& r) { return r.preset == "default" ? r.method : r.method + "-" + r.preset; }
 
+// An oracle's row says so: it saw the answer.
+std::string methodColumn(const EvalRow& r) { return r.oracle ? r.method + " (oracle)" : r.method; }
+
 std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& info,
                      const std::vector<std::string>& plots) {
     std::ostringstream md;
@@ -88,11 +83,10 @@ std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& inf
         md << "| method | preset | frame ms | RMSE full | relMSE full | FLIP full | RMSE indirect | relMSE indirect | "
               "FLIP indirect | settings |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
         for (const EvalRow& r : s.rows)
-            md << "| " << r.method << " | " << r.preset << " | " << fmt(r.frameMs, "%.1f") << " | "
+            md << "| " << methodColumn(r) << " | " << r.preset << " | " << fmt(r.frameMs, "%.1f") << " | "
                << fmt(r.full.rmse) << " | " << fmt(r.full.relMse) << " | " << fmt(r.full.flip) << " | "
                << fmt(r.indirect.rmse) << " | " << fmt(r.indirect.relMse) << " | " << fmt(r.indirect.flip) << " | "
-               << (r.method == "ambient" ? "fitted ambient.irradiance=" + r.ambientIrradiance
-                                         : (r.settings.empty() ? "-" : r.settings))
+               << (r.oracle ? "fitted to the reference: " + r.fitted : (r.settings.empty() ? "-" : r.settings))
                << " |\n";
         md << "\nStage medians (GPU ms / CPU ms):\n\n";
         for (const EvalRow& r : s.rows) {
@@ -140,7 +134,8 @@ std::string json(const std::vector<SceneEval>& scenes, const ReportInfo& info) {
                               {"full", metricsJson(r.full)}, {"indirect", metricsJson(r.indirect)},
                               {"image", r.imagePng},        {"flip_map", r.flipPng}};
             jr["mean_indirect"] = {r.meanIndirect.x, r.meanIndirect.y, r.meanIndirect.z};
-            if (r.method == "ambient") jr["ambient_irradiance"] = r.ambientIrradiance;
+            jr["oracle"] = r.oracle;
+            if (r.oracle) jr["fitted"] = r.fitted;
             js["runs"].push_back(jr);
         }
         j["scenes"].push_back(js);
@@ -180,8 +175,8 @@ std::vector<std::string> plot(const std::string& dir, const SceneEval& s) {
         front << fmt(std::max(time[i], 1e-3), "%.6g") << " " << fmt(error[i], "%.6g") << "\n";
     // Paths relative to the report folder, where gnuplot runs, so the folder can move.
     const std::string base = "plots/" + s.name;
-    writeTextFile(dir + "/" + base + ".dat", data.str());
-    writeTextFile(dir + "/" + base + "-pareto.dat", front.str());
+    writeTextAtomically(dir + "/" + base + ".dat", data.str());
+    writeTextAtomically(dir + "/" + base + "-pareto.dat", front.str());
     std::ostringstream gp;
     gp << "set terminal png size 900,520\nset logscale x\nset grid\nset key outside right\n"
        << "set xlabel 'frame time (ms, median)'\n"
@@ -198,7 +193,7 @@ std::vector<std::string> plot(const std::string& dir, const SceneEval& s) {
        << "     '' using 2:3:1 with labels offset 0,1 font ',8' notitle, \\\n"
        << "     '" << base << "-pareto.dat' using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \\\n"
        << "     '" << base << "-pareto.dat' using 1:2 with points pt 6 ps 2.5 lc rgb 'black' notitle\n";
-    writeTextFile(dir + "/" + base + ".gp", gp.str());
+    writeTextAtomically(dir + "/" + base + ".gp", gp.str());
     if (std::system(("cd '" + dir + "' && gnuplot '" + base + ".gp' >/dev/null 2>&1").c_str()) != 0)
         throw InputError(base + ".gp: gnuplot failed");
     written.push_back("plots/" + s.name + "-error-vs-time.png");
@@ -216,9 +211,9 @@ std::vector<std::string> writeEvalReport(const std::string& dir, const std::vect
         for (const SceneEval& s : scenes)
             for (const std::string& p : plot(dir, s)) plots.push_back(p);
     }
-    writeTextFile(dir + "/report.json", json(scenes, info));
-    writeTextFile(dir + "/results.csv", csv(scenes));
-    writeTextFile(dir + "/report.md", markdown(scenes, info, plots));
+    writeTextAtomically(dir + "/report.json", json(scenes, info));
+    writeTextAtomically(dir + "/results.csv", csv(scenes));
+    writeTextAtomically(dir + "/report.md", markdown(scenes, info, plots));
     return plots;
 }
 

@@ -18,7 +18,8 @@ struct EvalRow {
     int warmupFrames = 0, timedFrames = 0, frames = 0;
     std::vector<std::pair<std::string, StageTiming>> stages;
     ImageMetrics full, indirect;
-    std::string ambientIrradiance;  // ambient only: the fitted E, "r g b"
+    bool oracle = false;            // the method saw the reference (its fitted settings below)
+    std::string fitted;             // oracle only: the settings fitted to the reference, "key=value ..."
     glm::dvec3 meanIndirect{0.0};    // mean of the indirect layer per colour
     std::string imagePng, flipPng;  // relative to the report folder
 };
@@ -52,8 +53,5 @@ bool gnuplotAvailable();
 // Points (x = time, y = error) on the lower-left Pareto front, sorted by time: no other point is
 // both faster and more accurate.
 std::vector<std::size_t> paretoFront(const std::vector<double>& time, const std::vector<double>& error);
-
-// Writes `text` to `path` atomically.
-void writeTextFile(const std::string& path, const std::string& text);
 
 }  // namespace voxgi::cli

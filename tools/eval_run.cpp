@@ -13,7 +13,7 @@
 
 #include "gi/pathtrace/path_tracer.h"
 #include "render/frame/frame_renderer.h"
-#include "render/frame/techniques.h"
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 
 namespace voxgi::cli {
@@ -55,15 +55,15 @@ std::string sceneKey(const Scene& scene) {
 }
 }  // namespace
 
-MethodRun renderMethod(const Scene& base, const EvalPreset& preset, const RenderSettings& settings,
-                       const std::vector<std::pair<std::string, std::string>>& extra) {
+MethodRun renderMethod(const Scene& base, const std::string& method, const Preset& preset,
+                       const RenderSettings& settings, const SettingList& extra) {
     Scene scene = base;
     for (const auto& [k, v] : preset.settings) scene.gi.set(k, v);
     for (const auto& [k, v] : extra) scene.gi.set(k, v);
     FrameOptions options;
     options.width = settings.width;
     options.height = settings.height;
-    FrameRenderer renderer(scene, options, createTechnique(preset.method, scene));
+    FrameRenderer renderer(scene, options, method);
     MethodRun run;
     run.warmupFrames = std::min(settings.warmup, settings.frames - 1);
     run.timedFrames = settings.frames - run.warmupFrames;
@@ -136,12 +136,8 @@ Reference loadOrRenderReference(const Scene& scene, const std::string& name, int
     ref.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     ref.image = tracer.image();
     writeExr(ref.path, ref.image);
-    std::string tmp = temporaryPathFor(stem + ".json");
-    {
-        std::ofstream out(tmp);
-        out << nlohmann::json{{"spp", spp}, {"seconds", ref.seconds}, {"rays", tracer.raysTraced()}}.dump(2) << "\n";
-    }
-    renameInto(tmp, stem + ".json");
+    writeTextAtomically(stem + ".json",
+                        nlohmann::json{{"spp", spp}, {"seconds", ref.seconds}, {"rays", tracer.raysTraced()}}.dump(2) + "\n");
     return ref;
 }
 

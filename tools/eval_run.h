@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "gi/method.h"
 #include "scenes/image.h"
 #include "scenes/scene.h"
-#include "tools/eval_presets.h"
 
 namespace voxgi::cli {
 
@@ -32,9 +32,10 @@ struct RenderSettings {
     int warmup = 0;             // first frames left out of the timing and of the image
 };
 
-// Needs a current GL context. `extra` gi settings are applied over the scene's.
-MethodRun renderMethod(const Scene& scene, const EvalPreset& preset, const RenderSettings& settings,
-                       const std::vector<std::pair<std::string, std::string>>& extra = {});
+// Needs a current GL context. The preset's and then the `extra` gi settings are applied over the
+// scene's.
+MethodRun renderMethod(const Scene& scene, const std::string& method, const Preset& preset,
+                       const RenderSettings& settings, const SettingList& extra = {});
 
 struct Reference {
     Image image;

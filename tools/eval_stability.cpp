@@ -12,9 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "gi/pathtrace/path_tracer.h"
-#include "render/frame/frame_renderer.h"
-#include "render/frame/techniques.h"
+#include "gi/methods.h"
 #include "gl/context.h"
+#include "render/frame/frame_renderer.h"
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/primitives.h"
 #include "scenes/scene_loader.h"
@@ -26,7 +27,6 @@ namespace voxgi::cli {
 namespace {
 
 constexpr double kNoRatio = std::numeric_limits<double>::quiet_NaN();
-using Settings = std::vector<std::pair<std::string, std::string>>;
 
 struct Measured {
     bool finite = true;
@@ -64,11 +64,11 @@ gl::Context& glContext() {
     return *context;
 }
 
-Measured rasterize(const Scene& base, const std::string& method, const Settings& settings, int frames) {
+Measured rasterize(const Scene& base, const std::string& method, const SettingList& settings, int frames) {
     glContext();
     Scene scene = base;
     for (const auto& [k, v] : settings) scene.gi.set(k, v);
-    FrameRenderer renderer(scene, FrameOptions{}, createTechnique(method, scene));
+    FrameRenderer renderer(scene, FrameOptions{}, method);
     for (int f = 0; f < frames; ++f) renderer.renderFrame();
     return measure(renderer.resolve());
 }
@@ -169,6 +169,50 @@ void finish(StabilityResult& r, const Measured& m, double ratio, const std::stri
 
 double ratioOf(double a, double b) { return b != 0.0 ? a / b : kNoRatio; }
 
+// The real-time cases every method runs (linearity in the light, scale invariance, bad
+// triangles, grazing light), then the method's own stiff cases (gi/method.h StressCase).
+void addMethodCases(std::vector<Case>& c, const MethodInfo& method) {
+    const std::string name = method.name;
+    for (float k : {1e-6f, 1e6f}) {
+        std::string ks = k < 1.0f ? "1e-6" : "1e6";
+        c.push_back({"light-" + ks + "-" + name, name, "Cornell box, light x" + ks, [name, k](StabilityResult& r) {
+                         Measured m = rasterize(brighter(cornell(24), k), name, {}, 4);
+                         Measured base = rasterize(cornell(24), name, {}, 4);
+                         finish(r, m, ratioOf(m.mean, double(k) * base.mean), "linearity", 1e-2);
+                     }});
+    }
+    for (float k : {1e-4f, 1e4f}) {
+        std::string ks = k < 1.0f ? "1e-4" : "1e4";
+        c.push_back({"scale-" + ks + "-" + name, name, "Cornell box scaled to " + ks + " m", [name, k](StabilityResult& r) {
+                         Measured m = rasterize(scaled(cornell(24), k), name, {}, 4);
+                         Measured base = rasterize(cornell(24), name, {}, 4);
+                         finish(r, m, ratioOf(m.mean, base.mean), "unscaled mean", 0.05);
+                     }});
+    }
+    c.push_back({"bad-geometry-" + name, name, "Cornell box + bad triangles through the rasterizer and the method",
+                 [name](StabilityResult& r) {
+                     Measured m = rasterize(withBadGeometry(cornell(24)), name, {}, 4);
+                     Measured base = rasterize(cornell(24), name, {}, 4);
+                     finish(r, m, ratioOf(m.mean, base.mean), "clean scene", 1e-2);
+                 }});
+    c.push_back({"grazing-light-" + name, name, "sun 0.057 deg above the floor through the open front",
+                 [name](StabilityResult& r) { finish(r, rasterize(grazing(cornell(24)), name, {}, 2), kNoRatio, "", 0.0); }});
+    for (const StressCase& stress : method.stressCases)
+        c.push_back({stress.name + "-" + name, name, stress.description, [name, stress](StabilityResult& r) {
+                         const Scene s = stress.scene == StressCase::SceneKind::ClosedBox
+                                             ? closedBox(stress.albedo, 0.0f, stress.size)
+                                             : cornell(stress.size);
+                         Measured m = rasterize(s, name, stress.settings(s), stress.frames);
+                         if (!stress.against) {
+                             finish(r, m, kNoRatio, "", 0.0);
+                             return;
+                         }
+                         const SettingList against = stress.against(s);
+                         Measured ref = rasterize(s, name, against, stress.frames);
+                         finish(r, m, ratioOf(m.mean, ref.mean), "the run with " + settingsText(against), stress.tolerance);
+                     }});
+}
+
 std::vector<Case> allCases() {
     std::vector<Case> c;
     for (float albedo : {0.99f, 0.999f}) {
@@ -180,24 +224,7 @@ std::vector<Case> allCases() {
                          finish(r, m, m.mean / (1.0 / (1.0 - double(albedo))), "Le/(1-albedo)",
                                 albedo > 0.995f ? 0.15 : 0.05);
                      }});
-        c.push_back({"box-albedo-" + a + "-lpv", "lpv", "closed box, albedo " + a + ", point light, 64 steps with bounces",
-                     [albedo](StabilityResult& r) {
-                         Measured m = rasterize(closedBox(albedo, 0.0f, 24), "lpv",
-                                                {{"lpv.resolution", "16"}, {"lpv.steps", "64"}}, 1);
-                         finish(r, m, kNoRatio, "", 0.0);
-                     }});
     }
-    c.push_back({"lpv-10000-steps", "lpv", "closed box albedo 0.9, 8^3 cells, 10,000 CPU propagation steps vs 2,000",
-                 [](StabilityResult& r) {
-                     Scene s = closedBox(0.9f, 0.0f, 16);
-                     Settings base{{"lpv.resolution", "8"}, {"lpv.backend", "cpu"}};
-                     Settings many = base, fewer = base;
-                     many.push_back({"lpv.steps", "10000"});
-                     fewer.push_back({"lpv.steps", "2000"});
-                     Measured m = rasterize(s, "lpv", many, 1);
-                     Measured ref = rasterize(s, "lpv", fewer, 1);
-                     finish(r, m, ratioOf(m.mean, ref.mean), "converged value (2,000 steps)", 1e-3);
-                 }});
     for (float k : {1e-6f, 1e6f}) {
         std::string ks = k < 1.0f ? "1e-6" : "1e6";
         c.push_back({"light-" + ks + "-pathtrace", "pathtrace", "Cornell box, light x" + ks + ", same seed",
@@ -205,11 +232,6 @@ std::vector<Case> allCases() {
                          Measured m = pathTrace(brighter(cornell(16), k), 16);
                          Measured base = pathTrace(cornell(16), 16);
                          finish(r, m, ratioOf(m.mean, double(k) * base.mean), "x" + ks + " the unscaled mean (linearity)", 1e-3);
-                     }});
-        c.push_back({"light-" + ks + "-lpv", "lpv", "Cornell box, light x" + ks, [k](StabilityResult& r) {
-                         Measured m = rasterize(brighter(cornell(24), k), "lpv", {}, 4);
-                         Measured base = rasterize(cornell(24), "lpv", {}, 4);
-                         finish(r, m, ratioOf(m.mean, double(k) * base.mean), "linearity", 1e-2);
                      }});
     }
     for (float k : {1e-4f, 1e4f}) {
@@ -219,11 +241,6 @@ std::vector<Case> allCases() {
                          Measured m = pathTrace(scaled(cornell(16), k), 32);
                          Measured base = pathTrace(cornell(16), 32);
                          finish(r, m, ratioOf(m.mean, base.mean), "unscaled mean (radiance is scale-free)", 0.05);
-                     }});
-        c.push_back({"scale-" + ks + "-lpv", "lpv", "Cornell box scaled to " + ks + " m", [k](StabilityResult& r) {
-                         Measured m = rasterize(scaled(cornell(24), k), "lpv", {}, 4);
-                         Measured base = rasterize(cornell(24), "lpv", {}, 4);
-                         finish(r, m, ratioOf(m.mean, base.mean), "unscaled mean", 0.05);
                      }});
     }
     c.push_back({"bad-geometry-pathtrace", "pathtrace", "Cornell box + repeated-vertex, zero-area and NaN triangles",
@@ -246,32 +263,10 @@ std::vector<Case> allCases() {
                      finish(r, m, ratioOf(double(dirty.activeVoxelCount()), double(clean.activeVoxelCount())),
                             "clean scene's voxel count", 0.0);
                  }});
-    c.push_back({"bad-geometry-lpv", "lpv", "Cornell box + bad triangles through the rasterizer and LPV",
-                 [](StabilityResult& r) {
-                     Measured m = rasterize(withBadGeometry(cornell(24)), "lpv", {}, 4);
-                     Measured base = rasterize(cornell(24), "lpv", {}, 4);
-                     finish(r, m, ratioOf(m.mean, base.mean), "clean scene", 1e-2);
-                 }});
     c.push_back({"grazing-light-pathtrace", "pathtrace", "sun 0.057 deg above the floor through the open front",
                  [](StabilityResult& r) { finish(r, pathTrace(grazing(cornell(16)), 16), kNoRatio, "", 0.0); }});
-    c.push_back({"grazing-light-lpv", "lpv", "sun 0.057 deg above the floor through the open front",
-                 [](StabilityResult& r) { finish(r, rasterize(grazing(cornell(24)), "lpv", {}, 2), kNoRatio, "", 0.0); }});
-    c.push_back({"ddgi-probes-in-walls", "ddgi", "3x3x3 probes spaced half the box: 26 of 27 lie in the walls",
-                 [](StabilityResult& r) {
-                     Scene s = cornell(24);
-                     glm::vec3 h = 0.5f * s.bounds().extent();
-                     std::ostringstream spacing;
-                     spacing << h.x << "," << h.y << "," << h.z;
-                     Measured m = rasterize(s, "ddgi", {{"ddgi.probes", "3,3,3"}, {"ddgi.spacing", spacing.str()},
-                                                        {"ddgi.rays", "64"}}, 8);
-                     finish(r, m, kNoRatio, "", 0.0);
-                 }});
-    for (const char* h : {"0", "1"})
-        c.push_back({std::string("ddgi-hysteresis-") + h, "ddgi", std::string("Cornell box, ddgi.hysteresis = ") + h,
-                     [h](StabilityResult& r) {
-                         Measured m = rasterize(cornell(24), "ddgi", {{"ddgi.hysteresis", h}, {"ddgi.rays", "64"}}, 8);
-                         finish(r, m, kNoRatio, "", 0.0);
-                     }});
+    for (const MethodInfo& m : methods())
+        if (m.built) addMethodCases(c, m);
     return c;
 }
 
@@ -350,8 +345,8 @@ bool runStabilitySuite(const std::string& dir, const std::vector<std::string>& w
         jr["against"] = r.expected;
         j.push_back(jr);
     }
-    writeTextFile(dir + "/stability.json", nlohmann::json{{"cases", j}}.dump(2) + "\n");
-    writeTextFile(dir + "/stability.md", md.str());
+    writeTextAtomically(dir + "/stability.json", nlohmann::json{{"cases", j}}.dump(2) + "\n");
+    writeTextAtomically(dir + "/stability.md", md.str());
     std::printf("wrote %s/stability.md and stability.json: %s\n", dir.c_str(), ok ? "all run cases pass" : "FAILURES");
     return ok;
 }

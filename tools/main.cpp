@@ -26,6 +26,7 @@ const std::vector<std::pair<std::string, std::string>> kVerbs = {
     {"reference", "path-trace the unbiased reference image (Embree)"},
     {"compare", "image error metrics between two EXR files"},
     {"dump", "write a GI method's volumes to .vdb for debugging"},
+    {"methods", "list the GI methods, or one method's settings, presets and debug views"},
     {"view", "open the interactive viewer (GLFW window)"},
     {"eval", "error against run time for methods and presets; stability suite"},
     {"bench", "benchmarks (voxelize, propagation, probes, ...)"},
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> rest(args.begin() + 1, args.end());
     if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
         std::printf("usage: %s\n", command->usage.c_str());
+        if (command->details) std::printf("%s", command->details().c_str());
         return kOk;
     }
     try {

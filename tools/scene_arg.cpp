@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "gi/methods.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 
@@ -23,9 +24,11 @@ void applySceneOverrides(const Args& args, Scene& scene) {
     scene.camera.width = args.integer("--width", scene.camera.width, 1, 16384);
     scene.camera.height = args.integer("--height", scene.camera.height, 1, 16384);
     if (auto backend = args.value("--backend")) {
-        if (*backend != "cpu" && *backend != "gl") throw InputError("--backend " + *backend + ": expected cpu or gl");
-        scene.gi.set("lpv.backend", *backend);
-        scene.gi.set("ddgi.backend", *backend);
+        try {
+            setForEveryMethod(scene.gi, "backend", *backend);
+        } catch (const InputError& e) {
+            throw InputError("--backend " + *backend + ": " + e.what());
+        }
     }
     for (const std::string& s : args.values("--set")) scene.gi.applyOverride(s);
 }

@@ -11,8 +11,8 @@ namespace voxgi::cli {
 
 // Loads SCENE (path or built-in name); InputError names the file and field on failure.
 Scene loadSceneArgument(const std::string& argument);
-// Applies --width/--height, --backend cpu|gl (lpv.backend and ddgi.backend) and
-// --set section.key=value to a loaded scene.
+// Applies --width/--height, --backend cpu|gl (the backend setting of every method that has one)
+// and --set section.key=value to a loaded scene.
 void applySceneOverrides(const Args& args, Scene& scene);
 // Refuses an output path whose directory does not exist before any work starts.
 void requireWritable(const std::string& path, const std::string& option);

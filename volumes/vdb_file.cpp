@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
+#include "volumes/openvdb_file.h"
 #include "volumes/openvdb_setup.h"
 
 namespace voxgi::detail {
@@ -36,3 +38,16 @@ VdbFileContents readVdbFile(const std::string& path) {
 }
 
 }  // namespace voxgi::detail
+
+namespace voxgi {
+
+void writeVdbFile(const std::string& path, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& meta) {
+    initializeOpenVdb();
+    writeFileAtomically(path, [&](const std::string& temporary) {
+        openvdb::io::File file(temporary);
+        file.write(grids, meta);
+        file.close();
+    });
+}
+
+}  // namespace voxgi

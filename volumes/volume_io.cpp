@@ -5,10 +5,10 @@
 #include <filesystem>
 
 #include "scenes/errors.h"
-#include "scenes/image.h"
 #include "volumes/detail/geometry_grids.h"
 #include "volumes/detail/vdb_file.h"
 #include "volumes/geometry_volume.h"
+#include "volumes/openvdb_file.h"
 #include "volumes/openvdb_setup.h"
 
 namespace voxgi {
@@ -73,16 +73,7 @@ void writeGeometryVolume(const std::string& path, const SparseGeometryVolume& vo
     meta.insertMeta("voxgi_source_hash", openvdb::StringMetadata(g.sourceHash));
     meta.insertMeta("voxgi_levels", openvdb::Int32Metadata(int(g.levels.size())));
     meta.insertMeta("voxgi_blocker_fit", openvdb::StringMetadata(blockerFitName(g.blockerFit)));
-    const std::string tmp = temporaryPathFor(path);
-    try {
-        openvdb::io::File file(tmp);
-        file.write(detail::expandGrids(g), meta);
-        file.close();
-    } catch (const std::exception& e) {
-        std::remove(tmp.c_str());
-        throw InputError(path + ": cannot write (" + e.what() + ")");
-    }
-    renameInto(tmp, path);
+    writeVdbFile(path, detail::expandGrids(g), meta);
 }
 
 namespace {

@@ -1,36 +1,17 @@
 #include "gi/ambient/ambient_technique.h"
 
-#include <cmath>
-#include <sstream>
-
 #include "gl/program.h"
-#include "scenes/errors.h"
 
 namespace voxgi {
 
-glm::vec3 readAmbientIrradiance(const GiSettings& gi) {
-    gi.requireKnown("ambient", {"irradiance"});
-    const std::string text = gi.getString("ambient.irradiance", "0");
-    std::istringstream in(text);
-    std::vector<float> values;
-    std::string word;
-    while (in >> word) {
-        try {
-            std::size_t used = 0;
-            float v = std::stof(word, &used);
-            if (used != word.size()) throw std::invalid_argument(word);
-            values.push_back(v);
-        } catch (const std::exception&) {
-            throw InputError("gi.ambient.irradiance: expected \"r g b\" or one number, got '" + text + "'");
-        }
-    }
-    if (values.size() != 1 && values.size() != 3)
-        throw InputError("gi.ambient.irradiance: expected \"r g b\" or one number, got '" + text + "'");
-    glm::vec3 e = values.size() == 1 ? glm::vec3(values[0]) : glm::vec3(values[0], values[1], values[2]);
-    for (int c = 0; c < 3; ++c)
-        if (!std::isfinite(e[c]) || e[c] < 0.0f)
-            throw InputError("gi.ambient.irradiance: must be finite and non-negative, got '" + text + "'");
-    return e;
+const SettingsTable<AmbientDesc>& ambientSettings() {
+    static const SettingsTable<AmbientDesc> table = [] {
+        SettingsTable<AmbientDesc> t("ambient");
+        t.triple("irradiance", &AmbientDesc::irradiance, 0.0, 1e30, "constant irradiance on every surface (W/m^2 per colour)")
+            .main();
+        return t;
+    }();
+    return table;
 }
 
 namespace {
@@ -44,6 +25,7 @@ public:
     void update(const FrameInput&, const GBufferView&) override {}
 
     void applyIndirect(const FrameInput& input, const GBufferView& g) override {
+        if (!input.plan.runs("ambient.apply")) return;
         input.timers.begin("ambient.apply");
         apply_.use();
         const char* names[3] = {"uPosition", "uAlbedo", "uEmission"};
@@ -64,8 +46,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GiTechnique> createAmbient(const Scene& scene) {
-    return std::make_unique<AmbientTechnique>(readAmbientIrradiance(scene.gi));
+std::unique_ptr<GiTechnique> createAmbientTechnique(const AmbientDesc& desc) {
+    return std::make_unique<AmbientTechnique>(desc.irradiance);
 }
 
 }  // namespace voxgi

@@ -1,138 +1,77 @@
 #include "gi/ddgi/ddgi_desc.h"
 
-#include <sstream>
-
 #include "scenes/errors.h"
+#include "shaders/ddgi/limits.h"
 
 namespace voxgi {
 
 namespace {
 
-// "x,y,z" or a single value for all three axes.
-glm::vec3 parseTriple(const GiSettings& gi, const std::string& key, glm::vec3 fallback) {
-    if (!gi.has(key)) return fallback;
-    std::string text = gi.getString(key, "");
-    std::stringstream in(text);
-    glm::vec3 v(0.0f);
-    int n = 0;
-    std::string part;
-    while (std::getline(in, part, ',')) {
-        if (n == 3) throw InputError("gi." + key + ": expected one value or x,y,z, got '" + text + "'");
-        try {
-            std::size_t used = 0;
-            v[n] = std::stof(part, &used);
-            if (used != part.size()) throw std::invalid_argument(part);
-        } catch (const std::exception&) {
-            throw InputError("gi." + key + ": expected numbers, got '" + text + "'");
-        }
-        ++n;
-    }
-    if (n == 1) return glm::vec3(v.x);
-    if (n != 3) throw InputError("gi." + key + ": expected one value or x,y,z, got '" + text + "'");
-    return v;
+std::size_t product(glm::ivec3 v) { return std::size_t(v.x) * std::size_t(v.y) * std::size_t(v.z); }
+
+// The surfel buffer holds every probe's rays (52 bytes each) and the atlases 5 KiB per probe:
+// sizes that would exhaust memory are refused before anything is allocated.
+void requireAffordable(const DdgiDesc& d) {
+    if (d.probeCounts.x <= 0) return;  // fitted: about 8 cells on the longest axis
+    const std::size_t probes = product(d.probeCounts) * std::size_t(d.cascades);
+    if (probes > 262144) throw InputError("gi.ddgi.probes: more than 262144 probes over all cascades");
+    if (probes * std::size_t(d.raysPerProbe()) > (std::size_t(1) << 24))
+        throw InputError("gi.ddgi.rays: probes x rays above 16M rays per frame");
 }
 
-void requireRange(const std::string& key, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi)) {
-        std::ostringstream m;
-        m << "gi." << key << ": " << v << " is outside [" << lo << ", " << hi << "]";
-        throw InputError(m.str());
-    }
+SettingsTable<DdgiDesc> makeTable() {
+    using D = DdgiDesc;
+    SettingsTable<D> t("ddgi");
+    t.counts("probes", &D::probeCounts, 1, 256, "probes per axis; fit: about 8 cells on the longest axis", "fit");
+    t.triple("spacing", &D::spacing, 1e-6, 1e6, "cell size (m); fit: the bounds over the probe counts, probes at cell centres",
+             "fit");
+    t.integer("rays", &D::rays, 1, 4096, "rotated rays per probe per update (blended)").main();
+    t.integer("fixed_rays", &D::fixedRays, 1, 1024, "unrotated classification rays (traced when classify or relocate)");
+    t.integer("irradiance_texels", &D::irradianceTexels, 2, 64, "interior irradiance texels per side (the tile adds a border)");
+    t.integer("distance_texels", &D::distanceTexels, 2, 64, "interior distance texels per side");
+    t.number("hysteresis", &D::hysteresis, 0.0, 1.0, "weight of the previous value in the blend").main();
+    t.number("distance_exponent", &D::distanceExponent, 1.0, 1000.0, "sharpness of the distance weights");
+    t.number("normal_bias", &D::normalBias, 0.0, 1.0, "in cells (times the smallest spacing)");
+    t.number("view_bias", &D::viewBias, 0.0, 1.0, "in cells (times the smallest spacing)");
+    t.number("irradiance_gamma", &D::irradianceGamma, 1.0, 16.0, "irradiance is blended and stored as E^(1/gamma)");
+    t.number("energy", &D::energyPreservation, 0.0, 1.0,
+             "energy-preservation factor on probe irradiance re-used at hits (seed 004: < 1 tames bright scenes)");
+    t.number("irradiance_threshold", &D::irradianceThreshold, 0.0, 1e30,
+             "encoded change that drops the hysteresis (RTXGI's fast response)");
+    t.number("brightness_threshold", &D::brightnessThreshold, 0.0, 1e30,
+             "encoded change above which a step is damped to 25 %");
+    t.number("backface_threshold", &D::backfaceThreshold, 0.0, 1.0, "fixed-ray backface ratio that turns a probe off");
+    t.number("relocation_backface_threshold", &D::relocationBackfaceThreshold, 0.0, 1.0,
+             "all-ray backface ratio that moves a probe through the wall");
+    t.number("min_frontface_distance", &D::minFrontfaceDistance, 0.0, 0.45, "in cells: relocation keeps probes this far from walls");
+    t.flag("classify", &D::classify, "probe states (active, sleeping, off)");
+    t.flag("relocate", &D::relocate, "move probes out of walls");
+    t.flag("occupancy", &D::occupancy, "also put probes to sleep from the voxel occupancy (voxelizes at start)");
+    t.integer("sleep_interval", &D::sleepInterval, 1, 100000, "frames between updates of a sleeping probe (seed 004)");
+    t.integer("cascades", &D::cascades, 1, kDdgiMaxVolumes, "camera-centred cascades, spacing doubling outward").main();
+    t.choice("scroll", &D::scroll, {{"auto", DdgiScroll::Auto}, {"true", DdgiScroll::On}, {"false", DdgiScroll::Off}},
+             "camera-centred volumes scrolling in whole cells; auto: when cascades > 1");
+    t.choice("direct", &D::directLight, {{"rays", DdgiDirectLight::ShadowRays}, {"occlusion", DdgiDirectLight::OcclusionProbes}},
+             "light visibility at probe-ray hits: shadow rays or occlusion probes (seed 004 ch. 5)");
+    t.integer("occlusion_stride", &D::occlusionStride, 1, 4096, "occlusion probes: shadow rays from every n-th hit");
+    t.choice("hit_cache", &D::hitCache, {{"off", DdgiHitCache::Off}, {"probes", DdgiHitCache::Probes}, {"all", DdgiHitCache::All}},
+             "off: every hit exact; probes: nearby hits share the probe gather; all: and the light visibility");
+    t.integer("hit_cache_cells", &D::hitCacheCells, 1, 64, "hit-cache cells per smallest probe spacing");
+    t.integer("hit_cache_refresh", &D::hitCacheRefresh, 1, 64,
+              "frames between evaluations of a hit-cache cell seen last frame (1: every frame)");
+    t.integer("seed", &D::seed, 0, 2147483647, "ray rotations; the same seed and frames give bitwise the same field");
+    t.choice("backend", &D::backend, backendChoices(), "blend and border on the GPU (gl) or with the CPU reference (cpu)").main();
+    t.check(requireAffordable);
+    return t;
 }
 
 }  // namespace
 
-DdgiDesc readDdgiDesc(const GiSettings& gi) {
-    gi.requireKnown("ddgi", {"probes", "spacing", "rays", "fixed_rays", "irradiance_texels", "distance_texels",
-                             "hysteresis", "distance_exponent", "normal_bias", "view_bias", "irradiance_gamma",
-                             "energy", "irradiance_threshold", "brightness_threshold", "backface_threshold",
-                             "relocation_backface_threshold", "min_frontface_distance", "classify", "occupancy", "relocate",
-                             "sleep_interval", "cascades", "scroll", "direct", "occlusion_stride", "hit_cache", "hit_cache_cells", "hit_cache_refresh", "seed",
-                             "backend"});
-    DdgiDesc d;
-    glm::vec3 counts = parseTriple(gi, "ddgi.probes", glm::vec3(0.0f));
-    for (int a = 0; a < 3; ++a) {
-        requireRange("ddgi.probes", counts[a], 0, 256);
-        if (counts[a] != float(int(counts[a]))) throw InputError("gi.ddgi.probes: expected whole numbers");
-    }
-    d.probeCounts = glm::ivec3(counts);
-    if (gi.has("ddgi.probes") && glm::any(glm::lessThan(d.probeCounts, glm::ivec3(1))))
-        throw InputError("gi.ddgi.probes: every axis needs at least one probe");
-    if (std::size_t(d.probeCounts.x) * std::size_t(d.probeCounts.y) * std::size_t(d.probeCounts.z) > (1u << 20))
-        throw InputError("gi.ddgi.probes: more than 1048576 probes");
-    d.spacing = parseTriple(gi, "ddgi.spacing", glm::vec3(0.0f));
-    for (int a = 0; a < 3; ++a) requireRange("ddgi.spacing", d.spacing[a], 0.0, 1e6);
-    if (gi.has("ddgi.spacing") && glm::any(glm::lessThanEqual(d.spacing, glm::vec3(0.0f))))
-        throw InputError("gi.ddgi.spacing: must be positive");
-
-    d.rays = gi.getInt("ddgi.rays", d.rays);
-    requireRange("ddgi.rays", d.rays, 1, 4096);
-    d.fixedRays = gi.getInt("ddgi.fixed_rays", d.fixedRays);
-    requireRange("ddgi.fixed_rays", d.fixedRays, 1, 1024);
-    d.irradianceTexels = gi.getInt("ddgi.irradiance_texels", d.irradianceTexels);
-    requireRange("ddgi.irradiance_texels", d.irradianceTexels, 2, 64);
-    d.distanceTexels = gi.getInt("ddgi.distance_texels", d.distanceTexels);
-    requireRange("ddgi.distance_texels", d.distanceTexels, 2, 64);
-    d.hysteresis = gi.getFloat("ddgi.hysteresis", d.hysteresis);
-    requireRange("ddgi.hysteresis", d.hysteresis, 0, 1);
-    d.distanceExponent = gi.getFloat("ddgi.distance_exponent", d.distanceExponent);
-    requireRange("ddgi.distance_exponent", d.distanceExponent, 1, 1000);
-    d.normalBias = gi.getFloat("ddgi.normal_bias", d.normalBias);
-    requireRange("ddgi.normal_bias", d.normalBias, 0, 1);
-    d.viewBias = gi.getFloat("ddgi.view_bias", d.viewBias);
-    requireRange("ddgi.view_bias", d.viewBias, 0, 1);
-    d.irradianceGamma = gi.getFloat("ddgi.irradiance_gamma", d.irradianceGamma);
-    requireRange("ddgi.irradiance_gamma", d.irradianceGamma, 1, 16);
-    d.energyPreservation = gi.getFloat("ddgi.energy", d.energyPreservation);
-    requireRange("ddgi.energy", d.energyPreservation, 0, 1);
-    d.irradianceThreshold = gi.getFloat("ddgi.irradiance_threshold", d.irradianceThreshold);
-    requireRange("ddgi.irradiance_threshold", d.irradianceThreshold, 0, 1e30);
-    d.brightnessThreshold = gi.getFloat("ddgi.brightness_threshold", d.brightnessThreshold);
-    requireRange("ddgi.brightness_threshold", d.brightnessThreshold, 0, 1e30);
-    d.backfaceThreshold = gi.getFloat("ddgi.backface_threshold", d.backfaceThreshold);
-    requireRange("ddgi.backface_threshold", d.backfaceThreshold, 0, 1);
-    d.relocationBackfaceThreshold = gi.getFloat("ddgi.relocation_backface_threshold", d.relocationBackfaceThreshold);
-    requireRange("ddgi.relocation_backface_threshold", d.relocationBackfaceThreshold, 0, 1);
-    d.minFrontfaceDistance = gi.getFloat("ddgi.min_frontface_distance", d.minFrontfaceDistance);
-    requireRange("ddgi.min_frontface_distance", d.minFrontfaceDistance, 0, 0.45);
-    d.classify = gi.getBool("ddgi.classify", d.classify);
-    d.relocate = gi.getBool("ddgi.relocate", d.relocate);
-    d.occupancy = gi.getBool("ddgi.occupancy", d.occupancy);
-    d.sleepInterval = gi.getInt("ddgi.sleep_interval", d.sleepInterval);
-    requireRange("ddgi.sleep_interval", d.sleepInterval, 1, 100000);
-    d.cascades = gi.getInt("ddgi.cascades", d.cascades);
-    requireRange("ddgi.cascades", d.cascades, 1, 8);
-    d.scroll = gi.getBool("ddgi.scroll", d.cascades > 1);
-    std::string direct = gi.getString("ddgi.direct", "rays");
-    if (direct == "rays") d.directLight = DdgiDirectLight::ShadowRays;
-    else if (direct == "occlusion") d.directLight = DdgiDirectLight::OcclusionProbes;
-    else throw InputError("gi.ddgi.direct: expected rays or occlusion, got '" + direct + "'");
-    d.occlusionStride = gi.getInt("ddgi.occlusion_stride", d.occlusionStride);
-    requireRange("ddgi.occlusion_stride", d.occlusionStride, 1, 4096);
-    std::string cache = gi.getString("ddgi.hit_cache", "all");
-    if (cache == "off") d.hitCache = DdgiHitCache::Off;
-    else if (cache == "probes") d.hitCache = DdgiHitCache::Probes;
-    else if (cache == "all") d.hitCache = DdgiHitCache::All;
-    else throw InputError("gi.ddgi.hit_cache: expected off, probes or all, got '" + cache + "'");
-    d.hitCacheCells = gi.getInt("ddgi.hit_cache_cells", d.hitCacheCells);
-    requireRange("ddgi.hit_cache_cells", d.hitCacheCells, 1, 64);
-    d.hitCacheRefresh = gi.getInt("ddgi.hit_cache_refresh", d.hitCacheRefresh);
-    requireRange("ddgi.hit_cache_refresh", d.hitCacheRefresh, 1, 64);
-    int seed = gi.getInt("ddgi.seed", int(d.seed));
-    d.seed = std::uint32_t(seed);
-    std::string backend = gi.getString("ddgi.backend", "gpu");
-    if (backend != "gpu" && backend != "cpu") throw InputError("gi.ddgi.backend: expected gpu or cpu, got '" + backend + "'");
-    d.gpuBlend = backend == "gpu";
-    // The surfel buffer holds every probe's rays (52 bytes each) and the atlases 5 KiB per
-    // probe: refuse sizes that would exhaust memory rather than die allocating.
-    if (d.probeCounts.x > 0) {
-        std::size_t probes = std::size_t(d.probeCounts.x) * std::size_t(d.probeCounts.y) *
-                             std::size_t(d.probeCounts.z) * std::size_t(d.cascades);
-        if (probes > 262144) throw InputError("gi.ddgi.probes: more than 262144 probes over all cascades");
-        if (probes * std::size_t(d.raysPerProbe()) > (std::size_t(1) << 24))
-            throw InputError("gi.ddgi.rays: probes x rays above 16M rays per frame");
-    }
-    return d;
+const SettingsTable<DdgiDesc>& ddgiSettings() {
+    static const SettingsTable<DdgiDesc> table = makeTable();
+    return table;
 }
+
+DdgiDesc readDdgiDesc(const GiSettings& gi) { return ddgiSettings().read(gi); }
 
 }  // namespace voxgi

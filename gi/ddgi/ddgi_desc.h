@@ -1,5 +1,6 @@
-// DDGI settings (the counterpart of RTXGI's DDGIVolumeDesc), with the defaults documented in
-// docs/ddgi.md and read from the scene's gi block as `ddgi.*` keys (unknown keys are errors).
+// DDGI settings (the counterpart of RTXGI's DDGIVolumeDesc): the `gi.ddgi.*` keys. Defaults are
+// the members' initial values; ranges and docs are in the table (ddgi_desc.cpp), printed by
+// `voxgi methods ddgi`.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "gi/backend.h"
+#include "gi/settings_table.h"
 #include "scenes/scene.h"
 
 namespace voxgi {
@@ -21,6 +24,13 @@ enum class DdgiHitCache {
     Off,     // every hit gathers the probes and tests its lights itself (exact)
     Probes,  // hits in one cache cell and normal bin share one probe gather
     All,     // ... and one light-visibility test per light (up to four lights)
+};
+
+// Camera-centred scrolling of the probe volumes.
+enum class DdgiScroll {
+    Auto,  // when there are cascades
+    On,
+    Off,
 };
 
 struct DdgiDesc {
@@ -48,7 +58,7 @@ struct DdgiDesc {
     bool relocate = true;
     int sleepInterval = 10;       // a sleeping probe updates every this many frames
     int cascades = 1;             // > 1: camera-centred cascades, spacing doubling outward
-    bool scroll = false;          // camera-centred volume(s) scrolling in whole cells
+    DdgiScroll scroll = DdgiScroll::Auto;  // camera-centred volume(s) scrolling in whole cells
     DdgiDirectLight directLight = DdgiDirectLight::ShadowRays;
     int occlusionStride = 4;      // occlusion probes: shadow rays from every n-th blend ray's hit
     DdgiHitCache hitCache = DdgiHitCache::All;
@@ -56,14 +66,18 @@ struct DdgiDesc {
     // Frames between evaluations of a hit-cache cell: a cell also present last frame re-uses
     // last frame's values on the frames between (1: evaluate every cell every frame).
     int hitCacheRefresh = 2;
-    std::uint32_t seed = 1;       // random ray rotations; same seed, same frames, same result
-    bool gpuBlend = true;         // blend on the GPU (GL compute) or with the CPU reference
+    int seed = 1;                 // random ray rotations; same seed, same frames, same result
+    Backend backend = Backend::Gl;  // blend on the GPU (GL compute) or with the CPU reference
 
+    bool gpuBlend() const { return backend == Backend::Gl; }
+    bool scrolls() const { return scroll == DdgiScroll::Auto ? cascades > 1 : scroll == DdgiScroll::On; }
     int fixedRayCount() const { return (classify || relocate) ? fixedRays : 0; }
     int raysPerProbe() const { return rays + fixedRayCount(); }
 };
 
-// Reads `ddgi.*` from scene.gi over the defaults; InputError names the key on a bad value.
+const SettingsTable<DdgiDesc>& ddgiSettings();
+// Reads `ddgi.*` over the defaults; InputError names the key of an unknown or refused value and
+// of a probe count or ray budget that would exhaust memory.
 DdgiDesc readDdgiDesc(const GiSettings& gi);
 
 }  // namespace voxgi

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gl/context.h"
+#include "shaders/ddgi/limits.h"
 
 namespace voxgi {
 
@@ -31,7 +32,8 @@ std::string indexed(const char* name, int i) { return std::string(name) + "[" + 
 }  // namespace
 
 DdgiGpu::DdgiGpu(const ProbeField& field) {
-    if (field.volumes().size() > 8) throw gl::GlError("DDGI: at most 8 cascades on the GPU");
+    if (field.volumes().size() > std::size_t(kDdgiMaxVolumes))
+        throw gl::GlError("DDGI: at most " + std::to_string(kDdgiMaxVolumes) + " cascades on the GPU");
     blendIrradiance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "0"}});
     blendDistance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "1"}});
     border_ = gl::Program::compute("ddgi/border.comp");

@@ -25,15 +25,35 @@ DdgiSystem::DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQu
 
 DdgiSystem::~DdgiSystem() = default;
 
+std::vector<TechniqueStat> statList(const DdgiFrameStats& s) {
+    return {{"trace", s.traceMs, "ms"},
+            {"shade", s.shadeMs, "ms"},
+            {"shade_merge", s.shadeMergeMs, "ms"},
+            {"shade_groups", s.shadeGroupsMs, "ms"},
+            {"shade_hits", s.shadeHitsMs, "ms"},
+            {"blend", s.blendMs, "ms"},
+            {"border", s.borderMs, "ms"},
+            {"classify", s.classifyMs, "ms"},
+            {"rays_traced", double(s.raysTraced), "rays"},
+            {"shadow_queries", double(s.shadowQueries), "queries"},
+            {"cache_groups", double(s.cacheGroups), "groups"},
+            {"cache_groups_evaluated", double(s.cacheGroupsEvaluated), "groups"},
+            {"cached_hits", double(s.cachedHits), "hits"},
+            {"probes_blended", double(s.probesBlended), "probes"},
+            {"probes_active", double(s.states.active), "probes"},
+            {"probes_sleeping", double(s.states.sleeping), "probes"},
+            {"probes_off", double(s.states.off), "probes"}};
+}
+
 DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
     DdgiFrameStats stats;
     ProbeField& field = *field_;
     const DdgiDesc& desc = field.desc();
-    if (desc.scroll)
+    if (desc.scrolls())
         for (int v = 0; v < int(field.volumes().size()); ++v) field.scrollTo(v, eye);
 
     auto t0 = std::chrono::steady_clock::now();
-    rays_ = makeRaySet(desc, desc.seed, frame_);
+    rays_ = makeRaySet(desc, std::uint32_t(desc.seed), frame_);
     trace_.work = scheduleProbes(field, frame_);
     // Hits are grouped for the hit cache while they are traced.
     const bool grouping = hitCacheUsed(desc, tracer_.scene());

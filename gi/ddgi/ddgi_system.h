@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gi/ddgi/ddgi_desc.h"
 #include "gi/ddgi/hit_cache.h"
@@ -15,6 +16,7 @@
 #include "gi/ddgi/probe_field.h"
 #include "gi/ddgi/probe_rays.h"
 #include "gi/ddgi/probe_states.h"
+#include "gi/technique_stat.h"
 
 namespace voxgi {
 
@@ -32,6 +34,10 @@ struct DdgiFrameStats {
     int probesBlended = 0;
     ProbeStateCounts states;
 };
+
+// Every number of a frame's stats by name (times in ms), for the technique's stats() and the
+// benchmark's medians.
+std::vector<TechniqueStat> statList(const DdgiFrameStats& stats);
 
 class DdgiSystem {
 public:

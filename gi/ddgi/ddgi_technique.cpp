@@ -1,5 +1,6 @@
 #include "gi/ddgi/ddgi_technique.h"
 
+#include "gi/ddgi/ddgi_debug_views.h"
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/occupancy_query.h"
 #include "gi/raytrace/ray_tracer.h"
@@ -22,18 +23,22 @@ DdgiTechnique::DdgiTechnique(const Scene& scene, GeometryQuery query) {
 DdgiTechnique::~DdgiTechnique() = default;
 
 void DdgiTechnique::update(const FrameInput& input, const GBufferView& gbuffer) {
-    BlendBackend* backend = system_->desc().gpuBlend ? gpu_.get() : nullptr;
+    BlendBackend* backend = system_->desc().gpuBlend() ? gpu_.get() : nullptr;
     lastStats_ = system_->update(gbuffer.eye, backend);
-    input.timers.addCpu("ddgi.trace", lastStats_.traceMs);
-    input.timers.addCpu("ddgi.shade", lastStats_.shadeMs);
-    input.timers.addCpu("ddgi.blend", lastStats_.blendMs);
-    input.timers.addCpu("ddgi.border", lastStats_.borderMs);
-    input.timers.addCpu("ddgi.classify", lastStats_.classifyMs);
+    // The system runs every stage each frame; the plan lists each one (ddgi_method.cpp).
+    const std::pair<const char*, double> stages[] = {{"ddgi.trace", lastStats_.traceMs},
+                                                     {"ddgi.shade", lastStats_.shadeMs},
+                                                     {"ddgi.blend", lastStats_.blendMs},
+                                                     {"ddgi.border", lastStats_.borderMs},
+                                                     {"ddgi.classify", lastStats_.classifyMs}};
+    for (const auto& [stage, ms] : stages)
+        if (input.plan.runs(stage)) input.timers.addCpu(stage, ms);
     if (backend) gpu_->uploadProbeData(system_->field());
     else gpu_->upload(system_->field());
 }
 
 void DdgiTechnique::applyIndirect(const FrameInput& input, const GBufferView& gbuffer) {
+    if (!input.plan.runs("ddgi.sample")) return;
     input.timers.begin("ddgi.sample");
     gpu_->apply(system_->field(), gbuffer);
     input.timers.end();
@@ -41,8 +46,11 @@ void DdgiTechnique::applyIndirect(const FrameInput& input, const GBufferView& gb
 
 void DdgiTechnique::dumpVdb(const std::string& path) const { writeProbeVdb(system_->field(), path); }
 
-std::unique_ptr<GiTechnique> createDdgiTechnique(const Scene& scene) {
-    return std::make_unique<DdgiTechnique>(scene);
+DebugDrawing DdgiTechnique::debugView(const std::string& view, const DebugViewContext& context) const {
+    if (view == kProbeBoundsView) return probeBounds(system_->field());
+    if (view == kProbesView)
+        return probeSpheres(system_->field(), probesOptions().read(context.options).color, context.exposureStops);
+    return {};
 }
 
 }  // namespace voxgi

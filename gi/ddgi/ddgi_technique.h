@@ -21,6 +21,8 @@ public:
     void update(const FrameInput& input, const GBufferView& gbuffer) override;
     void applyIndirect(const FrameInput& input, const GBufferView& gbuffer) override;
     void dumpVdb(const std::string& path) const override;
+    DebugDrawing debugView(const std::string& view, const DebugViewContext& context) const override;
+    std::vector<TechniqueStat> stats() const override { return statList(lastStats_); }
 
     DdgiSystem& system() { return *system_; }
     const DdgiFrameStats& lastStats() const { return lastStats_; }
@@ -31,8 +33,6 @@ private:
     std::unique_ptr<DdgiGpu> gpu_;
     DdgiFrameStats lastStats_;
 };
-
-std::unique_ptr<GiTechnique> createDdgiTechnique(const Scene& scene);
 
 // Writes probe_position, probe_offset, probe_state and probe_irradiance (mean per probe) grids,
 // one set per cascade (suffix _c1, _c2... after the first), index space = logical probe grid.

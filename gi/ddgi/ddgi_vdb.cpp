@@ -1,11 +1,8 @@
 // OpenVDB export of the probe field; kept in its own file so no OpenVDB header leaks out.
-#include <cstdio>
-
 #include <openvdb/openvdb.h>
 
 #include "gi/ddgi/ddgi_technique.h"
-#include "scenes/errors.h"
-#include "scenes/image.h"
+#include "volumes/openvdb_file.h"
 
 namespace voxgi {
 
@@ -56,16 +53,7 @@ void writeProbeVdb(const ProbeField& field, const std::string& path) {
         state->insertMeta("voxgi_states", openvdb::StringMetadata("0 active, 1 sleeping, 2 off"));
         irradiance->insertMeta("voxgi_units", openvdb::StringMetadata("W/m^2, mean over directions"));
     }
-    std::string tmp = temporaryPathFor(path);
-    try {
-        openvdb::io::File file(tmp);
-        file.write(grids);
-        file.close();
-    } catch (const openvdb::Exception& e) {
-        std::remove(tmp.c_str());
-        throw InputError(path + ": cannot write (" + std::string(e.what()) + ")");
-    }
-    renameInto(tmp, path);
+    writeVdbFile(path, grids);
 }
 
 }  // namespace voxgi

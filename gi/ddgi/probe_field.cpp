@@ -117,7 +117,7 @@ std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bound
         ProbeVolume v;
         v.counts = counts;
         v.spacing = spacing * float(1 << c);
-        if (desc.scroll) {
+        if (desc.scrolls()) {
             // Camera-centred, snapped to whole cells of this cascade.
             glm::vec3 half = 0.5f * glm::vec3(counts - 1) * v.spacing;
             v.origin = glm::floor((eye - half) / v.spacing + 0.5f) * v.spacing;

@@ -1,54 +1,56 @@
 #include "gi/lpv/lpv_desc.h"
 
-#include "scenes/errors.h"
+#include "shaders/lpv/limits.h"
 
 namespace voxgi {
 
 namespace {
-void requireRange(bool ok, const std::string& key, const std::string& range) {
-    if (!ok) throw InputError("gi.lpv." + key + ": must be " + range);
+
+SettingsTable<LpvDesc> makeTable(bool cascaded) {
+    using D = LpvDesc;
+    SettingsTable<D> t("lpv");
+    t.integer("resolution", &D::resolution, 8, 256, "cells per side of each cascade", 4).main();
+    if (cascaded)
+        t.integer("cascades", &D::cascades, 1, kLpvMaxCascades, "cascades, cell size doubling outward").main();
+    else
+        t.integer("cascades", &D::cascades, 1, 1, "lpv has one volume (clpv has cascades)");
+    t.number("cell_size", &D::cellSize, 0.0, 1e6,
+             cascaded ? "finest cell (m); 0 = fit: the coarsest cascade reaches the farthest scene corner from the camera"
+                      : "cell (m); 0 = fit: the scene plus one cell of margin");
+    t.integer("steps", &D::steps, 0, 100000, "propagation iterations per cascade").main();
+    t.flag("occlusion", &D::occlusion, "attenuate by the blockers at the shared face");
+    t.flag("bounces", &D::bounces, "extra bounces off blockers with their albedo");
+    t.flag("static_blockers", &D::staticBlockers, "blockers from the voxelized scene (cached .vdb), merged with the RSM and G-buffer ones");
+    t.integer("rsm_size", &D::rsmSize, 8, 4096, "reflective shadow map size per light face");
+    t.integer("gbuffer_blocker_size", &D::gbufferBlockerSize, 0, 4096,
+              "G-buffer blockers sampled on a grid this wide (0 = none)");
+    t.number("inject_normal_offset", &D::injectNormalOffset, 0.0, 4.0, "VPL shift along the surfel normal, in cells");
+    t.number("inject_light_offset", &D::injectLightOffset, 0.0, 4.0, "VPL shift toward the light, in cells");
+    t.number("apply_normal_offset", &D::applyNormalOffset, 0.0, 4.0, "lookup shift along the shading normal, in cells");
+    t.number("dampening", &D::dampening, 0.0, 100.0, "gradient dampening strength (0 = off)");
+    t.flag("glossy", &D::glossy, "glossy march of the finest cascade for specular or metallic materials with roughness < 0.6");
+    t.number("forward_offset", &D::forwardOffset, 0.0, 0.5, "clpv: cascades centred this fraction of their size ahead of the camera");
+    // At most 4 cells: a fade wider than half the smallest volume (8 cells) would never reach 1.
+    t.number("fade_cells", &D::fadeCells, 0.0, 4.0, "clpv: width of each cascade's border fade, in cells");
+    t.choice("backend", &D::backend, backendChoices(), "cpu (TBB reference) or gl (compute shaders)").main();
+    t.flag("sparse", &D::sparse, "cpu: propagate only the bricks holding light");
+    t.flag("reuse", &D::reuse, "skip the update while lights, geometry and placement are unchanged");
+    return t;
 }
+
 }  // namespace
 
-LpvDesc LpvDesc::fromSettings(const GiSettings& gi, bool cascaded) {
-    gi.requireKnown("lpv", {"resolution", "cascades", "cell_size", "steps", "occlusion", "bounces", "rsm_size",
-                            "gbuffer_blocker_size", "inject_normal_offset", "inject_light_offset",
-                            "apply_normal_offset", "dampening", "glossy", "forward_offset", "fade_cells", "backend",
-                            "sparse", "reuse", "static_blockers"});
+const SettingsTable<LpvDesc>& lpvSettings(bool cascaded) {
+    static const SettingsTable<LpvDesc> single = makeTable(false), cascades = makeTable(true);
+    return cascaded ? cascades : single;
+}
+
+LpvDesc lpvDefaults(bool cascaded) {
     LpvDesc d;
     d.cascades = cascaded ? 3 : 1;
-    d.resolution = gi.getInt("lpv.resolution", d.resolution);
-    requireRange(d.resolution >= 4 && d.resolution <= 256 && d.resolution % 4 == 0, "resolution",
-                 "a multiple of 4 in [4, 256]");
-    d.cascades = gi.getInt("lpv.cascades", d.cascades);
-    requireRange(d.cascades >= 1 && d.cascades <= 6, "cascades", "in [1, 6]");
-    if (!cascaded && d.cascades != 1) throw InputError("gi.lpv.cascades: the lpv method has one volume; use clpv");
-    d.cellSize = gi.getFloat("lpv.cell_size", d.cellSize);
-    requireRange(d.cellSize >= 0.0f && d.cellSize < 1e30f, "cell_size", "positive (or 0 to fit the scene)");
-    d.steps = gi.getInt("lpv.steps", d.steps);
-    requireRange(d.steps >= 0 && d.steps <= 100000, "steps", "in [0, 100000]");
-    d.occlusion = gi.getBool("lpv.occlusion", d.occlusion);
-    d.bounces = gi.getBool("lpv.bounces", d.bounces);
-    d.rsmSize = gi.getInt("lpv.rsm_size", d.rsmSize);
-    requireRange(d.rsmSize >= 8 && d.rsmSize <= 4096, "rsm_size", "in [8, 4096]");
-    d.gbufferBlockerSize = gi.getInt("lpv.gbuffer_blocker_size", d.gbufferBlockerSize);
-    requireRange(d.gbufferBlockerSize >= 0 && d.gbufferBlockerSize <= 4096, "gbuffer_blocker_size", "in [0, 4096]");
-    d.injectNormalOffset = gi.getFloat("lpv.inject_normal_offset", d.injectNormalOffset);
-    d.injectLightOffset = gi.getFloat("lpv.inject_light_offset", d.injectLightOffset);
-    d.applyNormalOffset = gi.getFloat("lpv.apply_normal_offset", d.applyNormalOffset);
-    d.dampening = gi.getFloat("lpv.dampening", d.dampening);
-    requireRange(d.dampening >= 0.0f, "dampening", "non-negative");
-    d.glossy = gi.getBool("lpv.glossy", d.glossy);
-    d.forwardOffset = gi.getFloat("lpv.forward_offset", d.forwardOffset);
-    d.fadeCells = gi.getFloat("lpv.fade_cells", d.fadeCells);
-    requireRange(d.fadeCells >= 0.0f && d.fadeCells * 2.0f < float(d.resolution), "fade_cells",
-                 "non-negative and under half the resolution");
-    d.backend = gi.getString("lpv.backend", d.backend);
-    requireRange(d.backend == "cpu" || d.backend == "gl", "backend", "cpu or gl");
-    d.sparse = gi.getBool("lpv.sparse", d.sparse);
-    d.reuse = gi.getBool("lpv.reuse", d.reuse);
-    d.staticBlockers = gi.getBool("lpv.static_blockers", d.staticBlockers);
     return d;
 }
+
+LpvDesc readLpvDesc(const GiSettings& gi, bool cascaded) { return lpvSettings(cascaded).read(gi, lpvDefaults(cascaded)); }
 
 }  // namespace voxgi

@@ -1,18 +1,17 @@
 // Settings of the light propagation volume methods (`lpv`: one volume fitted to the scene;
-// `clpv`: camera-centred cascades), read from the scene's `gi.lpv` block or `--set lpv.KEY=V`.
+// `clpv`: camera-centred cascades), the `gi.lpv.*` keys. Defaults are the members' initial
+// values; ranges and docs are in the table (lpv_desc.cpp), printed by `voxgi methods lpv`.
 #pragma once
 
-#include <string>
-
-#include "scenes/gi_settings.h"
+#include "gi/backend.h"
+#include "gi/settings_table.h"
 
 namespace voxgi {
 
 struct LpvDesc {
     int resolution = 32;        // cells per side of every cascade (32^3, as CryEngine and seed 000)
     int cascades = 1;           // 1 for lpv, 3 for clpv
-    float cellSize = 0.0f;      // finest cell edge in metres; 0 = fit: lpv covers the scene,
-                                // clpv makes the coarsest cascade cover the scene
+    float cellSize = 0.0f;      // finest cell edge in metres; 0 = fit
     int steps = 16;             // propagation iterations per cascade (seed 000: 12-16)
     bool occlusion = true;      // attenuate by (1 - blocker) at the shared face
     bool bounces = true;        // extra bounces off blockers with their albedo (seed 000 eq. 3.7)
@@ -25,14 +24,17 @@ struct LpvDesc {
     bool glossy = true;         // glossy reflections by marching the finest cascade
     float forwardOffset = 0.25f;  // clpv: cascades centred this fraction of their size ahead
     float fadeCells = 2.0f;     // clpv: width of the border fade, in cells
-    std::string backend = "cpu";  // cpu (TBB reference) or gl (compute shaders)
+    Backend backend = Backend::Cpu;
     bool sparse = true;         // cpu: propagate only bricks holding light (dilated per step)
     bool reuse = true;          // skip the update while lights, geometry and placement are unchanged
-    bool staticBlockers = true; // blockers from the voxelized scene (volumes/, cached .vdb) merged
-                                // with the dynamic RSM and G-buffer blockers
-
-    // Reads `lpv.*`; unknown keys and out-of-range values raise InputError.
-    static LpvDesc fromSettings(const GiSettings& gi, bool cascaded);
+    bool staticBlockers = true; // blockers from the voxelized scene merged with the dynamic ones
 };
+
+// The table of `lpv` (cascaded = false: one volume) or `clpv`.
+const SettingsTable<LpvDesc>& lpvSettings(bool cascaded);
+// The defaults of each method (clpv: three cascades).
+LpvDesc lpvDefaults(bool cascaded);
+// Reads `lpv.*` over the defaults; InputError names the key of an unknown or refused value.
+LpvDesc readLpvDesc(const GiSettings& gi, bool cascaded);
 
 }  // namespace voxgi

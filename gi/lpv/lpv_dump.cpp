@@ -2,8 +2,7 @@
 
 #include <openvdb/openvdb.h>
 
-#include "scenes/errors.h"
-#include "scenes/image.h"
+#include "volumes/openvdb_file.h"
 #include "volumes/openvdb_setup.h"
 
 namespace voxgi {
@@ -85,16 +84,7 @@ void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
                 }
         grids.push_back(albedo);
     }
-    std::string tmp = temporaryPathFor(path);
-    try {
-        openvdb::io::File file(tmp);
-        file.write(grids);
-        file.close();
-    } catch (const std::exception& e) {
-        std::remove(tmp.c_str());
-        throw InputError(path + ": cannot write .vdb (" + e.what() + ")");
-    }
-    renameInto(tmp, path);
+    writeVdbFile(path, grids);
 }
 
 }  // namespace voxgi

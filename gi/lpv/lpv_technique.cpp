@@ -6,6 +6,7 @@
 
 #include "gi/lpv/cascades.h"
 #include "gi/lpv/gl_injection.h"
+#include "gi/lpv/lpv_debug_views.h"
 #include "gi/lpv/gl_propagation.h"
 #include "gi/lpv/injection.h"
 #include "gi/lpv/lpv_dump.h"
@@ -16,12 +17,11 @@
 #include "gl/resources.h"
 #include "gl/scene_gpu.h"
 #include "scenes/errors.h"
+#include "shaders/lpv/limits.h"
 
 namespace voxgi {
 
 namespace {
-
-constexpr int kMaxCascades = 6;
 
 double millisecondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
@@ -59,7 +59,10 @@ SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int targ
     return source;
 }
 
-struct LpvTechnique::Impl {
+namespace {
+
+class LpvTechnique final : public GiTechnique {
+public:
     const Scene& scene;
     LpvDesc desc;
     bool cascaded;
@@ -78,7 +81,7 @@ struct LpvTechnique::Impl {
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
     bool valid = false;
 
-    Impl(const Scene& s, const LpvDesc& d, bool c)
+    LpvTechnique(const Scene& s, const LpvDesc& d, bool c)
         : scene(s), desc(d), cascaded(c), rsm(d.rsmSize),
           apply(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply.frag")) {
         // The cell size is fixed once, from the scene camera, so moving cameras keep cascades
@@ -95,12 +98,11 @@ struct LpvTechnique::Impl {
                 std::fprintf(stderr, "voxgi: lpv: static blockers off (%s)\n", e.what());
             }
         }
-        if (desc.cascades > kMaxCascades) throw InputError("gi.lpv.cascades: at most 6");
         injected.resize(std::size_t(desc.cascades));
         accumulated.resize(std::size_t(desc.cascades));
         geometry.resize(std::size_t(desc.cascades));
         propagators.resize(std::size_t(desc.cascades));
-        if (desc.backend == "gl") {
+        if (desc.backend == Backend::Gl) {
             for (int c = 0; c < desc.cascades; ++c) glPropagators.push_back(std::make_unique<GlPropagator>(desc.resolution));
             glInjector = std::make_unique<GlInjector>(desc.resolution);
         }
@@ -121,7 +123,11 @@ struct LpvTechnique::Impl {
         return false;
     }
 
-    void update(const FrameInput& input, const GBufferView& g) {
+    std::string name() const override { return cascaded ? "clpv" : "lpv"; }
+
+    void update(const FrameInput& input, const GBufferView& g) override {
+        // Without lights there is nothing to inject: the plan runs no pass at all.
+        if (!input.plan.runs("lpv.propagate")) return;
         place(g);
         // Static scene, lights and placement: the propagated light is still valid.
         if (desc.reuse && valid && !placementChanged()) return;
@@ -140,9 +146,12 @@ struct LpvTechnique::Impl {
         }
         input.timers.addCpu("lpv.rsm", millisecondsSince(t0));
 
-        t0 = std::chrono::steady_clock::now();
-        SurfelSource camera = gbufferSurfels(g, scene.camera, desc.gbufferBlockerSize);
-        input.timers.addCpu("lpv.gbuffer_readback", millisecondsSince(t0));
+        SurfelSource camera;
+        if (input.plan.runs("lpv.gbuffer_readback")) {
+            t0 = std::chrono::steady_clock::now();
+            camera = gbufferSurfels(g, scene.camera, desc.gbufferBlockerSize);
+            input.timers.addCpu("lpv.gbuffer_readback", millisecondsSince(t0));
+        }
 
         t0 = std::chrono::steady_clock::now();
         InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
@@ -168,15 +177,16 @@ struct LpvTechnique::Impl {
 
         PropagationOptions options{desc.occlusion, desc.bounces};
         t0 = std::chrono::steady_clock::now();
-        double operatorMs = 0.0, stepsMs = 0.0;
+        last = {};
         for (std::size_t c = 0; c < placements.size(); ++c) {
             propagators[c].propagate(injected[c], geometry[c], desc.steps, options, accumulated[c], desc.sparse);
-            operatorMs += propagators[c].stats().operatorMs;
-            stepsMs += propagators[c].stats().stepsMs;
+            const PropagationStats& st = propagators[c].stats();
+            last.operatorMs += st.operatorMs;
+            last.stepsMs += st.stepsMs;
+            last.activeBricks += st.activeBricks;
+            last.totalBricks += st.totalBricks;
         }
         input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
-        input.timers.addCpu("lpv.propagate_operator", operatorMs);
-        input.timers.addCpu("lpv.propagate_steps", stepsMs);
 
         t0 = std::chrono::steady_clock::now();
         const int n = desc.resolution;
@@ -224,7 +234,7 @@ struct LpvTechnique::Impl {
     // rendered in batches that bound their texture memory (one batch unless the maps are large
     // or the lights many; each batch adds one sample to the rsm, inject and blockers timers).
     void updateOnGpu(const FrameInput& input, const GBufferView& g) {
-        refreshStaticBlockers(input);
+        if (input.plan.runs("lpv.static_blockers")) refreshStaticBlockers(input);
         const InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
         const std::size_t faceCount = rsm.faceCount(scene), batch = rsm.facesPerBatch();
         for (std::size_t first = 0; first == 0 || first < faceCount; first += batch) {
@@ -250,7 +260,7 @@ struct LpvTechnique::Impl {
                 for (const RsmFace& face : faces) glInjector->injectBlockers(face, t);
                 if (!lastBatch) continue;
                 glInjector->injectBlockers(g, sampling, t);
-                if (voxels) glInjector->mergeBlockers(*glStatic[c], t);
+                if (voxels && c < glStatic.size()) glInjector->mergeBlockers(*glStatic[c], t);
             }
             input.timers.end();
         }
@@ -266,7 +276,8 @@ struct LpvTechnique::Impl {
         valid = true;
     }
 
-    void applyIndirect(const FrameInput& input, const GBufferView& g) {
+    void applyIndirect(const FrameInput& input, const GBufferView& g) override {
+        if (!input.plan.runs("lpv.apply") || placements.empty()) return;
         input.timers.begin("lpv.apply");
         apply.use();
         const char* gbufferNames[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
@@ -281,7 +292,7 @@ struct LpvTechnique::Impl {
         apply.set("uDampening", desc.dampening);
         apply.set("uGlossy", desc.glossy ? 1 : 0);
         // Every sampler of the arrays needs a 3D texture unit, including unused cascades.
-        for (std::size_t c = placements.size(); c < std::size_t(kMaxCascades); ++c) {
+        for (std::size_t c = placements.size(); c < std::size_t(kLpvMaxCascades); ++c) {
             std::string idx = "[" + std::to_string(c) + "]";
             for (const char* name : {"uLpvR", "uLpvG", "uLpvB"}) apply.set((std::string(name) + idx).c_str(), 4);
         }
@@ -305,33 +316,56 @@ struct LpvTechnique::Impl {
         glDrawArrays(GL_TRIANGLES, 0, 3);
         input.timers.end();
     }
+
+    void dumpVdb(const std::string& path) const override {
+        if (!valid) throw NotImplementedError("lpv: nothing to dump before the first frame");
+        writeLpvVdb(path, lightVolumes(), geometryVolumes());
+    }
+
+    DebugDrawing debugView(const std::string& view, const DebugViewContext& context) const override {
+        if (view == kCascadeBoundsView) {
+            const Camera& c = context.camera;
+            return cascadeBounds(placeCascades(desc, scene.bounds(), c.eye, c.target - c.eye));
+        }
+        if (view == kLpvCellsView && valid) {
+            const LpvCellsOptions o = lpvCellsOptions().read(context.options);
+            if (o.cascade >= int(placements.size())) return {};
+            return lpvCellSpheres(lightVolumes()[std::size_t(o.cascade)], o.stride, context.exposureStops);
+        }
+        return {};
+    }
+
+    std::vector<TechniqueStat> stats() const override {
+        return {{"propagate_operator", last.operatorMs, "ms"},
+                {"propagate_steps", last.stepsMs, "ms"},
+                {"active_bricks", double(last.activeBricks), "bricks"},
+                {"total_bricks", double(last.totalBricks), "bricks"}};
+    }
+
+private:
+    // What the CPU propagators did in the last update, summed over cascades.
+    struct {
+        double operatorMs = 0.0, stepsMs = 0.0;
+        std::size_t activeBricks = 0, totalBricks = 0;
+    } last;
+
+    // The propagated light and the geometry of every cascade, read back from the GPU if there.
+    std::vector<LightVolume> lightVolumes() const {
+        std::vector<LightVolume> light = accumulated;
+        for (std::size_t c = 0; c < glPropagators.size(); ++c) glPropagators[c]->readBack(light[c]);
+        return light;
+    }
+    std::vector<BlockerVolume> geometryVolumes() const {
+        std::vector<BlockerVolume> out = geometry;
+        for (std::size_t c = 0; c < glPropagators.size(); ++c) glPropagators[c]->readBackGeometry(out[c]);
+        return out;
+    }
 };
 
-LpvTechnique::LpvTechnique(const Scene& scene, const LpvDesc& desc, bool cascaded)
-    : impl_(std::make_unique<Impl>(scene, desc, cascaded)) {}
-LpvTechnique::~LpvTechnique() = default;
-std::string LpvTechnique::name() const { return impl_->cascaded ? "clpv" : "lpv"; }
-const LpvDesc& LpvTechnique::desc() const { return impl_->desc; }
-void LpvTechnique::update(const FrameInput& input, const GBufferView& g) { impl_->update(input, g); }
-void LpvTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) { impl_->applyIndirect(input, g); }
+}  // namespace
 
-void LpvTechnique::dumpVdb(const std::string& path) const {
-    if (!impl_->valid) throw NotImplementedError("lpv: nothing to dump before the first frame");
-    std::vector<LightVolume> light = impl_->accumulated;
-    std::vector<BlockerVolume> geometry = impl_->geometry;
-    for (std::size_t c = 0; c < impl_->glPropagators.size(); ++c) {
-        impl_->glPropagators[c]->readBack(light[c]);
-        impl_->glPropagators[c]->readBackGeometry(geometry[c]);
-    }
-    writeLpvVdb(path, light, geometry);
-}
-
-std::unique_ptr<GiTechnique> createLpv(const Scene& scene) {
-    return std::make_unique<LpvTechnique>(scene, LpvDesc::fromSettings(scene.gi, false), false);
-}
-
-std::unique_ptr<GiTechnique> createClpv(const Scene& scene) {
-    return std::make_unique<LpvTechnique>(scene, LpvDesc::fromSettings(scene.gi, true), true);
+std::unique_ptr<GiTechnique> createLpvTechnique(const Scene& scene, const LpvDesc& desc, bool cascaded) {
+    return std::make_unique<LpvTechnique>(scene, desc, cascaded);
 }
 
 }  // namespace voxgi

@@ -157,11 +157,13 @@ std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu
     return sources;
 }
 
-std::size_t RsmRenderer::faceCount(const Scene& scene) const {
+std::size_t rsmFaceCount(const Scene& scene) {
     std::size_t count = 0;
-    for (const Light& light : scene.lights) count += faceViews(scene, light, impl_->size).size();
+    for (const Light& light : scene.lights) count += faceViews(scene, light, 1).size();
     return count;
 }
+
+std::size_t RsmRenderer::faceCount(const Scene& scene) const { return rsmFaceCount(scene); }
 
 std::size_t RsmRenderer::facesPerBatch() const {
     // Four RGBA32F colour targets and a 32-bit depth buffer per texel.

@@ -26,6 +26,10 @@ struct RsmFace {
     glm::vec3 toLight{0.0f};     // orthographic maps: minus the light's travel direction
 };
 
+// How many faces the RSM renders for the scene's lights (a point light six, a sun or spot one, a
+// quad light the faces of a hemicube about its normal).
+std::size_t rsmFaceCount(const Scene& scene);
+
 // The surfels of one face read back to the CPU, in texel order (row-major from texel 0).
 SurfelSource readSurfels(const RsmFace& face);
 

@@ -2,33 +2,73 @@
 
 #include <sstream>
 
+#include "gi/methods.h"
 
 namespace voxgi {
 
+namespace {
+
+bool hasEmission(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (m.isEmissive()) return true;
+    return false;
+}
+
+std::string lightCount(int n, const char* kinds) {
+    return std::to_string(n) + " " + kinds + " light" + (n == 1 ? "" : "s");
+}
+
+}  // namespace
+
+bool FramePlan::runs(const std::string& pass) const {
+    for (const PlannedPass& p : passes)
+        if (p.name == pass) return true;
+    return false;
+}
 
 FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
+    const MethodInfo& info = validateMethod(method, scene);
     FramePlan plan;
     plan.method = method;
     plan.frames = frames;
+    plan.technique = info.plan(scene);
     auto add = [&](const std::string& n, const std::string& r) { plan.passes.push_back({n, r}); };
     auto skip = [&](const std::string& n, const std::string& r) { plan.skipped.push_back({n, r}); };
-    add("gbuffer", std::to_string(scene.triangleCount()) + " triangles");
+
+    if (scene.triangleCount() > 0) add("gbuffer", std::to_string(scene.triangleCount()) + " triangles");
+    else skip("gbuffer", "no triangles: every pixel sees the sky");
+    plan.passes.insert(plan.passes.end(), plan.technique.update.begin(), plan.technique.update.end());
+
     int cube = 0, maps = 0;
-    for (const Light& l : scene.lights) {
-        if (l.type == LightType::Point || l.type == LightType::Quad) ++cube;
-        else ++maps;
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightType t = scene.lights[i].type;
+        const bool point = t == LightType::Point || t == LightType::Quad;
+        plan.lights.push_back({i, point ? FramePlan::Shadow::Cube : FramePlan::Shadow::Map});
+        (point ? cube : maps) += 1;
     }
-    if (cube) add("shadow_cube", std::to_string(cube) + " point/area light(s), one sample each per frame");
+    if (cube) add("shadow_cube", lightCount(cube, "point or area") + ": a distance cube map each per frame");
     else skip("shadow_cube", "no point or area lights");
-    if (maps) add("shadow_map", std::to_string(maps) + " spot/directional light(s)");
+    if (maps) add("shadow_map", lightCount(maps, "spot or directional") + ": a depth map each");
     else skip("shadow_map", "no spot or directional lights");
-    if (!scene.lights.empty()) add("direct_light", "Lambert + GGX, physical light units");
+    if (!scene.lights.empty()) add("direct_light", "Lambert + GGX in physical units, one light at a time after its shadow");
     else skip("direct_light", "no lights");
-    add("emission_sky", scene.sky.enabled ? "emitters and constant sky" : "emitters (no sky)");
-    if (!scene.sky.enabled) skip("sky_volume", "no sky");
-    if (!scene.hasGlossyOrRefractive()) skip("reflections", "no glossy or refractive material");
-    if (method != "direct") add("gi_" + method, "indirect light from " + method);
-    if (frames > 1) add("accumulate", std::to_string(frames) + " frames (pixel jitter, light samples)");
+    if (hasEmission(scene) || scene.sky.enabled)
+        add("emission_sky", std::string(hasEmission(scene) ? "emitters" : "") +
+                                (hasEmission(scene) && scene.sky.enabled ? " and " : "") +
+                                (scene.sky.enabled ? "the constant sky behind the scene" : ""));
+    else skip("emission_sky", "no emitters and no sky");
+    plan.passes.insert(plan.passes.end(), plan.technique.apply.begin(), plan.technique.apply.end());
+    plan.skipped.insert(plan.skipped.end(), plan.technique.skipped.begin(), plan.technique.skipped.end());
+
+    plan.notes = plan.technique.notes;
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Quad) {
+            plan.notes.push_back("area lights: one sample point per frame; the frames average them");
+            break;
+        }
+    if (scene.hasGlossyOrRefractive())
+        plan.notes.push_back("glossy or refractive materials: the frame shades them with GGX from the lights; no "
+                             "ray-traced reflections or refraction (the hybrid method is not built)");
     return plan;
 }
 
@@ -37,6 +77,7 @@ std::string FramePlan::describe() const {
     out << "frame plan: method " << method << ", " << frames << " frame(s)\n";
     for (const auto& p : passes) out << "  + " << p.name << ": " << p.reason << "\n";
     for (const auto& p : skipped) out << "  - " << p.name << ": " << p.reason << "\n";
+    for (const auto& n : notes) out << "  note: " << n << "\n";
     return out.str();
 }
 

@@ -4,6 +4,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gi/methods.h"
 #include "gi/sampling/sequences.h"
 #include "gl/scene_gpu.h"
 #include "gl/context.h"
@@ -42,6 +43,7 @@ struct FrameRenderer::Impl {
     glm::vec3 sceneCenter;
     SceneGpu gpu;
     gl::StageTimers timers;
+    FramePlan plan;
     std::unique_ptr<GiTechnique> technique;
 
     gl::Program gbufferProgram, shadowDepthProgram, shadowDistanceProgram, lightProgram, emissionProgram;
@@ -51,9 +53,10 @@ struct FrameRenderer::Impl {
     gl::Handle cubeFbo, cubeDistance, cubeDepth;
     gl::Handle emptyVao;
 
-    Impl(const Scene& s, const FrameOptions& o, std::unique_ptr<GiTechnique> t)
+    Impl(const Scene& s, const FrameOptions& o, FramePlan p)
         : scene(s), options(o), width(o.width > 0 ? o.width : s.camera.width),
-          height(o.height > 0 ? o.height : s.camera.height), gpu(s), technique(std::move(t)) {
+          height(o.height > 0 ? o.height : s.camera.height), gpu(s), plan(std::move(p)),
+          technique(createTechnique(plan.method, s)) {
         Bounds b = s.bounds();
         sceneCenter = b.valid() ? b.center() : glm::vec3(0.0f);
         sceneRadius = b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
@@ -72,6 +75,11 @@ struct FrameRenderer::Impl {
         gDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, width, height);
         gbufferFbo = gl::createFramebuffer({gPosition.id(), gNormal.id(), gAlbedo.id(), gEmission.id()}, gDepth.id(),
                                            "G-buffer");
+        // Cleared once: a plan without the gbuffer pass (no triangles) sees the sky everywhere.
+        for (int i = 0; i < 4; ++i) {
+            const float zero[4] = {0, 0, 0, 0};
+            glClearNamedFramebufferfv(gbufferFbo.id(), GL_COLOR, i, zero);
+        }
 
         accum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
         accumFbo = gl::createFramebuffer({accum.id()}, 0, "accumulation");
@@ -146,6 +154,7 @@ struct FrameRenderer::Impl {
     }
 
     void renderCubeShadow(glm::vec3 eye) {
+        timers.begin("shadow_cube");
         glBindFramebuffer(GL_FRAMEBUFFER, cubeFbo.id());
         glViewport(0, 0, options.cubeShadowSize, options.cubeShadowSize);
         glEnable(GL_DEPTH_TEST);
@@ -164,9 +173,11 @@ struct FrameRenderer::Impl {
             shadowDistanceProgram.set("uViewProjection", proj * cubeFaceView(face, eye));
             gpu.draw();
         }
+        timers.end();
     }
 
     glm::mat4 renderMapShadow(const glm::mat4& viewProjection) {
+        timers.begin("shadow_map");
         glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo.id());
         glViewport(0, 0, options.shadowMapSize, options.shadowMapSize);
         glEnable(GL_DEPTH_TEST);
@@ -179,6 +190,7 @@ struct FrameRenderer::Impl {
         shadowDepthProgram.set("uViewProjection", viewProjection);
         gpu.draw();
         glDisable(GL_POLYGON_OFFSET_FILL);
+        timers.end();
         glm::mat4 bias = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
         return bias * viewProjection;
     }
@@ -204,6 +216,7 @@ struct FrameRenderer::Impl {
 
     void drawLight(int kind, glm::vec3 position, glm::vec3 direction, glm::vec3 color, glm::vec3 emitterNormal,
                    glm::vec2 spotCos, const glm::mat4& shadowMatrix, float shadowTexel) {
+        timers.begin("direct_light");
         beginLightPass();
         lightProgram.set("uKind", kind);
         lightProgram.set("uLightPosition", position);
@@ -214,6 +227,7 @@ struct FrameRenderer::Impl {
         lightProgram.set("uShadowMatrix", shadowMatrix);
         lightProgram.set("uShadowTexel", shadowTexel);
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        timers.end();
     }
 
     void renderLight(const Light& light, std::size_t index) {
@@ -260,6 +274,7 @@ struct FrameRenderer::Impl {
     }
 
     void renderEmission() {
+        timers.begin("emission_sky");
         glBindFramebuffer(GL_FRAMEBUFFER, accumFbo.id());
         glViewport(0, 0, width, height);
         glDisable(GL_DEPTH_TEST);
@@ -273,17 +288,17 @@ struct FrameRenderer::Impl {
         emissionProgram.set("uSky", scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f));
         glBindVertexArray(emptyVao.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        timers.end();
     }
 
     void renderFrame() {
-        renderGBuffer();
-        FrameInput input{scene, gpu, frames, timers};
+        if (plan.runs("gbuffer")) renderGBuffer();
+        FrameInput input{scene, gpu, frames, timers, plan.technique};
         GBufferView view = gbufferView();
         if (technique) technique->update(input, view);
-        timers.begin("direct");
-        for (std::size_t i = 0; i < scene.lights.size(); ++i) renderLight(scene.lights[i], i);
-        renderEmission();
-        timers.end();
+        if (plan.runs("direct_light"))
+            for (const FramePlan::LightPass& l : plan.lights) renderLight(scene.lights[l.light], l.light);
+        if (plan.runs("emission_sky")) renderEmission();
         if (technique) {
             glBindFramebuffer(GL_FRAMEBUFFER, indirectFbo.id());
             glViewport(0, 0, width, height);
@@ -336,8 +351,10 @@ struct FrameRenderer::Impl {
     }
 };
 
-FrameRenderer::FrameRenderer(const Scene& scene, const FrameOptions& options, std::unique_ptr<GiTechnique> technique)
-    : impl_(std::make_unique<Impl>(scene, options, std::move(technique))) {}
+FrameRenderer::FrameRenderer(const Scene& scene, const FrameOptions& options, FramePlan plan)
+    : impl_(std::make_unique<Impl>(scene, options, std::move(plan))) {}
+FrameRenderer::FrameRenderer(const Scene& scene, const FrameOptions& options, const std::string& method)
+    : FrameRenderer(scene, options, planFrame(scene, method, 1)) {}
 FrameRenderer::~FrameRenderer() = default;
 void FrameRenderer::renderFrame() { impl_->renderFrame(); }
 int FrameRenderer::framesAccumulated() const { return impl_->frames; }
@@ -352,10 +369,14 @@ void FrameRenderer::resetAccumulation() {
     glClearNamedFramebufferfv(impl_->indirectFbo.id(), GL_COLOR, 0, zero);
     impl_->frames = 0;
 }
-void FrameRenderer::setTechnique(std::unique_ptr<GiTechnique> technique) {
+void FrameRenderer::setMethod(const std::string& method) {
+    FramePlan plan = planFrame(impl_->scene, method, 1);
+    std::unique_ptr<GiTechnique> technique = createTechnique(method, impl_->scene);
+    impl_->plan = std::move(plan);
     impl_->technique = std::move(technique);
     resetAccumulation();
 }
+const FramePlan& FrameRenderer::plan() const { return impl_->plan; }
 FrameRenderer::Textures FrameRenderer::textures() const {
     return {impl_->accum.id(), impl_->indirectAccum.id(), impl_->gAlbedo.id(), impl_->gNormal.id(),
             impl_->gPosition.id()};

@@ -7,6 +7,7 @@
 
 #include "gi/technique.h"
 #include "gl/timers.h"
+#include "render/frame/frame_plan.h"
 #include "scenes/image.h"
 #include "scenes/scene.h"
 
@@ -22,9 +23,12 @@ struct FrameOptions {
 
 class FrameRenderer {
 public:
-    // Needs a current GL 4.5 context. Throws gl::GlError on shader or framebuffer failure.
-    // Without a technique the frame is direct light only.
-    FrameRenderer(const Scene& scene, const FrameOptions& options, std::unique_ptr<GiTechnique> technique = nullptr);
+    // Needs a current GL 4.5 context. Throws gl::GlError on shader or framebuffer failure, and
+    // InputError / NotImplementedError for a bad method or setting. Runs exactly the passes
+    // of `plan` (planFrame), with the technique of plan.method.
+    FrameRenderer(const Scene& scene, const FrameOptions& options, FramePlan plan);
+    // The plan of `method` for one frame.
+    FrameRenderer(const Scene& scene, const FrameOptions& options, const std::string& method = "direct");
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;
     FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -39,12 +43,14 @@ public:
     Image resolve();
     gl::StageTimers& timers();
     GiTechnique* technique();
+    const FramePlan& plan() const;
 
     // For the interactive viewer: restart the average (the camera or a light moved; the
-    // technique keeps its state), swap the GI method (null = direct only; also restarts), and
-    // the textures behind resolve(): direct and indirect are sums over framesAccumulated().
+    // technique keeps its state), switch the GI method (plans again and restarts; on an error
+    // the old method stays), and the textures behind resolve(): direct and indirect are sums
+    // over framesAccumulated().
     void resetAccumulation();
-    void setTechnique(std::unique_ptr<GiTechnique> technique);
+    void setMethod(const std::string& method);
     struct Textures {
         GLuint direct = 0, indirect = 0, albedo = 0, normal = 0, position = 0;
     };

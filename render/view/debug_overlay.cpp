@@ -106,10 +106,10 @@ struct DebugOverlay::Impl {
         builtColor = views.voxelColor;
     }
 
-    void drawSpheres(const SphereSet& set, const glm::mat4& viewProjection, GLuint scenePosition, glm::ivec4 viewport,
+    void drawSpheres(const DebugDrawing& set, const glm::mat4& viewProjection, GLuint scenePosition, glm::ivec4 viewport,
                      glm::vec3 eye) {
         if (set.spheres.empty()) return;
-        std::size_t bytes = set.spheres.size() * sizeof(SphereInstance);
+        std::size_t bytes = set.spheres.size() * sizeof(DebugSphere);
         if (bytes > sphereCapacity) {
             sphereCapacity = 2 * bytes;
             sphereBuffer = gl::createBuffer(sphereCapacity);
@@ -117,8 +117,8 @@ struct DebugOverlay::Impl {
         glNamedBufferSubData(sphereBuffer.id(), 0, GLsizeiptr(bytes), set.spheres.data());
         spheres.use();
         spheres.set("uViewProjection", viewProjection);
-        spheres.set("uShMode", set.sh ? 1 : 0);
-        spheres.set("uScale", set.scale);
+        spheres.set("uShMode", set.shSpheres ? 1 : 0);
+        spheres.set("uScale", set.shScale);
         spheres.set("uOccludeByScene", scenePosition != 0 ? 1 : 0);
         spheres.set("uViewport", glm::vec4(viewport));
         spheres.set("uEye", eye);
@@ -155,10 +155,11 @@ DebugOverlay::DebugOverlay() : impl_(std::make_unique<Impl>()) {}
 DebugOverlay::~DebugOverlay() = default;
 
 std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport,
-                               const SphereSet& spheres, const std::vector<DebugBox>& boxes, GLuint scenePosition) {
+                               const std::vector<DebugDrawing>& drawings, GLuint scenePosition) {
     Bounds b = scene.bounds();
-    if (!b.valid() || (!views.voxels && !views.bounds && !views.lights && spheres.spheres.empty() && boxes.empty()))
-        return 0;
+    bool anything = views.voxels || views.bounds || views.lights;
+    for (const DebugDrawing& d : drawings) anything = anything || !d.spheres.empty() || !d.boxes.empty();
+    if (!b.valid() || !anything) return 0;
     glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
     glm::mat4 viewProjection = scene.camera.projection() * scene.camera.view();
     glEnable(GL_DEPTH_TEST);
@@ -185,12 +186,14 @@ std::size_t DebugOverlay::draw(const Scene& scene, const DebugViews& views, glm:
         drawn = impl_->cubeCount;
     }
     bool occlude = views.occludeSpheres && !views.voxels;  // over voxels the picture is gone
-    impl_->drawSpheres(spheres, viewProjection, occlude ? scenePosition : 0, viewport, scene.camera.eye);
-    drawn += spheres.spheres.size();
     std::vector<LineVertex> lineVertices;
+    for (const DebugDrawing& d : drawings) {
+        impl_->drawSpheres(d, viewProjection, occlude ? scenePosition : 0, viewport, scene.camera.eye);
+        drawn += d.spheres.size();
+        for (const DebugBox& box : d.boxes) addBox(lineVertices, box.min, box.max, box.color);
+    }
     float radius = 0.5f * glm::length(b.extent());
     if (views.bounds) addBox(lineVertices, b.min, b.max, glm::vec3(0.2f, 1.0f, 0.3f));
-    for (const DebugBox& box : boxes) addBox(lineVertices, box.min, box.max, box.color);
     if (views.lights)
         for (const Light& light : scene.lights) {
             glm::vec3 color(1.0f, 0.85f, 0.2f);

@@ -1,14 +1,15 @@
 // Debug views drawn over (or instead of) the frame with the viewer's camera: the voxelized
-// geometry as cubes coloured by albedo or blocker strength, the scene bounds, and light markers.
+// geometry as cubes coloured by albedo or blocker strength, the scene bounds, light markers, and
+// what the technique draws of its own state (gi/debug_view.h: boxes and spheres).
 #pragma once
 
 #include <memory>
 
 #include <glm/glm.hpp>
 
+#include "gi/debug_view.h"
 #include "gl/program.h"
 #include "gl/resources.h"
-#include "render/view/sphere_set.h"
 #include "scenes/scene.h"
 
 namespace voxgi::view {
@@ -21,13 +22,7 @@ struct DebugViews {
     int voxelResolution = 64;  // voxels along the scene's longest extent
     bool bounds = false;       // scene bounding box
     bool lights = true;        // markers at light positions / sun direction
-    bool cascades = false;     // cascade bounds of lpv/clpv light volumes and ddgi probe volumes
-    bool lpvCells = false;     // LPV SH per cell as spheres, one cascade
-    int lpvCascade = 0;
-    int lpvStride = 2;         // every n-th cell per axis
     bool occludeSpheres = true; // spheres hidden behind the scene's surfaces (G-buffer test)
-    bool probes = false;       // DDGI probes as spheres
-    ProbeColor probeColor = ProbeColor::Irradiance;
 };
 
 // Letterbox rectangle (x, y, w, h) of a render of renderW x renderH inside the window.
@@ -39,11 +34,11 @@ public:
     ~DebugOverlay();
     // Draws into the bound default framebuffer inside `viewport`; voxelizes on first use or
     // when the resolution changed. Returns the voxel count drawn (0 when voxels are off).
-    // `spheres` (probes, light-volume cells) are drawn depth-tested against each other and
-    // the voxel cubes, and (occludeSpheres, not over voxels) against the frame's surfaces.
+    // The technique's `drawings`: spheres depth-tested against each other and the voxel cubes,
+    // and (occludeSpheres, not over voxels) against the frame's surfaces; boxes as lines.
     // `scenePosition`: the frame's G-buffer position texture (0: no occlusion by the scene).
-    std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport, const SphereSet& spheres = {},
-                     const std::vector<DebugBox>& boxes = {}, GLuint scenePosition = 0);
+    std::size_t draw(const Scene& scene, const DebugViews& views, glm::ivec4 viewport,
+                     const std::vector<DebugDrawing>& drawings = {}, GLuint scenePosition = 0);
 
 private:
     struct Impl;

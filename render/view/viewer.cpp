@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <algorithm>
 #include <cstdint>
+#include <set>
 #include <filesystem>
-#include <unistd.h>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -17,7 +17,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
-#include "render/frame/techniques.h"
+#include "gi/methods.h"
 #include "gl/context.h"
 #include "render/view/view_script.h"
 #include "render/view/viewer_state.h"
@@ -38,16 +38,17 @@ std::string exrPathFor(const std::string& png) {
     return std::filesystem::path(png).replace_extension(".exr").string();
 }
 
-std::unique_ptr<GiTechnique> makeTechnique(ViewerState& s) {
+// Switches to s.method; a setting the method refuses keeps the window alive and says why.
+void switchMethod(ViewerState& s) {
     try {
-        return createTechnique(s.method, s.scene);
+        s.renderer->setMethod(s.method);
     } catch (const std::exception& e) {
-        // A setting the method refuses: keep the window alive and say why.
         s.status = "cannot start " + s.method + ": " + e.what() + " (showing direct light)";
         std::fprintf(stderr, "voxgi view: %s\n", s.status.c_str());
         s.method = "direct";
-        return nullptr;
+        s.renderer->setMethod(s.method);
     }
+    for (auto& [name, view] : s.methodViews) view.drawnFrame = -1000;
 }
 
 void saveScreenshot(ViewerState& s, const std::string& png) {
@@ -108,7 +109,7 @@ void serveRequests(ViewerState& s) {
         s.reloadShaders = false;
         try {
             // Shaders are compiled in the constructors: rebuilding them re-reads shaders/.
-            auto renderer = std::make_unique<FrameRenderer>(s.scene, FrameOptions{}, createTechnique(s.method, s.scene));
+            auto renderer = std::make_unique<FrameRenderer>(s.scene, FrameOptions{}, s.method);
             auto display = std::make_unique<DisplayPass>();
             auto overlay = std::make_unique<DebugOverlay>();
             s.renderer = std::move(renderer);
@@ -122,7 +123,7 @@ void serveRequests(ViewerState& s) {
     }
     if (s.rebuildTechnique) {
         s.rebuildTechnique = false;
-        s.renderer->setTechnique(makeTechnique(s));
+        switchMethod(s);
     }
     if (s.takeScreenshot) {
         s.takeScreenshot = false;
@@ -153,28 +154,31 @@ void serveRequests(ViewerState& s) {
     }
 }
 
-SphereSet debugSpheres(ViewerState& s) {
-    SphereSet spheres;
-    if (s.debug.probes) spheres = ddgiProbeSpheres(s.renderer->technique(), s.debug.probeColor, s.exposure);
-    if (!s.debug.lpvCells) return spheres;
-    // Reading the light volume back costs a dump: every 8 frames is enough to watch it settle.
-    if (s.frame - s.lpvSpheresFrame >= 8 || s.lpvSpheresFrame > s.frame) {
-        try {
-            std::string scratch = (std::filesystem::temp_directory_path() /
-                                   ("voxgi-view-lpv-" + std::to_string(::getpid()) + ".vdb")).string();
-            s.lpvSpheres = lpvCellSpheres(s.renderer->technique(), s.debug.lpvCascade, s.debug.lpvStride, s.exposure, scratch);
-        } catch (const std::exception& e) {
-            s.lpvSpheres = {};
-            s.status = std::string("light volume view: ") + e.what();
+// What the technique draws of the views that are on; a view is redrawn every refreshFrames.
+std::vector<DebugDrawing> methodDrawings(ViewerState& s) {
+    std::vector<DebugDrawing> out;
+    const GiTechnique* technique = s.renderer->technique();
+    if (!technique) return out;
+    for (const DebugViewInfo& info : findMethod(s.method).debugViews) {
+        MethodView& view = s.methodViews[info.name];
+        if (!view.on) continue;
+        if (s.frame - view.drawnFrame >= info.refreshFrames || view.drawnFrame > s.frame) {
+            try {
+                view.drawing = technique->debugView(info.name, DebugViewContext{s.scene.camera, s.exposure, view.options});
+            } catch (const std::exception& e) {
+                view.drawing = {};
+                s.status = info.label + ": " + e.what();
+            }
+            view.drawnFrame = s.frame;
         }
-        s.lpvSpheresFrame = s.frame;
+        out.push_back(view.drawing);
     }
-    return spheres.spheres.empty() ? s.lpvSpheres : spheres;
+    return out;
 }
 
 void runEvent(ViewerState& s, const ScriptEvent& e) {
     if (e.kind == "method") {
-        validateMethod(e.value);
+        findMethod(e.value);
         s.method = e.value;
         s.rebuildTechnique = true;
     } else if (e.kind == "show") {
@@ -199,6 +203,29 @@ ViewerState::ViewerState(Scene& s, const ViewerOptions& o)
     debug.lights = o.panel;  // --no-panel: the bare picture
 }
 
+namespace {
+
+// Every method's view of that name (views of one name share their meaning and options).
+const DebugViewInfo* findView(const std::string& name) {
+    for (const MethodInfo& m : methods())
+        for (const DebugViewInfo& v : m.debugViews)
+            if (v.name == name) return &v;
+    return nullptr;
+}
+
+std::string showNames() {
+    std::string names;
+    for (int i = 0; i < kDisplayModeCount; ++i) names += std::string(displayModeName(DisplayMode(i))) + ", ";
+    names += "voxels, voxels_blocker, bounds";
+    std::set<std::string> seen;
+    for (const MethodInfo& m : methods())
+        for (const DebugViewInfo& v : m.debugViews)
+            if (seen.insert(v.name).second) names += ", " + v.name + "[:option=value,...]";
+    return names;
+}
+
+}  // namespace
+
 void applyShow(ViewerState& s, const std::string& name) {
     for (int i = 0; i < kDisplayModeCount; ++i)
         if (name == displayModeName(DisplayMode(i))) {
@@ -208,22 +235,47 @@ void applyShow(ViewerState& s, const std::string& name) {
     if (name == "voxels" || name == "voxels_blocker") {
         s.debug.voxels = true;
         s.debug.voxelColor = name == "voxels" ? VoxelColor::Albedo : VoxelColor::Blocker;
-    } else if (name == "bounds") {
-        s.debug.bounds = true;
-    } else if (name == "cascades") {
-        s.debug.cascades = true;
-    } else if (name.rfind("lpv_cells", 0) == 0) {
-        // lpv_cells or lpv_cells_N (cascade N)
-        s.debug.lpvCells = true;
-        s.debug.lpvCascade = name.size() > 10 ? std::atoi(name.c_str() + 10) : 0;
-        s.lpvSpheresFrame = -1000;
-    } else if (name == "probes" || name == "probe_states") {
-        s.debug.probes = true;
-        s.debug.probeColor = name == "probes" ? ProbeColor::Irradiance : ProbeColor::State;
-    } else {
-        throw InputError("show '" + name + "': expected beauty, direct, indirect, albedo, normal, voxels, "
-                         "voxels_blocker, bounds, cascades, lpv_cells[_N], probes or probe_states");
+        return;
     }
+    if (name == "bounds") {
+        s.debug.bounds = true;
+        return;
+    }
+    // A method's view: NAME or NAME:option=value,option=value
+    const std::size_t colon = name.find(':');
+    const std::string viewName = name.substr(0, colon);
+    const DebugViewInfo* info = findView(viewName);
+    if (!info) throw InputError("show '" + name + "': expected " + showNames());
+    GiSettings options;
+    std::string rest = colon == std::string::npos ? "" : name.substr(colon + 1);
+    for (std::size_t start = 0; start < rest.size();) {
+        std::size_t end = std::min(rest.find(',', start), rest.size());
+        const std::string assignment = rest.substr(start, end - start);
+        const std::size_t eq = assignment.find('=');
+        const SettingInfo* option = nullptr;
+        for (const SettingInfo& o : info->options)
+            if (eq != std::string::npos && o.key == viewName + "." + assignment.substr(0, eq)) option = &o;
+        if (!option) throw InputError("show '" + name + "': '" + assignment + "' is not an option of " + viewName);
+        validateSetting(*option, assignment.substr(eq + 1));
+        options.set(option->key, assignment.substr(eq + 1));
+        start = end + 1;
+    }
+    MethodView& view = s.methodViews[viewName];
+    view.on = true;
+    for (const auto& [key, value] : options.values()) view.options.set(key, value);
+    view.drawnFrame = -1000;
+}
+
+bool toggleMethodView(ViewerState& s, char key) {
+    bool any = false;
+    for (const DebugViewInfo& info : findMethod(s.method).debugViews) {
+        if (info.key != key) continue;
+        MethodView& view = s.methodViews[info.name];
+        view.on = !view.on;
+        view.drawnFrame = -1000;
+        any = true;
+    }
+    return any;
 }
 
 bool displayAvailable() {
@@ -252,7 +304,7 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
 
     ViewerState s(scene, options);
     // A setting the method refuses at start is an input error (exit 2), as in `voxgi render`.
-    s.renderer = std::make_unique<FrameRenderer>(scene, FrameOptions{}, createTechnique(s.method, scene));
+    s.renderer = std::make_unique<FrameRenderer>(scene, FrameOptions{}, s.method);
     s.display = std::make_unique<DisplayPass>();
     s.overlay = std::make_unique<DebugOverlay>();
 
@@ -295,9 +347,7 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         glfwGetFramebufferSize(window, &fbw, &fbh);
         s.display->draw(*s.renderer, s.mode, s.exposure, fbw, fbh);
         s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh),
-                        debugSpheres(s), s.debug.cascades ? cascadeBoxes(s.renderer->technique(), scene.bounds(), scene.camera)
-                                                          : std::vector<DebugBox>{},
-                        s.renderer->textures().position);
+                        methodDrawings(s), s.renderer->textures().position);
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();

@@ -7,10 +7,12 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "render/frame/techniques.h"
+#include "gi/methods.h"
 #include "render/view/viewer_state.h"
 
 namespace voxgi::view {
+
+const char* const kViewerKeys = "WASDQEMLGBPVR";
 
 namespace {
 
@@ -105,18 +107,15 @@ void handleKey(ViewerState& s, int key, int mods) {
         case GLFW_KEY_L: s.animateLights = !s.animateLights; break;
         case GLFW_KEY_G: s.debug.voxels = !s.debug.voxels; break;
         case GLFW_KEY_B: s.debug.bounds = !s.debug.bounds; break;
-        case GLFW_KEY_O: s.debug.probes = !s.debug.probes; break;
-        case GLFW_KEY_C: s.debug.cascades = !s.debug.cascades; break;
-        case GLFW_KEY_H:
-            s.debug.lpvCells = !s.debug.lpvCells;
-            s.lpvSpheresFrame = -1000;
-            break;
         case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5:
             s.mode = DisplayMode(key - GLFW_KEY_1);
             break;
         case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: s.speed *= 1.5f; break;
         case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: s.speed /= 1.5f; break;
-        default: break;
+        default:
+            // The rest of the letters belong to the method's debug views.
+            if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) toggleMethodView(s, char('A' + (key - GLFW_KEY_A)));
+            break;
     }
 }
 

@@ -5,31 +5,13 @@
 
 #include <imgui.h>
 
-#include "gi/ddgi/ddgi_desc.h"
-#include "gi/lpv/lpv_desc.h"
-#include "render/frame/techniques.h"
+#include "gi/methods.h"
+#include "render/view/settings_widgets.h"
 #include "render/view/viewer_state.h"
 
 namespace voxgi::view {
 
 namespace {
-
-// An integer gi setting edited in place: writes scene.gi and asks for a rebuild on change.
-void intSetting(ViewerState& s, const char* label, const std::string& key, int fallback, int lo, int hi) {
-    int v = s.scene.gi.getInt(key, fallback);
-    if (ImGui::SliderInt(label, &v, lo, hi)) {
-        s.scene.gi.set(key, std::to_string(v));
-        s.rebuildTechnique = true;
-    }
-}
-
-void floatSetting(ViewerState& s, const char* label, const std::string& key, float fallback, float lo, float hi) {
-    float v = s.scene.gi.getFloat(key, fallback);
-    // Rebuild once the slider is released: rebuilding a technique per pixel of drag is slow.
-    ImGui::SliderFloat(label, &v, lo, hi, "%.3f");
-    if (ImGui::IsItemEdited()) s.scene.gi.set(key, std::to_string(v));
-    if (ImGui::IsItemDeactivatedAfterEdit()) s.rebuildTechnique = true;
-}
 
 void timings(ViewerState& s) {
     ImGui::Text("frame %.1f ms (%.0f fps), %d accumulated", s.frameMs, s.frameMs > 0 ? 1000.0 / s.frameMs : 0.0,
@@ -49,30 +31,49 @@ void timings(ViewerState& s) {
         double cpu = it->second.cpuMs.empty() ? 0.0 : it->second.cpuMs.back();
         ImGui::Text("  %-22s gpu %7.2f ms  cpu %7.2f ms", stage.c_str(), gpu, cpu);
     }
+    if (const GiTechnique* t = s.renderer->technique()) {
+        const std::vector<TechniqueStat> stats = t->stats();
+        if (!stats.empty() && ImGui::TreeNode("technique stats (last update)")) {
+            for (const TechniqueStat& st : stats)
+                ImGui::Text("  %-24s %10.4g %s", st.name.c_str(), st.value, st.unit.c_str());
+            ImGui::TreePop();
+        }
+    }
 }
 
+// The method, then its settings from its table: the main ones, the rest folded. A change
+// writes scene.gi, which the rebuilt technique reads.
 void methodSettings(ViewerState& s) {
-    const std::vector<std::string> methods = builtMethods();
+    const std::vector<std::string> names = builtMethods();
     if (ImGui::BeginCombo("method (M)", s.method.c_str())) {
-        for (const std::string& m : methods)
+        for (const std::string& m : names)
             if (ImGui::Selectable(m.c_str(), m == s.method) && m != s.method) {
                 s.method = m;
                 s.rebuildTechnique = true;
             }
         ImGui::EndCombo();
     }
-    // The sliders start at the values the technique reads (its defaults or the scene's), and
-    // write scene.gi, which the rebuilt technique reads back.
-    if (s.method == "lpv" || s.method == "clpv") {
-        LpvDesc d = LpvDesc::fromSettings(s.scene.gi, s.method == "clpv");
-        intSetting(s, "propagation steps", "lpv.steps", d.steps, 1, 64);
-        if (s.method == "clpv") intSetting(s, "cascades", "lpv.cascades", d.cascades, 1, 6);
-        intSetting(s, "resolution", "lpv.resolution", d.resolution, 8, 128);
-    } else if (s.method == "ddgi") {
-        DdgiDesc d = readDdgiDesc(s.scene.gi);
-        intSetting(s, "rays per probe", "ddgi.rays", d.rays, 16, 1024);
-        floatSetting(s, "hysteresis", "ddgi.hysteresis", d.hysteresis, 0.0f, 0.999f);
-        intSetting(s, "cascades", "ddgi.cascades", d.cascades, 1, 4);
+    const MethodInfo& method = findMethod(s.method);
+    for (const SettingInfo& info : method.settings)
+        if (info.main && settingWidget(info, s.scene.gi)) s.rebuildTechnique = true;
+    if (method.settings.empty() || !ImGui::TreeNode("all settings")) return;
+    for (const SettingInfo& info : method.settings)
+        if (!info.main && settingWidget(info, s.scene.gi)) s.rebuildTechnique = true;
+    ImGui::TreePop();
+}
+
+// The method's debug views: a checkbox each (with its key) and its options.
+void methodViews(ViewerState& s) {
+    for (const DebugViewInfo& info : findMethod(s.method).debugViews) {
+        MethodView& view = s.methodViews[info.name];
+        std::string label = info.label + (info.key ? std::string(" (") + info.key + ")" : "");
+        if (ImGui::Checkbox(label.c_str(), &view.on)) view.drawnFrame = -1000;
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", info.doc.c_str());
+        if (!view.on) continue;
+        ImGui::Indent();
+        for (const SettingInfo& option : info.options)
+            if (settingWidget(option, view.options)) view.drawnFrame = -1000;
+        ImGui::Unindent();
     }
 }
 
@@ -122,23 +123,8 @@ void drawPanel(ViewerState& s) {
     ImGui::RadioButton("blocker", &color, 1);
     s.debug.voxelColor = VoxelColor(color);
     ImGui::SliderInt("voxel resolution", &s.debug.voxelResolution, 8, 128);
-    if (ImGui::Checkbox("LPV cells (H)", &s.debug.lpvCells)) s.lpvSpheresFrame = -1000;
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(80);
-    if (ImGui::SliderInt("cascade", &s.debug.lpvCascade, 0, 5)) s.lpvSpheresFrame = -1000;
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(80);
-    if (ImGui::SliderInt("stride", &s.debug.lpvStride, 1, 8)) s.lpvSpheresFrame = -1000;
-    ImGui::Checkbox("cascade bounds (C)", &s.debug.cascades);
-    ImGui::SameLine();
     ImGui::Checkbox("spheres hidden by scene", &s.debug.occludeSpheres);
-    ImGui::Checkbox("DDGI probes (O)", &s.debug.probes);
-    ImGui::SameLine();
-    int probeColor = int(s.debug.probeColor);
-    ImGui::RadioButton("irradiance", &probeColor, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("state", &probeColor, 1);
-    s.debug.probeColor = ProbeColor(probeColor);
+    methodViews(s);
     ImGui::Checkbox("scene bounds (B)", &s.debug.bounds);
     ImGui::SameLine();
     ImGui::Checkbox("light markers", &s.debug.lights);

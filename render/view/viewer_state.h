@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gi/debug_view.h"
 #include "render/frame/frame_renderer.h"
 #include "render/view/display_pass.h"
 #include "render/view/debug_overlay.h"
@@ -20,6 +21,14 @@ namespace voxgi::view {
 struct PointerState {
     double x = 0, y = 0;
     bool tracking = false;  // a look or drag button was down at the last poll
+};
+
+// A debug view that methods declare (gi/debug_view.h), as the viewer keeps it.
+struct MethodView {
+    bool on = false;
+    GiSettings options;       // its option values ("lpv_cells.cascade"); the rest are defaults
+    DebugDrawing drawing;     // the technique's last drawing of it
+    int drawnFrame = -1000;   // the frame it was drawn; far in the past forces a redraw
 };
 
 struct ViewerState {
@@ -50,10 +59,9 @@ struct ViewerState {
     bool dumpVdb = false;
     bool viewChanged = false;
     std::string status;        // last message (file written, error)
-    std::map<std::string, std::size_t> timerCounts;
-    SphereSet lpvSpheres;      // refreshed every few frames while shown (a dump + read-back)
-    int lpvSpheresFrame = -1000;
-    PointerState pointer;  // samples per stage at the previous panel
+    std::map<std::string, std::size_t> timerCounts;  // samples per stage at the previous panel
+    std::map<std::string, MethodView> methodViews;   // by view name, kept across method switches
+    PointerState pointer;
     int screenshotCount = 0;
 
     ViewerState(Scene& s, const ViewerOptions& o);
@@ -68,7 +76,12 @@ void handleInput(GLFWwindow* window, ViewerState& state, float seconds);
 // One key press (GLFW key code and modifier bits), as docs/viewer.md lists them; Esc is the
 // window's business. Requests are served by the loop.
 void handleKey(ViewerState& state, int glfwKey, int mods);
-// A display mode or debug view by name (script "show" events); InputError when unknown.
+// A display mode or debug view by name (script "show" events), a method's view with options as
+// NAME:option=value,...; InputError when unknown.
 void applyShow(ViewerState& state, const std::string& name);
+// Toggles the current method's debug view bound to `key` ('A'..'Z'); false when none is.
+bool toggleMethodView(ViewerState& state, char key);
+// The viewer's own letter keys (movement, actions, its views), which a method's view may not use.
+extern const char* const kViewerKeys;
 
 }  // namespace voxgi::view

@@ -2,15 +2,15 @@
 #ifndef VOXGI_DDGI_SAMPLING_GLSL
 #define VOXGI_DDGI_SAMPLING_GLSL
 #include "common/octahedral.glsl"
+#include "ddgi/limits.h"
 
-#define DDGI_MAX_VOLUMES 8
 uniform int uVolumeCount;
-uniform ivec3 uCounts[DDGI_MAX_VOLUMES];
-uniform vec3 uSpacing[DDGI_MAX_VOLUMES];
-uniform vec3 uOrigin[DDGI_MAX_VOLUMES];
-uniform ivec3 uScroll[DDGI_MAX_VOLUMES];
-uniform int uProbeBase[DDGI_MAX_VOLUMES];
-uniform int uTileRow[DDGI_MAX_VOLUMES];
+uniform ivec3 uCounts[kDdgiMaxVolumes];
+uniform vec3 uSpacing[kDdgiMaxVolumes];
+uniform vec3 uOrigin[kDdgiMaxVolumes];
+uniform ivec3 uScroll[kDdgiMaxVolumes];
+uniform int uProbeBase[kDdgiMaxVolumes];
+uniform int uTileRow[kDdgiMaxVolumes];
 uniform int uIrradianceTexels;
 uniform int uDistanceTexels;
 uniform float uNormalBias;

@@ -5,22 +5,22 @@
 // Radiance of a cell is its intensity over the cell face area (the seed's A_s / A_c weight).
 #include "common/sh.glsl"
 #include "common/constants.glsl"
+#include "lpv/limits.h"
 
-const int MAX_CASCADES = 6;
 
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;
 uniform sampler2D uAlbedo;
 uniform sampler2D uEmission;
-uniform sampler3D uLpvR[MAX_CASCADES];
-uniform sampler3D uLpvG[MAX_CASCADES];
-uniform sampler3D uLpvB[MAX_CASCADES];
-uniform vec3 uLpvMin[MAX_CASCADES];
-uniform vec3 uLpvExtent[MAX_CASCADES];
-uniform float uCellSize[MAX_CASCADES];
-uniform vec3 uFadeMin[MAX_CASCADES];
-uniform vec3 uFadeMax[MAX_CASCADES];
-uniform float uFadeWidth[MAX_CASCADES];
+uniform sampler3D uLpvR[kLpvMaxCascades];
+uniform sampler3D uLpvG[kLpvMaxCascades];
+uniform sampler3D uLpvB[kLpvMaxCascades];
+uniform vec3 uLpvMin[kLpvMaxCascades];
+uniform vec3 uLpvExtent[kLpvMaxCascades];
+uniform float uCellSize[kLpvMaxCascades];
+uniform vec3 uFadeMin[kLpvMaxCascades];
+uniform vec3 uFadeMax[kLpvMaxCascades];
+uniform float uFadeWidth[kLpvMaxCascades];
 uniform int uCascadeCount;
 uniform vec3 uEye;
 uniform float uApplyNormalOffset;

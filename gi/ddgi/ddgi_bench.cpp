@@ -1,19 +1,18 @@
 // voxgi bench ddgi: probe rays per second against Embree's own throughput for the same rays
 // (no shading), per-stage timings (trace, shade, blend, border, classify, sample), the update
-// speed-up that probe culling gives, for the Cornell box and Sibenik by default.
+// speed-up that probe culling gives.
+#include "gi/ddgi/ddgi_bench.h"
+
 #include <algorithm>
 #include <cmath>
 #include <atomic>
-#include <cstdlib>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
-#include <functional>
+#include <map>
 #include <memory>
 #include <string>
 
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include "gi/gbuffer_upload.h"
@@ -21,19 +20,11 @@
 #include "gi/ddgi/ddgi_system.h"
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
-#include "gl/context.h"
-#include "scenes/errors.h"
-#include "scenes/scene_loader.h"
-#include "tools/bench_registry.h"
-#include "tools/scene_arg.h"
+#include "gl/resources.h"
 
-namespace voxgi::cli {
+namespace voxgi {
 
 namespace {
-
-const char* kUsage =
-    "voxgi bench ddgi [SCENE...] [--probes X,Y,Z] [--rays N] [--frames N] [--warmup N] [--threads N] [--set k=v]...\n"
-    "  SCENE: default cornell-box and ../shared/scenes/sibenik/sibenik.obj; 16x8x12 probes, 256 rays, 2 threads";
 
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
@@ -44,12 +35,27 @@ double median(std::vector<double> v) {
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
+// Medians of every stat of statList (ddgi_system.h) by name, over frames.
 struct StageMedians {
-    double trace = 0, shade = 0, blend = 0, border = 0, classify = 0;
-    double merge = 0, groups = 0, hits = 0;  // parts of shade
-    double rays = 0;     // rays traced per frame (median)
-    double update() const { return trace + shade + blend + border + classify; }
+    std::map<std::string, double> values;
+    double operator[](const std::string& name) const {
+        auto it = values.find(name);
+        return it == values.end() ? 0.0 : it->second;
+    }
+    double update() const {
+        const StageMedians& m = *this;
+        return m["trace"] + m["shade"] + m["blend"] + m["border"] + m["classify"];
+    }
 };
+
+StageMedians medianOf(const std::vector<std::map<std::string, double>>& frames) {
+    std::map<std::string, std::vector<double>> all;
+    for (const auto& frame : frames)
+        for (const auto& [name, value] : frame) all[name].push_back(value);
+    StageMedians m;
+    for (const auto& [name, values] : all) m.values[name] = median(values);
+    return m;
+}
 
 // "1.23 2.34" from /proc/loadavg: other builds share the two cores, so every table says how busy
 // the machine was.
@@ -88,20 +94,12 @@ struct ModeRuns {
 };
 
 StageMedians runFrames(DdgiSystem& ddgi, glm::vec3 eye, int frames, BlendBackend* backend) {
-    std::vector<double> t, s, b, bo, c, r, sm, sg, sh;
+    std::vector<std::map<std::string, double>> all;
     for (int f = 0; f < frames; ++f) {
-        DdgiFrameStats st = ddgi.update(eye, backend);
-        sm.push_back(st.shadeMergeMs);
-        sg.push_back(st.shadeGroupsMs);
-        sh.push_back(st.shadeHitsMs);
-        t.push_back(st.traceMs);
-        s.push_back(st.shadeMs);
-        b.push_back(st.blendMs);
-        bo.push_back(st.borderMs);
-        c.push_back(st.classifyMs);
-        r.push_back(double(st.raysTraced));
+        all.emplace_back();
+        for (const TechniqueStat& st : statList(ddgi.update(eye, backend))) all.back()[st.name] = st.value;
     }
-    return {median(t), median(s), median(b), median(bo), median(c), median(sm), median(sg), median(sh), median(r)};
+    return medianOf(all);
 }
 
 // Embree alone: the same probe origins and directions (every probe, every ray of the last
@@ -201,13 +199,12 @@ double glApplyMs(DdgiSystem& ddgi, int width, int height, int frames, double* gp
     return median(ms);
 }
 
-void benchScene(const std::string& path, const Args& args, gl::Context* context) {
-    Scene scene = loadSceneArgument(path);
-    scene.gi.set("ddgi.probes", args.value("--probes", "16,8,12"));
-    scene.gi.set("ddgi.rays", std::to_string(args.integer("--rays", 256, 1, 4096)));
-    for (const std::string& s : args.values("--set")) scene.gi.applyOverride(s);
-    const int frames = args.integer("--frames", 5, 1, 1000);
-    const int warmup = args.integer("--warmup", 12, 0, 1000);
+void benchScene(const std::string& path, Scene scene, const BenchRequest& request) {
+    // The benchmark's grid unless the scene or --set gives one.
+    if (!scene.gi.has("ddgi.probes")) scene.gi.set("ddgi.probes", "16,8,12");
+    if (!scene.gi.has("ddgi.rays")) scene.gi.set("ddgi.rays", "256");
+    const int frames = request.frames > 0 ? request.frames : 5;
+    const int warmup = request.warmup > 0 ? request.warmup : 12;
     const glm::vec3 eye = scene.camera.eye;
 
     const std::string loadBefore = loadAverage();
@@ -215,7 +212,7 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     RayTracer tracer(scene);
     double bvhMs = msSince(t0);
     DdgiDesc desc = readDdgiDesc(scene.gi);
-    desc.gpuBlend = false;
+    desc.backend = Backend::Cpu;
 
     std::printf("\n== %s: %zu triangles (BVH %.0f ms), %d lights, probes %dx%dx%d, %d+%d rays/probe\n", path.c_str(),
                 tracer.triangleCount(), bvhMs, int(scene.lights.size()), desc.probeCounts.x, desc.probeCounts.y,
@@ -239,20 +236,15 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
         cs.push_back(runFrames(culled, eye, 1, nullptr));
     }
     auto med = [](const std::vector<StageMedians>& v) {
-        auto pick = [&](double StageMedians::*m) {
-            std::vector<double> x;
-            for (const StageMedians& s : v) x.push_back(s.*m);
-            return median(x);
-        };
-        return StageMedians{pick(&StageMedians::trace),  pick(&StageMedians::shade),    pick(&StageMedians::blend),
-                            pick(&StageMedians::border), pick(&StageMedians::classify), pick(&StageMedians::merge),
-                            pick(&StageMedians::groups), pick(&StageMedians::hits),     pick(&StageMedians::rays)};
+        std::vector<std::map<std::string, double>> frames;
+        for (const StageMedians& m : v) frames.push_back(m.values);
+        return medianOf(frames);
     };
     StageMedians f = med(fs), c = med(cs);
     double rawMs = median(raw);
     double rawRate = double(rawRays) / (rawMs * 1e-3);
-    double ddgiRate = f.rays / ((f.trace + f.shade) * 1e-3);
-    double traceRate = f.rays / (f.trace * 1e-3);
+    double ddgiRate = f["rays_traced"] / ((f["trace"] + f["shade"]) * 1e-3);
+    double traceRate = f["rays_traced"] / (f["trace"] * 1e-3);
     ProbeStateCounts states = countStates(culled.field());
 
     // The mode table: every hit-cache and direct-light mode on the same rays, culling off,
@@ -331,21 +323,21 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
     }
     std::printf("stage medians over %d frames [ms]      culling off   culling on\n", frames);
     auto row = [&](const char* name, double a, double b) { std::printf("  %-36s %10.2f %12.2f\n", name, a, b); };
-    row("trace (hit-cache grouping included)", f.trace, c.trace);
-    row("shade (direct + previous probes)", f.shade, c.shade);
-    row("  of which merge hit-cache tables", f.merge, c.merge);
-    row("  of which evaluate cache groups", f.groups, c.groups);
-    row("  of which shade every hit", f.hits, c.hits);
-    row("blend (CPU reference)", f.blend, c.blend);
-    row("border (CPU reference)", f.border, c.border);
-    row("classify + relocate", f.classify, c.classify);
+    row("trace (hit-cache grouping included)", f["trace"], c["trace"]);
+    row("shade (direct + previous probes)", f["shade"], c["shade"]);
+    row("  of which merge hit-cache tables", f["shade_merge"], c["shade_merge"]);
+    row("  of which evaluate cache groups", f["shade_groups"], c["shade_groups"]);
+    row("  of which shade every hit", f["shade_hits"], c["shade_hits"]);
+    row("blend (CPU reference)", f["blend"], c["blend"]);
+    row("border (CPU reference)", f["border"], c["border"]);
+    row("classify + relocate", f["classify"], c["classify"]);
     row("update total", f.update(), c.update());
-    std::printf("  rays per frame                        %10.0f %12.0f\n", f.rays, c.rays);
+    std::printf("  rays per frame                        %10.0f %12.0f\n", f["rays_traced"], c["rays_traced"]);
     std::printf("culling: %d active, %d sleeping, %d off -> update speed-up %.2fx\n", states.active, states.sleeping,
                 states.off, f.update() / std::max(c.update(), 1e-9));
     std::printf("sample (CPU reference): %.0f ns per shading point over %d points\n", sampleNs, points);
 
-    if (context) {
+    if (request.gl) {
         DdgiSystem gpuSystem(tracer, all);
         DdgiGpu backend(gpuSystem.field());
         runFrames(gpuSystem, eye, 2, &backend);
@@ -362,45 +354,21 @@ void benchScene(const std::string& path, const Args& args, gl::Context* context)
         StageMedians g = med(frameStages);
         double applyGpu = 0.0;
         const double applyWall = glApplyMs(gpuSystem, 512, 512, 10, &applyGpu);
-        std::printf("GL (%s), medians, culling off:\n", context->description().c_str());
-        std::printf("  blend %.2f ms wall: uploads %.2f ms (atlases, shaded rays), kernels %.3f ms GPU\n", g.blend,
+        std::printf("GL (%s), medians, culling off:\n", request.device.c_str());
+        std::printf("  blend %.2f ms wall: uploads %.2f ms (atlases, shaded rays), kernels %.3f ms GPU\n", g["blend"],
                     median(upload), median(blendGpu));
-        std::printf("  border + readback %.2f ms wall: kernels %.3f ms GPU, readback %.2f ms\n", g.border,
+        std::printf("  border + readback %.2f ms wall: kernels %.3f ms GPU, readback %.2f ms\n", g["border"],
                     median(borderGpu), median(readback));
         std::printf("  sample (apply pass, 512x512 G-buffer) %.2f ms wall, %.3f ms GPU\n", applyWall, applyGpu);
     }
 }
 
-int runBenchDdgi(const std::vector<std::string>& argv) {
-    Args args(argv, {"--probes", "--rays", "--frames", "--warmup", "--threads", "--set"}, {"--no-gl"}, {"--set"});
-    int threads = args.integer("--threads", 2, 1, 1024);
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-    std::vector<std::string> scenes = args.positional();
-    if (scenes.empty()) {
-        scenes.push_back("cornell-box");
-        const char* env = std::getenv("VOXGI_SCENES");
-        std::filesystem::path shared = env ? std::filesystem::path(env)
-                                           : std::filesystem::path(builtinScenePath("cornell-box")).parent_path().parent_path() /
-                                                 ".." / "shared" / "scenes";
-        std::string sibenik = (shared / "sibenik" / "sibenik.obj").string();
-        if (std::filesystem::exists(sibenik)) scenes.push_back(sibenik);
-        else std::printf("(sibenik not found at %s; skipped)\n", sibenik.c_str());
-    }
-    std::unique_ptr<gl::Context> context;
-    if (!args.flag("--no-gl")) {
-        try {
-            context = gl::Context::createHeadless();
-        } catch (const gl::GlError& e) {
-            std::printf("(no GL context: %s; GL stages skipped)\n", e.what());
-        }
-    }
-    std::printf("voxgi bench ddgi: %d threads\n", threads);
-    for (const std::string& s : scenes) benchScene(s, args, context.get());
-    return kOk;
-}
-
 }  // namespace
 
-VOXGI_REGISTER_BENCHMARK("ddgi", kUsage, runBenchDdgi);
+void runDdgiBench(const BenchRequest& request) {
+    std::printf("voxgi bench ddgi: %d threads\n", request.threads);
+    if (!request.gl) std::printf("(no GL context: GL stages skipped)\n");
+    for (const auto& [name, scene] : request.scenes) benchScene(name, scene, request);
+}
 
-}  // namespace voxgi::cli
+}  // namespace voxgi

@@ -1,0 +1,83 @@
+// The `ddgi` method as the tools see it: settings, plan, presets, views, stiff cases, benchmark.
+#include <sstream>
+
+#include "gi/ddgi/ddgi_bench.h"
+#include "gi/ddgi/ddgi_debug_views.h"
+#include "gi/ddgi/ddgi_technique.h"
+#include "gi/method.h"
+
+namespace voxgi {
+
+namespace {
+
+TechniquePlan ddgiPlan(const Scene& scene) {
+    const DdgiDesc d = readDdgiDesc(scene.gi);
+    int probes = 0;
+    for (const ProbeVolume& v : layoutVolumes(d, scene.bounds(), scene.camera.eye)) probes += v.probeCount();
+    TechniquePlan p;
+    p.update.push_back({"ddgi.trace", std::to_string(probes) + " probes x " + std::to_string(d.rays) + " rays (+" +
+                                          std::to_string(d.fixedRayCount()) + " fixed) with Embree"});
+    p.update.push_back({"ddgi.shade", std::string("emission, sky, direct light by ") +
+                                          (d.directLight == DdgiDirectLight::ShadowRays ? "shadow rays" : "occlusion probes") +
+                                          " and the previous field's irradiance at every hit"});
+    const std::string where = d.gpuBlend() ? "gl" : "cpu";
+    p.update.push_back({"ddgi.blend", "irradiance and distance atlases on " + where});
+    p.update.push_back({"ddgi.border", "atlas tile borders on " + where});
+    p.update.push_back({"ddgi.classify", std::string(d.relocate ? "relocate and " : "") + "classify the probes"});
+    p.apply.push_back({"ddgi.sample", "irradiance from the probe field at every pixel"});
+    if (d.classify)
+        p.notes.push_back("ddgi: sleeping probes trace all rays every " + std::to_string(d.sleepInterval) +
+                          " frames, off probes only their fixed rays");
+    return p;
+}
+
+SettingList quick(SettingList s) {
+    s.push_back({"ddgi.rays", "64"});
+    return s;
+}
+
+std::vector<StressCase> ddgiStressCases() {
+    StressCase walls;
+    walls.name = "probes-in-walls";
+    walls.description = "3x3x3 probes spaced half the box: 26 of 27 lie in the walls";
+    walls.frames = 8;
+    walls.settings = [](const Scene& scene) {
+        glm::vec3 h = 0.5f * scene.bounds().extent();
+        std::ostringstream spacing;
+        spacing << h.x << "," << h.y << "," << h.z;
+        return quick({{"ddgi.probes", "3,3,3"}, {"ddgi.spacing", spacing.str()}});
+    };
+    std::vector<StressCase> cases{walls};
+    for (const char* h : {"0", "1"}) {
+        StressCase c;
+        c.name = std::string("hysteresis-") + h;
+        c.description = std::string("Cornell box, ddgi.hysteresis = ") + h;
+        c.frames = 8;
+        c.settings = [h](const Scene&) { return quick({{"ddgi.hysteresis", h}}); };
+        cases.push_back(c);
+    }
+    return cases;
+}
+
+}  // namespace
+
+MethodInfo ddgiMethod() {
+    MethodInfo m;
+    m.name = "ddgi";
+    m.summary = "dynamic diffuse GI: probe fields traced with Embree, blended on the GPU (seed 004, RTXGI)";
+    m.section = "ddgi";
+    m.settings = ddgiSettings().info();
+    m.validate = [](const GiSettings& gi) { readDdgiDesc(gi); };
+    m.create = [](const Scene& s) { return std::make_unique<DdgiTechnique>(s); };
+    m.plan = ddgiPlan;
+    m.presets = {{"low", {{"ddgi.rays", "64"}, {"ddgi.probes", "4,4,4"}}},
+                 {"medium", {{"ddgi.rays", "128"}, {"ddgi.probes", "8,8,8"}}},
+                 {"high", {{"ddgi.rays", "256"}, {"ddgi.probes", "10,10,10"}}}};
+    m.debugViews = ddgiDebugViews();
+    m.stressCases = ddgiStressCases();
+    m.benchVariants = {{"gl", {{"ddgi.backend", "gl"}}}, {"cpu", {{"ddgi.backend", "cpu"}}}};
+    m.bench = runDdgiBench;
+    return m;
+}
+
+}  // namespace voxgi

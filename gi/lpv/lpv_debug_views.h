@@ -1,0 +1,29 @@
+// The LPV's debug views: the cascades' bounds, and one cascade's light volume as spheres painted
+// with each cell's 2-band SH (what flows out of it, bright where light leaves).
+#pragma once
+
+#include <vector>
+
+#include "gi/debug_view.h"
+#include "gi/lpv/cascades.h"
+
+namespace voxgi {
+
+constexpr const char* kCascadeBoundsView = "cascades";
+constexpr const char* kLpvCellsView = "lpv_cells";
+
+struct LpvCellsOptions {
+    int cascade = 0;
+    int stride = 2;  // every n-th cell per axis
+};
+const SettingsTable<LpvCellsOptions>& lpvCellsOptions();
+
+// The views lpv and clpv declare.
+std::vector<DebugViewInfo> lpvDebugViews();
+
+DebugDrawing cascadeBounds(const std::vector<CascadePlacement>& cascades);
+// A sphere at every `stride`-th cell (per axis, in world cell indices) holding light; the SH
+// scale maps the brightest cell's mean intensity to 1, times 2^exposureStops.
+DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposureStops);
+
+}  // namespace voxgi

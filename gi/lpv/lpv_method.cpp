@@ -1,0 +1,112 @@
+// The `lpv` and `clpv` methods as the tools see them: settings, plan, presets, views, stiff
+// cases and benchmark variants.
+#include <string>
+
+#include "gi/lpv/lpv_debug_views.h"
+#include "gi/lpv/lpv_desc.h"
+#include "gi/lpv/lpv_technique.h"
+#include "gi/lpv/rsm.h"
+#include "gi/method.h"
+
+namespace voxgi {
+
+namespace {
+
+std::string count(std::size_t n, const std::string& what) {
+    return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
+    const LpvDesc d = readLpvDesc(scene.gi, cascaded);
+    TechniquePlan p;
+    if (scene.lights.empty()) {
+        for (const char* pass : {"lpv.rsm", "lpv.inject", "lpv.blockers", "lpv.propagate", "lpv.apply"})
+            p.skipped.push_back({pass, "no lights: nothing to inject"});
+        return p;
+    }
+    const bool gl = d.backend == Backend::Gl;
+    const bool voxels = d.staticBlockers && scene.triangleCount() > 0;
+    const std::string volumes = count(std::size_t(d.cascades), "cascade") + " of " + std::to_string(d.resolution) + "^3";
+    if (gl)
+        p.updateIf(voxels, "lpv.static_blockers", "voxelized-scene blockers uploaded when a cascade moves",
+                   d.staticBlockers ? "no triangles" : "lpv.static_blockers=false");
+    p.update.push_back({"lpv.rsm", count(rsmFaceCount(scene), "reflective shadow map face") + " of " +
+                                       std::to_string(d.rsmSize) + "^2 for " + count(scene.lights.size(), "light")});
+    if (!gl)
+        p.updateIf(d.gbufferBlockerSize > 0, "lpv.gbuffer_readback",
+                   "camera blockers: the G-buffer read back on a " + std::to_string(d.gbufferBlockerSize) + " grid",
+                   "lpv.gbuffer_blocker_size=0");
+    p.update.push_back({"lpv.inject", "RSM surfels as virtual point lights into " + volumes});
+    std::string sources = "the RSMs";
+    if (d.gbufferBlockerSize > 0) sources += ", the G-buffer";
+    if (voxels) sources += ", the voxelized scene";
+    p.update.push_back({"lpv.blockers", "blockers from " + sources});
+    p.update.push_back({"lpv.propagate", std::to_string(d.steps) + " steps in " + volumes + " on " +
+                                             (gl ? "gl" : d.sparse ? "cpu (sparse)" : "cpu (dense)")});
+    if (!gl) p.update.push_back({"lpv.upload", "light volumes to 3D textures"});
+    p.apply.push_back({"lpv.apply", std::string("irradiance from the light volumes") +
+                                        (d.glossy && scene.hasGlossyOrRefractive() ? " and the glossy march" : "")});
+    if (d.reuse) p.notes.push_back("lpv update passes run again only when the lights, geometry or cascade placement change");
+    return p;
+}
+
+std::vector<StressCase> lpvStressCases() {
+    std::vector<StressCase> cases;
+    for (const char* albedo : {"0.99", "0.999"}) {
+        StressCase c;
+        c.name = std::string("box-albedo-") + albedo;
+        c.description = std::string("closed box, albedo ") + albedo + ", point light, 64 steps with bounces";
+        c.scene = StressCase::SceneKind::ClosedBox;
+        c.albedo = std::stof(albedo);
+        c.settings = [](const Scene&) { return SettingList{{"lpv.resolution", "16"}, {"lpv.steps", "64"}}; };
+        cases.push_back(c);
+    }
+    StressCase steps;
+    steps.name = "10000-steps";
+    steps.description = "closed box albedo 0.9, 8^3 cells, 10,000 CPU propagation steps against 2,000";
+    steps.scene = StressCase::SceneKind::ClosedBox;
+    steps.size = 16;
+    steps.settings = [](const Scene&) {
+        return SettingList{{"lpv.resolution", "8"}, {"lpv.backend", "cpu"}, {"lpv.steps", "10000"}};
+    };
+    steps.against = [](const Scene&) {
+        return SettingList{{"lpv.resolution", "8"}, {"lpv.backend", "cpu"}, {"lpv.steps", "2000"}};
+    };
+    steps.tolerance = 1e-3;
+    cases.push_back(steps);
+    return cases;
+}
+
+MethodInfo lpvFamily(bool cascaded) {
+    MethodInfo m;
+    m.name = cascaded ? "clpv" : "lpv";
+    m.summary = cascaded ? "cascaded light propagation volumes centred on the camera (seed 000)"
+                         : "one light propagation volume fitted to the scene (seed 000)";
+    m.section = "lpv";
+    m.settings = lpvSettings(cascaded).info(lpvDefaults(cascaded));
+    m.validate = [cascaded](const GiSettings& gi) { readLpvDesc(gi, cascaded); };
+    m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };
+    m.plan = [cascaded](const Scene& s) { return lpvPlan(s, cascaded); };
+    // lpv.reuse=false: an unchanged frame would skip its work and eval would time an empty frame.
+    const SettingList timed{{"lpv.reuse", "false"}};
+    auto preset = [&](const char* name, const char* resolution, const char* steps, const char* cascades) {
+        Preset p{name, {{"lpv.resolution", resolution}, {"lpv.steps", steps}}};
+        if (cascaded) p.settings.push_back({"lpv.cascades", cascades});
+        p.settings.insert(p.settings.end(), timed.begin(), timed.end());
+        return p;
+    };
+    m.presets = {preset("low", "16", "8", "2"), preset("medium", "32", "16", "3"), preset("high", "32", "32", "4")};
+    m.debugViews = lpvDebugViews();
+    if (!cascaded) m.stressCases = lpvStressCases();
+    m.benchVariants = {{"cpu-sparse", {{"lpv.backend", "cpu"}, {"lpv.sparse", "true"}, {"lpv.reuse", "false"}}},
+                       {"cpu-dense", {{"lpv.backend", "cpu"}, {"lpv.sparse", "false"}, {"lpv.reuse", "false"}}},
+                       {"gl", {{"lpv.backend", "gl"}, {"lpv.reuse", "false"}}}};
+    return m;
+}
+
+}  // namespace
+
+MethodInfo lpvMethod() { return lpvFamily(false); }
+MethodInfo clpvMethod() { return lpvFamily(true); }
+
+}  // namespace voxgi
