@@ -8,7 +8,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 voxgi="${VOXGI:-./build/tools/voxgi}"
 cache="${VOXGI_EVAL_CACHE:-out/eval-cache}"
-methods="${VOXGI_EVAL_METHODS:-direct,ambient,lpv,clpv,ddgi}"
+# Every built method unless VOXGI_EVAL_METHODS lists some (comma-separated).
+methods=()
+if [ -n "${VOXGI_EVAL_METHODS:-}" ]; then methods=(--methods "$VOXGI_EVAL_METHODS"); fi
 export EGL_PLATFORM="${EGL_PLATFORM:-surfaceless}"
 [ -x "$voxgi" ] || { echo "make-results: $voxgi not found; run ./scripts/build.sh first" >&2; exit 1; }
 mkdir -p "$cache"
@@ -22,7 +24,7 @@ mkdir -p "$out"
 # once per frame) in docs/results/, then Sibenik and Sponza, when their meshes are beside the
 # checkout, in one report at 128^2 (llvmpipe on 2 cores) with 512 spp and 4 warm-up + 8 frames in
 # docs/results/large-scenes/.
-"$voxgi" eval cornell-box --methods "$methods" --presets low,medium,high --width 256 --height 256 \
+"$voxgi" eval cornell-box "${methods[@]}" --presets low,medium,high --width 256 --height 256 \
   --spp 1024 --frames 40 --warmup 8 --cache "$cache" -o "$out"
 big=()
 for scene in sibenik sponza; do
@@ -34,7 +36,7 @@ for scene in sibenik sponza; do
   fi
 done
 if [ ${#big[@]} -gt 0 ]; then
-  "$voxgi" eval "${big[@]}" --methods "$methods" --presets low,medium,high --width 128 --height 128 \
+  "$voxgi" eval "${big[@]}" "${methods[@]}" --presets low,medium,high --width 128 --height 128 \
     --spp 512 --frames 12 --warmup 4 --cache "$cache" -o "$out/large-scenes"
 fi
 

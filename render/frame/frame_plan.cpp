@@ -67,8 +67,8 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
             break;
         }
     if (scene.hasGlossyOrRefractive())
-        plan.notes.push_back("glossy or refractive materials: the frame shades them with GGX from the lights; no "
-                             "ray-traced reflections or refraction (the hybrid method is not built)");
+        plan.notes.push_back("glossy or refractive materials: the frame shades them with GGX from the lights; "
+                             "reflections of the scene and refraction are not traced");
     return plan;
 }
 
