@@ -1,8 +1,5 @@
 #include "scenes/gi_settings.h"
 
-#include <cerrno>
-#include <cstdlib>
-
 #include "scenes/errors.h"
 
 namespace voxgi {
@@ -10,38 +7,6 @@ namespace voxgi {
 std::string GiSettings::getString(const std::string& key, const std::string& fallback) const {
     auto it = values_.find(key);
     return it == values_.end() ? fallback : it->second;
-}
-
-int GiSettings::getInt(const std::string& key, int fallback) const {
-    auto it = values_.find(key);
-    if (it == values_.end()) return fallback;
-    const char* s = it->second.c_str();
-    char* end = nullptr;
-    errno = 0;
-    long v = std::strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE || v < -2147483647L || v > 2147483647L)
-        throw InputError("gi." + key + ": expected an integer, got '" + it->second + "'");
-    return int(v);
-}
-
-float GiSettings::getFloat(const std::string& key, float fallback) const {
-    auto it = values_.find(key);
-    if (it == values_.end()) return fallback;
-    const char* s = it->second.c_str();
-    char* end = nullptr;
-    errno = 0;
-    float v = std::strtof(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE)
-        throw InputError("gi." + key + ": expected a number, got '" + it->second + "'");
-    return v;
-}
-
-bool GiSettings::getBool(const std::string& key, bool fallback) const {
-    auto it = values_.find(key);
-    if (it == values_.end()) return fallback;
-    if (it->second == "true" || it->second == "1" || it->second == "on") return true;
-    if (it->second == "false" || it->second == "0" || it->second == "off") return false;
-    throw InputError("gi." + key + ": expected true or false, got '" + it->second + "'");
 }
 
 void GiSettings::applyOverride(const std::string& assignment) {

@@ -1,6 +1,7 @@
 // The `gi` block of a scene: flat "section.key" -> value text, overridable from the command
-// line (`--set lpv.steps=16`). Each technique reads its own keys with defaults, and asks for the
-// keys it does not know so a typo is an error rather than a silent default.
+// line (`--set section.key=value`). Each method reads its own section through its settings table
+// (gi/settings_table.h), which parses and range-checks the values and refuses the keys it does
+// not declare, so a typo is an error rather than a silent default.
 #pragma once
 
 #include <map>
@@ -15,11 +16,7 @@ public:
     void set(const std::string& key, const std::string& value) { values_[key] = value; }
     bool has(const std::string& key) const { return values_.count(key) != 0; }
 
-    // Typed reads; a present value that does not parse raises InputError naming the key.
     std::string getString(const std::string& key, const std::string& fallback) const;
-    int getInt(const std::string& key, int fallback) const;
-    float getFloat(const std::string& key, float fallback) const;
-    bool getBool(const std::string& key, bool fallback) const;
 
     // Parses "section.key=value" (the `--set` syntax).
     void applyOverride(const std::string& assignment);
