@@ -47,7 +47,11 @@ struct DebugViewContext {
     const GiSettings& options;  // the view's options (defaults for keys not set)
 };
 
-// The colour of cascade i of `count` in every method's bounds view: finest orange to coarsest cyan.
+// The bounds of a method's volumes (light volumes, probe volumes), one view name and key for
+// every method that has volumes; `doc` says what the boxes are.
+constexpr const char* kCascadeBoundsView = "cascades";
+DebugViewInfo cascadeBoundsView(std::string doc);
+// The colour of cascade i of `count` in the bounds view: finest orange to coarsest cyan.
 glm::vec3 cascadeColor(int i, int count);
 
 }  // namespace voxgi

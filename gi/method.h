@@ -88,4 +88,13 @@ struct MethodInfo {
     const SettingInfo* setting(const std::string& key) const;
 };
 
+// Fills a method's section, settings and validate from its table (tables are static: the
+// reference stays valid).
+template <typename Desc>
+void declareSettings(MethodInfo& m, const SettingsTable<Desc>& table, const Desc& defaults = Desc{}) {
+    m.section = table.section();
+    m.settings = table.info(defaults);
+    m.validate = [&table, defaults](const GiSettings& gi) { table.read(gi, defaults); };
+}
+
 }  // namespace voxgi

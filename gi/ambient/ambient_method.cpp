@@ -12,9 +12,7 @@ MethodInfo ambientMethod() {
     MethodInfo m;
     m.name = "ambient";
     m.summary = "baseline: direct light plus a constant irradiance (eval fits it to the reference: an oracle)";
-    m.section = "ambient";
-    m.settings = ambientSettings().info();
-    m.validate = [](const GiSettings& gi) { ambientSettings().read(gi); };
+    declareSettings(m, ambientSettings());
     m.create = [](const Scene& s) { return createAmbientTechnique(ambientSettings().read(s.gi)); };
     m.plan = [](const Scene& s) {
         const glm::vec3 e = ambientSettings().read(s.gi).irradiance;

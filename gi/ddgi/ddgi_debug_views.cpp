@@ -18,18 +18,9 @@ const SettingsTable<ProbesOptions>& probesOptions() {
 }
 
 std::vector<DebugViewInfo> ddgiDebugViews() {
-    DebugViewInfo bounds;
-    bounds.name = kProbeBoundsView;
-    bounds.label = "cascade bounds";
-    bounds.key = 'C';
-    bounds.doc = "the box through each probe volume's probe grid, finest orange to coarsest cyan";
-    DebugViewInfo probes;
-    probes.name = kProbesView;
-    probes.label = "DDGI probes";
-    probes.key = 'O';
-    probes.doc = "every probe at its (relocated) position, radius 12 % of its volume's spacing";
-    probes.options = probesOptions().info();
-    return {bounds, probes};
+    return {cascadeBoundsView("the box through each probe volume's probe grid"),
+            {kProbesView, "DDGI probes", 'O', "every probe at its (relocated) position, radius 12 % of its volume's spacing",
+             probesOptions().info(), 1}};
 }
 
 DebugDrawing probeBounds(const ProbeField& field) {

@@ -9,7 +9,6 @@
 
 namespace voxgi {
 
-constexpr const char* kProbeBoundsView = "cascades";
 constexpr const char* kProbesView = "probes";
 
 enum class ProbeColor { Irradiance, State };

@@ -65,9 +65,7 @@ MethodInfo ddgiMethod() {
     MethodInfo m;
     m.name = "ddgi";
     m.summary = "dynamic diffuse GI: probe fields traced with Embree, blended on the GPU (seed 004, RTXGI)";
-    m.section = "ddgi";
-    m.settings = ddgiSettings().info();
-    m.validate = [](const GiSettings& gi) { readDdgiDesc(gi); };
+    declareSettings(m, ddgiSettings());
     m.create = [](const Scene& s) { return std::make_unique<DdgiTechnique>(s); };
     m.plan = ddgiPlan;
     m.presets = {{"low", {{"ddgi.rays", "64"}, {"ddgi.probes", "4,4,4"}}},

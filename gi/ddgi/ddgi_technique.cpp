@@ -47,7 +47,7 @@ void DdgiTechnique::applyIndirect(const FrameInput& input, const GBufferView& gb
 void DdgiTechnique::dumpVdb(const std::string& path) const { writeProbeVdb(system_->field(), path); }
 
 DebugDrawing DdgiTechnique::debugView(const std::string& view, const DebugViewContext& context) const {
-    if (view == kProbeBoundsView) return probeBounds(system_->field());
+    if (view == kCascadeBoundsView) return probeBounds(system_->field());
     if (view == kProbesView)
         return probeSpheres(system_->field(), probesOptions().read(context.options).color, context.exposureStops);
     return {};

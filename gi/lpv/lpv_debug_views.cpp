@@ -19,20 +19,12 @@ const SettingsTable<LpvCellsOptions>& lpvCellsOptions() {
 }
 
 std::vector<DebugViewInfo> lpvDebugViews() {
-    DebugViewInfo bounds;
-    bounds.name = kCascadeBoundsView;
-    bounds.label = "cascade bounds";
-    bounds.key = 'C';
-    bounds.doc = "the light volumes as placed for the current camera, finest orange to coarsest cyan";
-    DebugViewInfo cells;
-    cells.name = kLpvCellsView;
-    cells.label = "LPV cells";
-    cells.key = 'H';
-    cells.doc = "one sphere per stride-th cell of a cascade that holds light, painted with the cell's 2-band SH "
-                "toward each point's normal, the brightest cell's mean scaled to 1 before the exposure";
-    cells.options = lpvCellsOptions().info();
-    cells.refreshFrames = 8;  // a read-back of the whole volume from the GPU
-    return {bounds, cells};
+    return {cascadeBoundsView("the light volumes as placed for the current camera"),
+            // Refreshed every 8 frames: each drawing reads the whole volume back from the GPU.
+            {kLpvCellsView, "LPV cells", 'H',
+             "one sphere per stride-th cell of a cascade that holds light, painted with the cell's 2-band SH toward "
+             "each point's normal, the brightest cell's mean scaled to 1 before the exposure",
+             lpvCellsOptions().info(), 8}};
 }
 
 DebugDrawing cascadeBounds(const std::vector<CascadePlacement>& cascades) {

@@ -9,7 +9,6 @@
 
 namespace voxgi {
 
-constexpr const char* kCascadeBoundsView = "cascades";
 constexpr const char* kLpvCellsView = "lpv_cells";
 
 struct LpvCellsOptions {

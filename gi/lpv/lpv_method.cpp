@@ -82,9 +82,7 @@ MethodInfo lpvFamily(bool cascaded) {
     m.name = cascaded ? "clpv" : "lpv";
     m.summary = cascaded ? "cascaded light propagation volumes centred on the camera (seed 000)"
                          : "one light propagation volume fitted to the scene (seed 000)";
-    m.section = "lpv";
-    m.settings = lpvSettings(cascaded).info(lpvDefaults(cascaded));
-    m.validate = [cascaded](const GiSettings& gi) { readLpvDesc(gi, cascaded); };
+    declareSettings(m, lpvSettings(cascaded), lpvDefaults(cascaded));
     m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };
     m.plan = [cascaded](const Scene& s) { return lpvPlan(s, cascaded); };
     // lpv.reuse=false: an unchanged frame would skip its work and eval would time an empty frame.
