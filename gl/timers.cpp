@@ -1,6 +1,7 @@
 #include "gl/timers.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +12,8 @@ namespace voxgi::gl {
 Summary summarize(std::vector<double> v) {
     Summary s;
     if (v.empty()) return s;
+    v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+    if (v.empty()) return {std::nan(""), std::nan(""), std::nan("")};
     std::sort(v.begin(), v.end());
     s.min = v.front();
     s.max = v.back();
@@ -42,7 +45,7 @@ void StageTimers::begin(const std::string& stage) {
 void StageTimers::end() {
     glEndQuery(GL_TIME_ELAPSED);
     double cpu = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
-    pending_.push_back({current_, currentQuery_, cpu});
+    pending_.push_back({current_, currentQuery_, cpu, start_});
     current_.clear();
 }
 
@@ -59,8 +62,10 @@ void StageTimers::collect() {
     for (const Pending& p : pending_) {
         GLuint64 ns = 0;
         glGetQueryObjectui64v(p.query, GL_QUERY_RESULT, &ns);
+        const double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - p.begun).count();
+        const double gpuMs = double(ns) * 1e-6;
         FrameSum& f = gpuStages[p.stage];
-        f.gpuMs += double(ns) * 1e-6;
+        f.gpuMs += gpuMs <= wallMs ? gpuMs : std::nan("");
         f.cpuMs += p.cpuMs;
         freeQueries_.push_back(p.query);
     }

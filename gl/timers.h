@@ -13,6 +13,9 @@
 namespace voxgi::gl {
 
 struct StageSamples {
+    // NaN where the GPU time could not be right: longer than the wall time from the stage's
+    // begin to its read-back (llvmpipe returns its clock since boot for a query begun right
+    // after a compute dispatch).
     std::vector<double> gpuMs;
     std::vector<double> cpuMs;
 };
@@ -20,6 +23,7 @@ struct StageSamples {
 struct Summary {
     double min = 0, median = 0, max = 0;
 };
+// Over the finite values: zero without samples, NaN when no sample is finite.
 Summary summarize(std::vector<double> values);
 
 class StageTimers {
@@ -47,6 +51,7 @@ private:
         std::string stage;
         GLuint query;
         double cpuMs;
+        std::chrono::steady_clock::time_point begun;
     };
     std::vector<Pending> pending_;
     std::map<std::string, double> pendingCpu_;  // CPU-only stages of the frame

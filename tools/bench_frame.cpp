@@ -13,6 +13,7 @@
 
 #include "gi/methods.h"
 #include "gl/context.h"
+#include "gl/timers.h"
 #include "render/frame/frame_renderer.h"
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
@@ -38,11 +39,7 @@ std::vector<std::string> split(const std::string& s) {
     return out;
 }
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+double median(std::vector<double> v) { return gl::summarize(std::move(v)).median; }
 
 std::vector<double> from(const std::vector<double>& v, std::size_t first) {
     return first < v.size() ? std::vector<double>(v.begin() + std::ptrdiff_t(first), v.end()) : std::vector<double>{};
@@ -87,7 +84,7 @@ Row benchOne(const std::string& name, Scene scene, int size, const MethodInfo& m
     for (int f = 0; f < frames; ++f) {
         renderer.renderFrame();
         if (const GiTechnique* t = renderer.technique())
-            for (const TechniqueStat& st : t->stats()) stats[st.name + (st.unit.empty() ? "" : "_" + st.unit)].push_back(st.value);
+            for (const TechniqueStat& st : t->stats()) stats[st.unit == "ms" ? st.name + "_ms" : st.name].push_back(st.value);
     }
     Row row{name, variant.name, size, {}};
     for (const std::string& stage : renderer.timers().stageOrder()) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gi/pathtrace/path_tracer.h"
+#include "gl/timers.h"
 #include "render/frame/frame_renderer.h"
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
@@ -21,12 +22,7 @@ namespace voxgi::cli {
 namespace {
 using Clock = std::chrono::steady_clock;
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(std::vector<double> v) { return gl::summarize(std::move(v)).median; }
 
 std::vector<double> tailFrom(const std::vector<double>& v, std::size_t from) {
     return from < v.size() ? std::vector<double>(v.begin() + std::ptrdiff_t(from), v.end()) : std::vector<double>{};

@@ -21,6 +21,7 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gl/resources.h"
+#include "gl/timers.h"
 
 namespace voxgi {
 
@@ -29,11 +30,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+double median(std::vector<double> v) { return gl::summarize(std::move(v)).median; }
 
 // Medians of every stat of statList (ddgi_system.h) by name, over frames.
 struct StageMedians {
