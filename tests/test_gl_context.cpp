@@ -1,5 +1,7 @@
 // The headless EGL context on llvmpipe (or any driver): GL 4.5 core, compute shaders, timer
 // queries, shader includes and clear compile errors.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "gl/context.h"
@@ -66,4 +68,12 @@ TEST_F(GlContext, EveryShaderInTheTreeCompiles) {
     EXPECT_NO_THROW(gl::Program::graphics("frame/shadow.vert", "frame/shadow_depth.frag"));
     EXPECT_NO_THROW(gl::Program::graphics("frame/fullscreen.vert", "frame/direct_light.frag"));
     EXPECT_NO_THROW(gl::Program::graphics("frame/fullscreen.vert", "frame/emission.frag"));
+}
+
+// GPU samples that cannot be right are NaN; summaries skip them, and say NaN when none is left.
+TEST(StageTimerSummary, SkipsSamplesThatAreNotMeasurements) {
+    EXPECT_DOUBLE_EQ(gl::summarize({1.0, std::nan(""), 3.0}).median, 2.0);
+    EXPECT_DOUBLE_EQ(gl::summarize({1.0, std::nan(""), 3.0}).max, 3.0);
+    EXPECT_TRUE(std::isnan(gl::summarize({std::nan("")}).median));
+    EXPECT_EQ(gl::summarize({}).median, 0.0);
 }
