@@ -20,7 +20,7 @@ enum class SettingKind { Integer, Number, Flag, Choice, Triple };
 
 // One setting as the tools see it, whatever struct it fills.
 struct SettingInfo {
-    std::string key;                   // full key, "lpv.steps"
+    std::string key;                   // full key, "section.name"
     SettingKind kind = SettingKind::Number;
     double min = 0.0, max = 0.0;       // Integer, Number, Triple (each component); inclusive
     int step = 1;                      // Integer: the values are min + k * step

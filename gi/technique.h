@@ -37,7 +37,7 @@ struct FrameInput {
     const Scene& scene;
     const SceneGpu& sceneGpu;  // the scene's GL buffers (draw() rasterizes every triangle)
     int frameIndex = 0;        // 0 for the first frame after init
-    gl::StageTimers& timers;   // bracket each pass: timers.begin("lpv.propagate") ... end()
+    gl::StageTimers& timers;   // bracket each pass: timers.begin(pass) ... end()
     const TechniquePlan& plan; // the passes to run (their names are the timer stages)
 };
 

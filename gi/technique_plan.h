@@ -10,7 +10,7 @@
 namespace voxgi {
 
 struct PlannedPass {
-    std::string name;    // the timer stage, "lpv.propagate"
+    std::string name;    // the timer stage, "<section>.<pass>"
     std::string reason;  // why it runs (or, in `skipped`, why not)
 };
 

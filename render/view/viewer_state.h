@@ -26,7 +26,7 @@ struct PointerState {
 // A debug view that methods declare (gi/debug_view.h), as the viewer keeps it.
 struct MethodView {
     bool on = false;
-    GiSettings options;       // its option values ("lpv_cells.cascade"); the rest are defaults
+    GiSettings options;       // its option values ("<view>.<option>"); the rest are defaults
     DebugDrawing drawing;     // the technique's last drawing of it
     int drawnFrame = -1000;   // the frame it was drawn; far in the past forces a redraw
 };
