@@ -36,7 +36,7 @@ struct Light {
     std::string name;
     glm::vec3 position{0.0f};   // point, spot; quad: one corner
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot, directional: the way light travels
-    glm::vec3 color{1.0f};      // intensity, irradiance or radiance, per the type
+    glm::vec3 emission{1.0f};   // intensity (W/sr), irradiance (W/m^2) or radiance (W/(m^2 sr)), per the type
     float innerConeDegrees = 20.0f;  // spot: full intensity inside this half-angle
     float outerConeDegrees = 30.0f;  // spot: zero outside this half-angle
     glm::vec3 edgeU{0.0f};      // quad: corner + s*edgeU + t*edgeV, s,t in [0,1]

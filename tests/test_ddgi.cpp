@@ -155,7 +155,7 @@ TEST(Ddgi, ProbeExactlyOnASurface) {
     scene.meshes.push_back(makeQuad({glm::vec3(-1, 0, 1), glm::vec3(1, 0, 1), glm::vec3(1, 0, -1), glm::vec3(-1, 0, -1)}, 0));
     Light sun;
     sun.type = LightType::Directional;
-    sun.color = glm::vec3(3.0f);
+    sun.emission = glm::vec3(3.0f);
     scene.lights.push_back(sun);
     scene.sky.enabled = true;
     scene.sky.radiance = glm::vec3(0.5f);

@@ -221,16 +221,16 @@ TEST_F(LpvGlInjection, SunSpotAndPointLightsMatchCpuInjectionInBatches) {
     Light sun;
     sun.type = LightType::Directional;
     sun.direction = glm::normalize(glm::vec3(0.3f, -0.5f, 1.0f));
-    sun.color = glm::vec3(3.0f, 2.5f, 2.0f);
+    sun.emission = glm::vec3(3.0f, 2.5f, 2.0f);
     Light spot;
     spot.type = LightType::Spot;
     spot.position = glm::vec3(0.4f, 0.5f, 0.35f);
     spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.1f));
-    spot.color = glm::vec3(0.5f, 0.8f, 1.0f);
+    spot.emission = glm::vec3(0.5f, 0.8f, 1.0f);
     Light point;
     point.type = LightType::Point;
     point.position = glm::vec3(0.15f, 0.3f, 0.25f);
-    point.color = glm::vec3(0.2f, 0.1f, 0.05f);
+    point.emission = glm::vec3(0.2f, 0.1f, 0.05f);
     scene.lights = {sun, spot, point};
     expectGpuInjectionMatchesCpu(scene, 8, 3);
 }

@@ -63,7 +63,7 @@ TEST(Scene, ParsesEveryLightKindAndPrimitive) {
         "gi": {"method": "direct", "lpv": {"steps": 16, "glossy": true}})"),
                              "good.json");
     ASSERT_EQ(s.lights.size(), 4u);
-    EXPECT_EQ(s.lights[1].color, glm::vec3(1, 2, 3));
+    EXPECT_EQ(s.lights[1].emission, glm::vec3(1, 2, 3));
     EXPECT_NEAR(glm::length(s.lights[2].direction), 1.0f, 1e-6f);  // normalized
     EXPECT_TRUE(s.sky.enabled);
     // box 12 + sphere + quad 2 + triangle 1 + the quad light's own geometry 2

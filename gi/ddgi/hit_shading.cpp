@@ -59,7 +59,7 @@ struct PreparedLight {
     bool dark = false;  // no colour: never worth a shadow ray
 
     explicit PreparedLight(const Light& light)
-        : type(light.type), position(light.position), edgeU(light.edgeU), edgeV(light.edgeV), color(light.color) {
+        : type(light.type), position(light.position), edgeU(light.edgeU), edgeV(light.edgeV), color(light.emission) {
         if (type == LightType::Directional || type == LightType::Spot) direction = glm::normalize(light.direction);
         if (type == LightType::Spot) {
             cosOuter = std::cos(glm::radians(light.outerConeDegrees));
@@ -213,7 +213,7 @@ std::vector<float> lightFingerprint(const Scene& scene) {
     std::vector<float> f;
     for (const Light& l : scene.lights) {
         f.push_back(float(int(l.type)));
-        for (const glm::vec3& v : {l.position, l.direction, l.color, l.edgeU, l.edgeV})
+        for (const glm::vec3& v : {l.position, l.direction, l.emission, l.edgeU, l.edgeV})
             f.insert(f.end(), {v.x, v.y, v.z});
         f.insert(f.end(), {l.innerConeDegrees, l.outerConeDegrees});
     }

@@ -120,7 +120,7 @@ struct RsmRenderer::Impl {
         program.set("uLightPosition", v.origin);
         program.set("uLightForward", v.forward);
         program.set("uLightDirection", light.direction);
-        program.set("uLightColor", light.type == LightType::Quad ? light.color * light.area() : light.color);
+        program.set("uLightColor", light.type == LightType::Quad ? light.emission * light.area() : light.emission);
         program.set("uEmitterNormal", light.type == LightType::Quad ? light.quadNormal() : glm::vec3(0.0f));
         float outer = glm::radians(light.outerConeDegrees), inner = glm::radians(light.innerConeDegrees);
         program.set("uSpotCos", light.type == LightType::Spot ? glm::vec2(std::cos(outer), std::cos(inner))

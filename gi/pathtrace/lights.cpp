@@ -57,14 +57,14 @@ LightSample LightSampler::sampleDelta(std::size_t index, glm::vec3 p) const {
     if (l.type == LightType::Directional) {
         s.direction = -glm::normalize(l.direction);
         s.distance = std::numeric_limits<float>::infinity();
-        s.radiance = l.color;  // irradiance at normal incidence, W/m^2
+        s.radiance = l.emission;  // irradiance at normal incidence, W/m^2
         return s;
     }
     glm::vec3 toLight = l.position - p;
     float d2 = std::max(glm::dot(toLight, toLight), 1e-12f);
     s.distance = std::sqrt(d2);
     s.direction = toLight / s.distance;
-    glm::vec3 intensity = l.color;
+    glm::vec3 intensity = l.emission;
     if (l.type == LightType::Spot) {
         float c = glm::dot(-s.direction, glm::normalize(l.direction));
         intensity *= smoothstep(std::cos(glm::radians(l.outerConeDegrees)), std::cos(glm::radians(l.innerConeDegrees)), c);

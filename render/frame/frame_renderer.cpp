@@ -221,7 +221,7 @@ struct FrameRenderer::Impl {
         switch (light.type) {
             case LightType::Point:
                 renderCubeShadow(light.position);
-                drawLight(0, light.position, glm::vec3(0.0f), light.color, glm::vec3(0.0f), glm::vec2(0.0f),
+                drawLight(0, light.position, glm::vec3(0.0f), light.emission, glm::vec3(0.0f), glm::vec2(0.0f),
                           glm::mat4(1.0f), cubeTexel);
                 break;
             case LightType::Quad: {
@@ -231,7 +231,7 @@ struct FrameRenderer::Impl {
                 glm::vec3 n = light.quadNormal();
                 glm::vec3 p = light.position + uv.x * light.edgeU + uv.y * light.edgeV + n * (1e-4f * sceneRadius);
                 renderCubeShadow(p);
-                drawLight(0, p, glm::vec3(0.0f), light.color * light.area(), n, glm::vec2(0.0f), glm::mat4(1.0f),
+                drawLight(0, p, glm::vec3(0.0f), light.emission * light.area(), n, glm::vec2(0.0f), glm::mat4(1.0f),
                           cubeTexel);
                 break;
             }
@@ -243,7 +243,7 @@ struct FrameRenderer::Impl {
                                                   glm::length(light.position - sceneCenter) + 2.0f * sceneRadius);
                 glm::mat4 shadow = renderMapShadow(proj * view);
                 float texel = 2.0f * std::tan(outer + 0.025f) / float(options.shadowMapSize);
-                drawLight(1, light.position, light.direction, light.color, glm::vec3(0.0f),
+                drawLight(1, light.position, light.direction, light.emission, glm::vec3(0.0f),
                           glm::vec2(std::cos(outer), std::cos(glm::radians(light.innerConeDegrees))), shadow, texel);
                 break;
             }
@@ -252,7 +252,7 @@ struct FrameRenderer::Impl {
                 glm::mat4 view = glm::lookAt(eye, sceneCenter, anyPerpendicular(light.direction));
                 glm::mat4 proj = glm::ortho(-sceneRadius, sceneRadius, -sceneRadius, sceneRadius, 0.0f, 4.0f * sceneRadius);
                 glm::mat4 shadow = renderMapShadow(proj * view);
-                drawLight(2, glm::vec3(0.0f), light.direction, light.color, glm::vec3(0.0f), glm::vec2(0.0f), shadow,
+                drawLight(2, glm::vec3(0.0f), light.direction, light.emission, glm::vec3(0.0f), glm::vec2(0.0f), shadow,
                           2.0f * sceneRadius / float(options.shadowMapSize));
                 break;
             }
