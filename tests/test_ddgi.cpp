@@ -10,6 +10,7 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "scenes/errors.h"
+#include "shaders/shared/constants.h"
 #include "test_ddgi_scenes.h"
 
 using namespace voxgi;
@@ -18,7 +19,7 @@ namespace {
 
 using test::descFrom;
 
-constexpr float kPi = 3.14159265358979323846f;
+using shading::kPi;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 

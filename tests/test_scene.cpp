@@ -6,6 +6,7 @@
 #include "scenes/errors.h"
 #include "scenes/mesh_import.h"
 #include "scenes/scene_loader.h"
+#include "shaders/shared/constants.h"
 #include "support/test_support.h"
 
 using namespace voxgi;
@@ -42,7 +43,7 @@ TEST(Scene, BuiltinCornellBoxHasPublishedDimensions) {
     EXPECT_LT(s.lights[0].position.y, 0.5488f);              // under the ceiling
     // 5 walls + 2 blocks of 5 quads = 15 quads, plus the light quad: 32 triangles.
     EXPECT_EQ(s.triangleCount(), 32u);
-    EXPECT_NEAR(s.camera.fovYDegrees, 2.0 * std::atan(12.5 / 35.0) * 180.0 / 3.14159265358979, 1e-3);
+    EXPECT_NEAR(s.camera.fovYDegrees, 2.0 * std::atan(12.5 / 35.0) * 180.0 / shading::kPiDouble, 1e-3);
     EXPECT_EQ(s.gi.getString("method", ""), "clpv");
 }
 

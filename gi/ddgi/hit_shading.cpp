@@ -12,13 +12,11 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/sampling/sequences.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi {
 
 namespace {
-constexpr float kPi = 3.14159265358979323846f;
-constexpr float kInvPi = 1.0f / kPi;
-
 float smoothstep(float e0, float e1, float x) {
     if (e1 <= e0) return x >= e1 ? 1.0f : 0.0f;
     float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
@@ -410,7 +408,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                     ++cached;
                 }
                 for (int k = firstExact; k < int(prepared.size()); ++k) e += exact(k);
-                o = glm::vec4(trace.emission[s.emitter] + s.diffuseAlbedo() * kInvPi * e, s.distance);
+                o = glm::vec4(trace.emission[s.emitter] + s.diffuseAlbedo() * shading::kInvPi * e, s.distance);
             }
         }
         queries += count;

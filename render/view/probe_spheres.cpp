@@ -4,6 +4,7 @@
 #include "gi/ddgi/ddgi_technique.h"
 #include "render/view/sphere_set.h"
 #include "scenes/image.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi::view {
 
@@ -19,7 +20,7 @@ SphereSet ddgiProbeSpheres(GiTechnique* technique, ProbeColor color, float expos
         glm::vec3 c;
         if (color == ProbeColor::Irradiance) {
             // Radiance of a white diffuse surface lit by the probe's irradiance, as the frame shows it.
-            c = toneMapToSrgb(field.meanIrradiance(p) / 3.14159265f, exposureStops);
+            c = toneMapToSrgb(field.meanIrradiance(p) / shading::kPi, exposureStops);
         } else {
             static const glm::vec3 states[3] = {{0.2f, 0.9f, 0.2f}, {0.2f, 0.4f, 1.0f}, {0.9f, 0.15f, 0.1f}};
             c = states[std::clamp(int(field.probes[std::size_t(p)].state), 0, 2)];

@@ -2,7 +2,7 @@
 // Ambient baseline: every visible surface receives the same irradiance E from all directions,
 // so its indirect outgoing radiance is the diffuse albedo / pi times E (no occlusion, no
 // colour bleeding: the floor a GI method has to beat).
-#include "common/constants.glsl"
+#include "shared/constants.h"
 
 uniform sampler2D uPosition;
 uniform sampler2D uAlbedo;
@@ -17,5 +17,5 @@ void main() {
     vec4 am = texelFetch(uAlbedo, pixel, 0);
     float specular = texelFetch(uEmission, pixel, 0).w;
     vec3 diffuse = (1.0 - am.w) * (1.0 - specular) * am.rgb;
-    outColor = vec4(diffuse * INV_PI * uIrradiance, 1.0);
+    outColor = vec4(diffuse * kInvPi * uIrradiance, 1.0);
 }

@@ -1,7 +1,7 @@
 #version 450 core
 // Indirect outgoing radiance of every G-buffer pixel from the DDGI field:
 // (1 - metallic)(1 - specular) albedo / pi * E_indirect.
-#include "common/constants.glsl"
+#include "shared/constants.h"
 #include "ddgi/sampling.glsl"
 
 uniform sampler2D uPosition;
@@ -23,5 +23,5 @@ void main() {
     float len = length(toViewer);
     toViewer = len > 0.0 ? toViewer / len : n;
     vec3 e = ddgiSampleIrradiance(pos.xyz, n, toViewer);
-    outColor = vec4((1.0 - am.w) * (1.0 - specular) * am.rgb * INV_PI * e, 1.0);
+    outColor = vec4((1.0 - am.w) * (1.0 - specular) * am.rgb * kInvPi * e, 1.0);
 }

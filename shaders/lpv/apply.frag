@@ -4,7 +4,7 @@
 // blended finest-first with each cascade's border fade, times the diffuse albedo / pi.
 // Radiance of a cell is its intensity over the cell face area (the seed's A_s / A_c weight).
 #include "common/sh.glsl"
-#include "common/constants.glsl"
+#include "shared/constants.h"
 
 const int MAX_CASCADES = 6;
 
@@ -100,7 +100,7 @@ void main() {
         remaining -= w;
     }
     vec3 diffuse = (1.0 - am.w) * (1.0 - specular) * am.rgb;
-    vec3 color = diffuse * INV_PI * e;
+    vec3 color = diffuse * kInvPi * e;
     vec3 f0 = mix(vec3(specular), am.rgb, am.w);
     if (uGlossy != 0 && max(f0.r, max(f0.g, f0.b)) > 0.0 && nr.w < 0.6) {
         vec3 v = normalize(uEye - pos.xyz);
