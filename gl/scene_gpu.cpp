@@ -5,7 +5,7 @@
 #define STB_IMAGE_RESIZE_IMPLEMENTATION
 #include <stb/stb_image_resize.h>
 
-#include "gl/gpu_layout.h"
+#include "shaders/shared/material.h"
 
 namespace voxgi {
 
@@ -31,6 +31,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
     }
     triangles_ = triMaterials.size();
 
+    using shading::MaterialGpu;
     std::vector<MaterialGpu> materials;
     for (const Material& m : scene.materials)
         materials.push_back({glm::vec4(m.albedo, 1.0f), glm::vec4(m.emission, 0.0f), m.roughness, m.metallic,

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "shaders/shared/constants.h"
+#include "shaders/shared/material.h"
 
 namespace voxgi::pt {
 
@@ -60,7 +61,7 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
 
     transmission_ = std::clamp(m.transmission, 0.0f, 1.0f);
     opaqueWeight_ = 1.0f - transmission_;
-    diffuse_ = (1.0f - m.metallic) * (1.0f - m.specular) * albedo;
+    diffuse_ = shading::diffuseAlbedo(albedo, m.metallic, m.specular);
     f0_ = glm::mix(glm::vec3(m.specular), albedo, m.metallic);
     float r2 = m.roughness * m.roughness;
     alpha_ = std::max(r2, kSmoothAlpha);

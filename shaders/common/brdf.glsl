@@ -4,6 +4,7 @@
 #ifndef VOXGI_BRDF_GLSL
 #define VOXGI_BRDF_GLSL
 #include "shared/constants.h"
+#include "shared/material.h"
 
 struct Surface {
     vec3 albedo;
@@ -32,7 +33,7 @@ vec3 evalBrdf(Surface s, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
     float nv = dot(n, v);
     if (nl <= 0.0 || nv <= 0.0) return vec3(0.0);
-    vec3 diffuse = (1.0 - s.metallic) * (1.0 - s.specular) * s.albedo * kInvPi;
+    vec3 diffuse = diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi;
     vec3 f0 = mix(vec3(s.specular), s.albedo, s.metallic);
     if (max(f0.r, max(f0.g, f0.b)) <= 0.0) return diffuse;
     vec3 h = normalize(v + l);
