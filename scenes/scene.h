@@ -27,10 +27,11 @@ struct Camera {
     float aspect() const { return float(width) / float(height); }
 };
 
+// The values of the kinds in shaders/shared/light_model.h (static_assert in scenes/light_model.cpp).
 enum class LightType { Point, Spot, Directional, Quad };
 
-// Units: point and spot carry intensity in W/sr, directional (sun) irradiance in W/m^2 at
-// normal incidence, quad lights radiance in W/(m^2 sr) leaving the front face only.
+// The light model (how each type reaches a point, and the unit of its emission) is
+// shaders/shared/light_model.h; evaluators read lights through shading::packLight.
 struct Light {
     LightType type = LightType::Point;
     std::string name;

@@ -134,7 +134,7 @@ struct LpvTechnique::Impl {
 
         auto t0 = std::chrono::steady_clock::now();
         std::vector<SurfelSource> sources;
-        for (const Light& light : scene.lights) {
+        for (std::size_t light = 0; light < scene.lights.size(); ++light) {
             auto faces = rsm.render(scene, input.sceneGpu, light);
             for (auto& f : faces) sources.push_back(std::move(f));
         }
