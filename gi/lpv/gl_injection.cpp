@@ -180,7 +180,8 @@ void GlInjector::injectBlockers(const GBufferView& g, const GBufferSampling& sam
     p.set("uEye", g.eye);
     p.set("uForward", sampling.forward);
     p.set("uPixel", sampling.pixel);
-    Impl::bindTextures(p, {{"uPosition", g.position}, {"uNormal", g.normal}, {"uAlbedo", g.albedo}});
+    Impl::bindTextures(
+        p, {{"uPosition", g.position}, {"uNormal", g.normal}, {"uAlbedo", g.albedo}, {"uEmission", g.emission}});
     m.drawPoints(p, m.scratchFbo.id(), m.n + 1, sampling.count(), true);
     m.mergeInto(m.scratch.blocker(), m.scratch.albedo(), t);
 }
