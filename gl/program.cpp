@@ -21,6 +21,13 @@ std::string shaderRoot() {
 
 namespace {
 
+// The root-relative path of `include` named in `includer`: beside the includer when such a file
+// exists (the shared headers include each other by bare name, as C++ does), else from the root.
+std::string resolveInclude(const std::string& includer, const std::string& include) {
+    const std::string beside = (fs::path(includer).parent_path() / include).lexically_normal().generic_string();
+    return fs::is_regular_file(fs::path(shaderRoot()) / beside) ? beside : include;
+}
+
 // Source-string numbers for #line: 0 is the main file, includes count up from 1.
 void expand(const std::string& relative, std::set<std::string>& seen, std::vector<std::string>& files,
             std::ostringstream& out, int depth) {
@@ -35,10 +42,11 @@ void expand(const std::string& relative, std::set<std::string>& seen, std::vecto
     while (std::getline(in, line)) {
         ++lineNo;
         auto first = line.find_first_not_of(" \t");
-        if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
+        if (first != std::string::npos && line.compare(first, 8, "#include") == 0 &&
+            line.find('<', first) == std::string::npos) {
             auto a = line.find('"', first), b = line.rfind('"');
             if (a == std::string::npos || b <= a) throw GlError(relative + ":" + std::to_string(lineNo) + ": bad #include");
-            std::string inc = line.substr(a + 1, b - a - 1);
+            std::string inc = resolveInclude(relative, line.substr(a + 1, b - a - 1));
             if (seen.insert(inc).second) expand(inc, seen, files, out, depth + 1);
             out << "#line " << lineNo + 1 << " " << fileIndex << "\n";
             continue;

@@ -1,5 +1,8 @@
-// GLSL programs built from files under shaders/, with `#include "path"` resolved against the
-// shader root (each file once) and `#line` kept right so compile errors name the real file.
+// GLSL programs built from files under shaders/, with `#include "path"` resolved like C's
+// quoted includes (beside the including file first, then against the shader root; each file
+// once) and `#line` kept right so compile errors name the real file. `#include <...>` lines are
+// left to the GLSL preprocessor: only the C++ side of a shaders/shared/ header has them, inside
+// `#ifdef __cplusplus`.
 #pragma once
 
 #include <string>

@@ -1,11 +1,13 @@
 #include "gl/scene_gpu.h"
 
+#include <algorithm>
+#include <cstring>
 #include <vector>
 
 #define STB_IMAGE_RESIZE_IMPLEMENTATION
 #include <stb/stb_image_resize.h>
 
-#include "gl/gpu_layout.h"
+#include "shaders/shared/material.h"
 
 namespace voxgi {
 
@@ -31,6 +33,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
     }
     triangles_ = triMaterials.size();
 
+    using shading::MaterialGpu;
     std::vector<MaterialGpu> materials;
     for (const Material& m : scene.materials)
         materials.push_back({glm::vec4(m.albedo, 1.0f), glm::vec4(m.emission, 0.0f), m.roughness, m.metallic,
@@ -77,6 +80,22 @@ void SceneGpu::bind(GLuint textureUnit) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, materials_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, triangleMaterials_.id());
     glBindTextureUnit(textureUnit, textures_.id());
+}
+
+void SceneGpu::bindLights(const std::vector<Light>& lights) const {
+    std::vector<shading::PackedLight> packed;
+    for (const Light& l : lights) packed.push_back(shading::packLight(l));
+    const std::size_t bytes = packed.size() * sizeof(shading::PackedLight);
+    const bool same = lights_ && packed.size() == packedLights_.size() &&
+                      std::memcmp(packed.data(), packedLights_.data(), bytes) == 0;
+    if (!same) {
+        // GL buffers cannot be empty: a scene without lights binds room for one, never read.
+        if (!lights_ || packed.size() != packedLights_.size())
+            lights_ = gl::createBuffer(std::max<std::size_t>(bytes, sizeof(shading::PackedLight)));
+        if (bytes > 0) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(bytes), packed.data());
+        packedLights_ = std::move(packed);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights_.id());
 }
 
 void SceneGpu::draw() const {

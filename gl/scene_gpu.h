@@ -1,9 +1,14 @@
 // The scene uploaded for rasterization: one vertex buffer of world-space triangles, the
-// per-triangle material ids, the material table and a texture array of albedo maps.
+// per-triangle material ids, the material table, a texture array of albedo maps and the lights.
+// Buffer layouts: shaders/shared/material.h and light_model.h; bindings as declared in
+// shaders/common/scene_data.glsl.
 #pragma once
+
+#include <vector>
 
 #include "gl/resources.h"
 #include "scenes/scene.h"
+#include "shaders/shared/light_model.h"
 
 namespace voxgi {
 
@@ -13,6 +18,9 @@ public:
 
     // Binds materials (SSBO 0), triangle materials (SSBO 1) and the texture array.
     void bind(GLuint textureUnit) const;
+    // Binds `lights` packed (SSBO 2), uploading them first when they differ from the last
+    // upload: the viewer moves the scene's lights between frames.
+    void bindLights(const std::vector<Light>& lights) const;
     // Draws every triangle in one call (so gl_PrimitiveID is the global triangle index).
     void draw() const;
 
@@ -22,6 +30,9 @@ public:
 private:
     gl::Handle vao_, vertices_, indices_, materials_, triangleMaterials_, textures_;
     std::size_t triangles_ = 0;
+    // What bindLights last uploaded, and its buffer (a cache of GL state, hence mutable).
+    mutable std::vector<shading::PackedLight> packedLights_;
+    mutable gl::Handle lights_;
 };
 
 }  // namespace voxgi

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "shaders/shared/constants.h"
+
 namespace voxgi {
 
 namespace {
@@ -66,11 +68,10 @@ Mesh makeSphere(const glm::mat4& transform, std::uint32_t material, int segments
     segments = segments < 4 ? 4 : segments;
     const int rings = segments / 2;
     glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
-    const float pi = 3.14159265358979f;
     for (int r = 0; r <= rings; ++r) {
-        float theta = pi * float(r) / float(rings);
+        float theta = shading::kPi * float(r) / float(rings);
         for (int s = 0; s <= segments; ++s) {
-            float phi = 2.0f * pi * float(s) / float(segments);
+            float phi = 2.0f * shading::kPi * float(s) / float(segments);
             glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta),
                         std::sin(theta) * std::sin(phi));
             m.positions.push_back(glm::vec3(transform * glm::vec4(p, 1.0f)));

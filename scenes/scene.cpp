@@ -104,7 +104,7 @@ void Scene::addQuadLightGeometry() {
         Material emitter;
         emitter.name = meshName;
         emitter.albedo = glm::vec3(0.0f);
-        emitter.emission = l.color;
+        emitter.emission = l.emission;
         materials.push_back(emitter);
         std::uint32_t id = std::uint32_t(materials.size() - 1);
         Mesh quad = makeQuad({l.position, l.position + l.edgeU, l.position + l.edgeU + l.edgeV,

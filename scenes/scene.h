@@ -27,16 +27,17 @@ struct Camera {
     float aspect() const { return float(width) / float(height); }
 };
 
+// The values of the kinds in shaders/shared/light_model.h (static_assert in scenes/light_model.cpp).
 enum class LightType { Point, Spot, Directional, Quad };
 
-// Units: point and spot carry intensity in W/sr, directional (sun) irradiance in W/m^2 at
-// normal incidence, quad lights radiance in W/(m^2 sr) leaving the front face only.
+// The light model (how each type reaches a point, and the unit of its emission) is
+// shaders/shared/light_model.h; evaluators read lights through shading::packLight.
 struct Light {
     LightType type = LightType::Point;
     std::string name;
     glm::vec3 position{0.0f};   // point, spot; quad: one corner
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot, directional: the way light travels
-    glm::vec3 color{1.0f};      // intensity, irradiance or radiance, per the type
+    glm::vec3 emission{1.0f};   // intensity (W/sr), irradiance (W/m^2) or radiance (W/(m^2 sr)), per the type
     float innerConeDegrees = 20.0f;  // spot: full intensity inside this half-angle
     float outerConeDegrees = 30.0f;  // spot: zero outside this half-angle
     glm::vec3 edgeU{0.0f};      // quad: corner + s*edgeU + t*edgeV, s,t in [0,1]

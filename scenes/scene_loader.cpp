@@ -189,13 +189,13 @@ Light readLight(const Reader& r) {
         r.requireObject({"type", "name", "position", "intensity"});
         l.type = LightType::Point;
         l.position = r.requiredVec3("position");
-        l.color = r.color("intensity", glm::vec3(1.0f));
+        l.emission = r.color("intensity", glm::vec3(1.0f));
     } else if (type == "spot") {
         r.requireObject({"type", "name", "position", "direction", "intensity", "inner_angle", "outer_angle"});
         l.type = LightType::Spot;
         l.position = r.requiredVec3("position");
         l.direction = r.requiredVec3("direction");
-        l.color = r.color("intensity", glm::vec3(1.0f));
+        l.emission = r.color("intensity", glm::vec3(1.0f));
         l.innerConeDegrees = r.number("inner_angle", l.innerConeDegrees);
         l.outerConeDegrees = r.number("outer_angle", l.outerConeDegrees);
         if (!(l.outerConeDegrees > 0.0f && l.outerConeDegrees < 90.0f)) r.child("outer_angle").fail("must be in (0, 90) degrees");
@@ -205,14 +205,14 @@ Light readLight(const Reader& r) {
         r.requireObject({"type", "name", "direction", "irradiance"});
         l.type = LightType::Directional;
         l.direction = r.requiredVec3("direction");
-        l.color = r.color("irradiance", glm::vec3(1.0f));
+        l.emission = r.color("irradiance", glm::vec3(1.0f));
     } else if (type == "quad") {
         r.requireObject({"type", "name", "corner", "edge_u", "edge_v", "radiance"});
         l.type = LightType::Quad;
         l.position = r.requiredVec3("corner");
         l.edgeU = r.requiredVec3("edge_u");
         l.edgeV = r.requiredVec3("edge_v");
-        l.color = r.color("radiance", glm::vec3(1.0f));
+        l.emission = r.color("radiance", glm::vec3(1.0f));
         if (l.area() <= 0.0f) r.child("edge_v").fail("quad light has zero area");
     } else {
         r.child("type").fail("expected one of: point, spot, directional, quad");
@@ -402,7 +402,7 @@ Scene sceneFromMeshFile(const std::string& path) {
     sun.type = LightType::Directional;
     sun.name = "sun";
     sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
-    sun.color = glm::vec3(3.0f);
+    sun.emission = glm::vec3(3.0f);
     scene.lights.push_back(sun);
     scene.sky.enabled = true;
     scene.sky.radiance = glm::vec3(0.2f, 0.25f, 0.35f);

@@ -10,6 +10,7 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "scenes/errors.h"
+#include "shaders/shared/constants.h"
 #include "test_ddgi_scenes.h"
 
 using namespace voxgi;
@@ -18,7 +19,7 @@ namespace {
 
 using test::descFrom;
 
-constexpr float kPi = 3.14159265358979323846f;
+using shading::kPi;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -155,7 +156,7 @@ TEST(Ddgi, ProbeExactlyOnASurface) {
     scene.meshes.push_back(makeQuad({glm::vec3(-1, 0, 1), glm::vec3(1, 0, 1), glm::vec3(1, 0, -1), glm::vec3(-1, 0, -1)}, 0));
     Light sun;
     sun.type = LightType::Directional;
-    sun.color = glm::vec3(3.0f);
+    sun.emission = glm::vec3(3.0f);
     scene.lights.push_back(sun);
     scene.sky.enabled = true;
     scene.sky.radiance = glm::vec3(0.5f);

@@ -12,6 +12,7 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gl/context.h"
+#include "shaders/shared/constants.h"
 #include "support/test_support.h"
 #include "test_ddgi_scenes.h"
 
@@ -116,7 +117,7 @@ TEST_F(DdgiGl, ApplyMatchesCpuSamplingWithCascadesAndScrolling) {
         glm::vec3 p(pos[i]), n(nrm[i]);
         glm::vec3 v = glm::normalize(eye - p);
         glm::vec3 e = sampleIrradiance(field, p, n, v);
-        glm::vec3 expected = (1.0f - alb[i].w) * (1.0f - emi[i].w) * glm::vec3(alb[i]) / 3.14159265f * e;
+        glm::vec3 expected = (1.0f - alb[i].w) * (1.0f - emi[i].w) * glm::vec3(alb[i]) / shading::kPi * e;
         for (int c = 0; c < 3; ++c) {
             float got = result[std::size_t(i) * 4 + std::size_t(c)];
             worst = std::max(worst, std::abs(got - expected[c]) / (1e-4f + std::abs(expected[c])));

@@ -272,7 +272,7 @@ TEST(DdgiHitCache, ChangedLightsReevaluateEveryCell) {
     for (int f = 0; f < 4; ++f) ddgi.update(glm::vec3(0.0f));
     DdgiFrameStats steady = ddgi.update(glm::vec3(0.0f));
     EXPECT_LT(steady.cacheGroupsEvaluated, steady.cacheGroups * 3 / 4);
-    scene.lights[0].color *= 0.5f;
+    scene.lights[0].emission *= 0.5f;
     DdgiFrameStats changed = ddgi.update(glm::vec3(0.0f));
     EXPECT_GT(changed.cacheGroups, 100);
     EXPECT_EQ(changed.cacheGroupsEvaluated, changed.cacheGroups);

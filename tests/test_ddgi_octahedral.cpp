@@ -4,6 +4,7 @@
 #include "gi/ddgi/probe_field.h"
 #include "gi/octahedral/octahedral.h"
 #include "gi/sampling/sequences.h"
+#include "shaders/shared/constants.h"
 
 using namespace voxgi;
 
@@ -24,7 +25,7 @@ TEST(Octahedral, BorderTexelsContinueTheSphere) {
     for (int n : {2, 8, 16}) {
         // A border texel sits half a texel outside the edge; the texel it copies must be the
         // interior texel nearest to that outside point on the sphere.
-        float texelAngle = 3.14159265f / float(n);
+        float texelAngle = shading::kPi / float(n);
         for (int y = 0; y < n + 2; ++y)
             for (int x = 0; x < n + 2; ++x) {
                 glm::ivec2 s = oct::borderSource(x, y, n);

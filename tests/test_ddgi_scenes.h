@@ -45,7 +45,7 @@ inline Scene twoRooms(float wallThickness = 0.02f) {
     Light light;
     light.type = LightType::Point;
     light.position = glm::vec3(-1.0f, 0.2f, 0.0f);
-    light.color = glm::vec3(2.0f);
+    light.emission = glm::vec3(2.0f);
     s.lights.push_back(light);
     s.camera.eye = glm::vec3(-1.5f, 0.0f, 0.0f);
     return s;
@@ -64,7 +64,7 @@ inline Scene openYard() {
     Light light;
     light.type = LightType::Point;
     light.position = glm::vec3(0.0f, 2.5f, 0.0f);
-    light.color = glm::vec3(5.0f);
+    light.emission = glm::vec3(5.0f);
     s.lights.push_back(light);
     s.sky.enabled = true;
     s.sky.radiance = glm::vec3(0.05f, 0.07f, 0.1f);

@@ -41,7 +41,7 @@ Light pointLight() {
     Light l;
     l.type = LightType::Point;
     l.position = glm::vec3(0.2f, 0.6f, 0.3f);
-    l.color = glm::vec3(1.0f);
+    l.emission = glm::vec3(1.0f);
     return l;
 }
 
@@ -50,7 +50,7 @@ Light sunAndSpot(LightType type) {
     l.type = type;
     l.position = glm::vec3(0.0f, 0.8f, 0.0f);
     l.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
-    l.color = glm::vec3(2.0f);
+    l.emission = glm::vec3(2.0f);
     return l;
 }
 

@@ -8,6 +8,7 @@
 #include "gl/program.h"
 #include "gl/resources.h"
 #include "gl/timers.h"
+#include "shaders/shared/constants.h"
 
 using namespace voxgi;
 
@@ -45,7 +46,7 @@ TEST_F(GlContext, ComputeShaderWithIncludeWritesBuffer) {
     timers.collect();
     std::vector<float> out(64);
     glGetNamedBufferSubData(buffer.id(), 0, 64 * sizeof(float), out.data());
-    for (int i = 0; i < 64; ++i) ASSERT_FLOAT_EQ(out[std::size_t(i)], 3.0f * float(i) * 3.14159265358979f);
+    for (int i = 0; i < 64; ++i) ASSERT_FLOAT_EQ(out[std::size_t(i)], 3.0f * float(i) * shading::kPi);
     ASSERT_EQ(timers.samples().at("fill").gpuMs.size(), 1u);
     EXPECT_GE(timers.samples().at("fill").gpuMs[0], 0.0);
     EXPECT_NE(timers.toJson().find("\"fill\""), std::string::npos);

@@ -68,10 +68,10 @@ std::size_t expectSameVolume(const std::vector<glm::vec4>& want, const std::vect
 }
 
 // A G-buffer of synthetic samples (positions on and off the cell-corner half-way planes of the
-// finest cascade, random normals, metallic albedos, misses), uploaded in the frame renderer's
-// formats.
+// finest cascade, random normals, metallic and specular albedos, misses), uploaded in the frame
+// renderer's formats.
 struct SyntheticGBuffer {
-    gl::Handle position, normal, albedo;
+    gl::Handle position, normal, albedo, emission;
     GBufferView view;
 
     SyntheticGBuffer(const Scene& scene, const CascadeGrid& finest, int width, int height) {
@@ -79,7 +79,7 @@ struct SyntheticGBuffer {
         std::uniform_real_distribution<float> u(0.0f, 1.0f);
         std::normal_distribution<float> g(0.0f, 1.0f);
         const Bounds b = scene.bounds();
-        std::vector<glm::vec4> pos(std::size_t(width * height)), nrm(pos.size()), alb(pos.size());
+        std::vector<glm::vec4> pos(std::size_t(width * height)), nrm(pos.size()), alb(pos.size()), emi(pos.size());
         for (std::size_t i = 0; i < pos.size(); ++i) {
             glm::vec3 p = b.min + glm::vec3(u(rng), u(rng), u(rng)) * b.extent();
             // A third of the samples sit exactly half-way between geometry samples, where the
@@ -88,16 +88,20 @@ struct SyntheticGBuffer {
             pos[i] = glm::vec4(p, u(rng) < 0.9f ? 1.0f : 0.0f);
             nrm[i] = glm::vec4(glm::vec3(g(rng), g(rng), g(rng)) * 0.7f, 0.5f);  // unnormalized on purpose
             alb[i] = glm::vec4(u(rng), u(rng), u(rng), u(rng) < 0.5f ? 0.0f : u(rng));
+            emi[i] = glm::vec4(0.0f, 0.0f, 0.0f, u(rng) < 0.5f ? 0.0f : u(rng));  // w = specular
         }
         position = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
         normal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
         albedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+        emission = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
         glTextureSubImage2D(position.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, pos.data());
         glTextureSubImage2D(normal.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, nrm.data());
         glTextureSubImage2D(albedo.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, alb.data());
+        glTextureSubImage2D(emission.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, emi.data());
         view.position = position.id();
         view.normal = normal.id();
         view.albedo = albedo.id();
+        view.emission = emission.id();
         view.width = width;
         view.height = height;
         view.eye = scene.camera.eye;
@@ -221,16 +225,16 @@ TEST_F(LpvGlInjection, SunSpotAndPointLightsMatchCpuInjectionInBatches) {
     Light sun;
     sun.type = LightType::Directional;
     sun.direction = glm::normalize(glm::vec3(0.3f, -0.5f, 1.0f));
-    sun.color = glm::vec3(3.0f, 2.5f, 2.0f);
+    sun.emission = glm::vec3(3.0f, 2.5f, 2.0f);
     Light spot;
     spot.type = LightType::Spot;
     spot.position = glm::vec3(0.4f, 0.5f, 0.35f);
     spot.direction = glm::normalize(glm::vec3(-0.2f, -1.0f, 0.1f));
-    spot.color = glm::vec3(0.5f, 0.8f, 1.0f);
+    spot.emission = glm::vec3(0.5f, 0.8f, 1.0f);
     Light point;
     point.type = LightType::Point;
     point.position = glm::vec3(0.15f, 0.3f, 0.25f);
-    point.color = glm::vec3(0.2f, 0.1f, 0.05f);
+    point.emission = glm::vec3(0.2f, 0.1f, 0.05f);
     scene.lights = {sun, spot, point};
     expectGpuInjectionMatchesCpu(scene, 8, 3);
 }

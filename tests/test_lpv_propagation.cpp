@@ -9,6 +9,7 @@
 #include "gi/lpv/injection.h"
 #include "gi/lpv/propagation.h"
 #include "gi/sh/sh.h"
+#include "shaders/shared/constants.h"
 
 using namespace voxgi;
 
@@ -57,7 +58,7 @@ TEST(LpvPropagation, FaceSolidAnglesAreDerivedExactly) {
     for (const auto& faces : t.faces) {
         double sum = 0.0;
         for (const auto& f : faces) sum += f.solidAngle;
-        EXPECT_NEAR(sum, 2.0 * 3.14159265358979 / 3.0, 1e-6);
+        EXPECT_NEAR(sum, 2.0 * shading::kPiDouble / 3.0, 1e-6);
     }
 }
 

@@ -15,13 +15,13 @@
 #include "gi/pathtrace/path_tracer.h"
 #include "scenes/primitives.h"
 #include "scenes/scene_loader.h"
+#include "shaders/shared/constants.h"
 #include "support/test_support.h"
 
 using namespace voxgi;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 struct Estimate {
     double mean = 0.0;
@@ -119,7 +119,7 @@ TEST(PathTracer, PointLightOverPlaneIsIntensityCosineOverDistanceSquared) {
     glm::vec3 eye(0.3f, 3.0f, 0.2f);
     for (glm::vec3 p : {glm::vec3(0, 0, 0), glm::vec3(0.5f, 0, 0.3f), glm::vec3(-0.8f, 0, -0.6f), glm::vec3(2, 0, 1)}) {
         float r2 = 1.0f + p.x * p.x + p.z * p.z;
-        float expected = 0.5f / float(kPi) * 10.0f * (1.0f / std::sqrt(r2)) / r2;  // rho/pi * I cos / r^2
+        float expected = 0.5f / shading::kPi * 10.0f * (1.0f / std::sqrt(r2)) / r2;  // rho/pi * I cos / r^2
         PathSample sample = tracer.trace(eye, p - eye, 7);
         EXPECT_NEAR(sample.beauty().g, expected, 1e-4f * expected) << p.x << "," << p.z;
         EXPECT_NEAR(sample.depth, glm::length(p - eye), 1e-4f);
@@ -146,7 +146,7 @@ TEST(PathTracer, SpotConeFalloffAndSun) {
         float t = std::clamp((cosA - c0) / (c1 - c0), 0.0f, 1.0f);
         float falloff = t * t * (3.0f - 2.0f * t);
         float r2 = 1.0f + x * x;
-        float expected = float(1.0 / kPi) * 20.0f * falloff * cosA / r2;
+        float expected = shading::kInvPi * 20.0f * falloff * cosA / r2;
         PathSample sample = tracer.trace({0.0f, 2.0f, 0.5f}, glm::vec3(x, 0, 0) - glm::vec3(0.0f, 2.0f, 0.5f), 3);
         EXPECT_NEAR(sample.beauty().r, expected, 1e-4f * expected + 1e-7f) << angle;
     }
@@ -159,7 +159,7 @@ TEST(PathTracer, SpotConeFalloffAndSun) {
                                "sun.json");
     PathTracer sunTracer(sun, o);
     glm::vec3 eye(0.0f, 4.0f, 0.001f);
-    EXPECT_NEAR(sunTracer.trace(eye, glm::vec3(1.2f, 0, 1.2f) - eye, 1).beauty().r, 2.0f * 0.5f / float(kPi), 1e-4f);
+    EXPECT_NEAR(sunTracer.trace(eye, glm::vec3(1.2f, 0, 1.2f) - eye, 1).beauty().r, 2.0f * 0.5f / shading::kPi, 1e-4f);
     glm::vec3 shadow(0.5f / std::tan(0.5235988f), 0.0f, 0.0f);
     EXPECT_EQ(sunTracer.trace(eye, shadow - eye, 1).beauty().r, 0.0f);
 }
@@ -171,7 +171,7 @@ TEST(PathTracer, SquareLightFormFactor) {
     auto corner = [](double a, double b) {
         double x = a, y = b;
         return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
-                y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2.0 * kPi);
+                y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2.0 * shading::kPiDouble);
     };
     double F = 4.0 * corner(half / h, half / h);
     Scene s = parseSceneJson(R"({

@@ -7,6 +7,7 @@
 #include "render/frame/frame_renderer.h"
 #include "gl/context.h"
 #include "scenes/scene_loader.h"
+#include "shaders/shared/constants.h"
 #include "support/test_support.h"
 
 using namespace voxgi;
@@ -86,7 +87,7 @@ TEST_F(DirectRender, PointLightOverPlaneMatchesInverseSquareCosine) {
         glm::ivec2 px = project(s, p);
         float r2 = 1.0f + p.x * p.x + p.z * p.z;
         float cosTheta = 1.0f / std::sqrt(r2);
-        float expected = 0.5f / 3.14159265f * 10.0f * cosTheta / r2;  // rho/pi * I cos / r^2
+        float expected = 0.5f / shading::kPi * 10.0f * cosTheta / r2;  // rho/pi * I cos / r^2
         EXPECT_NEAR(img.rgb("beauty", px.x, px.y).g, expected, 0.03f * expected) << p.x << "," << p.z;
     }
 }
@@ -102,7 +103,7 @@ TEST_F(DirectRender, SunIrradianceAndShadow) {
                              "sun.json");
     Image img = render(s, 1);
     glm::ivec2 lit = project(s, {1.2f, 0.0f, 1.2f});
-    EXPECT_NEAR(img.rgb("beauty", lit.x, lit.y).r, 2.0f * 0.5f / 3.14159265f, 0.01f);
+    EXPECT_NEAR(img.rgb("beauty", lit.x, lit.y).r, 2.0f * 0.5f / shading::kPi, 0.01f);
     // The box at height 0.4..0.6 casts its shadow towards +x: 0.5 / tan(30 deg) from below it.
     glm::ivec2 shadow = project(s, {0.5f / std::tan(0.5235988f), 0.0f, 0.0f});
     EXPECT_LT(img.rgb("beauty", shadow.x, shadow.y).r, 0.02f);
@@ -122,7 +123,7 @@ TEST_F(DirectRender, SpotLightConeAndInverseSquare) {
     for (float x : {0.0f, 0.5f}) {
         glm::ivec2 px = project(s, {x, 0.0f, 0.0f});
         float r2 = 4.0f + x * x, cosTheta = 2.0f / std::sqrt(r2);
-        EXPECT_NEAR(img.rgb("beauty", px.x, px.y).r, 8.0f * cosTheta / r2 / 3.14159265f, 0.02f) << x;
+        EXPECT_NEAR(img.rgb("beauty", px.x, px.y).r, 8.0f * cosTheta / r2 / shading::kPi, 0.02f) << x;
     }
     // Outside the outer cone (tan 30 deg * 2 m = 1.15 m): dark.
     glm::ivec2 outside = project(s, {1.6f, 0.0f, 0.0f});

@@ -6,6 +6,7 @@
 #include "scenes/errors.h"
 #include "scenes/mesh_import.h"
 #include "scenes/scene_loader.h"
+#include "shaders/shared/constants.h"
 #include "support/test_support.h"
 
 using namespace voxgi;
@@ -42,7 +43,7 @@ TEST(Scene, BuiltinCornellBoxHasPublishedDimensions) {
     EXPECT_LT(s.lights[0].position.y, 0.5488f);              // under the ceiling
     // 5 walls + 2 blocks of 5 quads = 15 quads, plus the light quad: 32 triangles.
     EXPECT_EQ(s.triangleCount(), 32u);
-    EXPECT_NEAR(s.camera.fovYDegrees, 2.0 * std::atan(12.5 / 35.0) * 180.0 / 3.14159265358979, 1e-3);
+    EXPECT_NEAR(s.camera.fovYDegrees, 2.0 * std::atan(12.5 / 35.0) * 180.0 / shading::kPiDouble, 1e-3);
     EXPECT_EQ(s.gi.getString("method", ""), "clpv");
 }
 
@@ -63,7 +64,7 @@ TEST(Scene, ParsesEveryLightKindAndPrimitive) {
         "gi": {"method": "direct", "lpv": {"steps": 16, "glossy": true}})"),
                              "good.json");
     ASSERT_EQ(s.lights.size(), 4u);
-    EXPECT_EQ(s.lights[1].color, glm::vec3(1, 2, 3));
+    EXPECT_EQ(s.lights[1].emission, glm::vec3(1, 2, 3));
     EXPECT_NEAR(glm::length(s.lights[2].direction), 1.0f, 1e-6f);  // normalized
     EXPECT_TRUE(s.sky.enabled);
     // box 12 + sphere + quad 2 + triangle 1 + the quad light's own geometry 2

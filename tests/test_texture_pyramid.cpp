@@ -8,6 +8,7 @@
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/raytrace/texture_pyramid.h"
 #include "scenes/scene.h"
+#include "shaders/shared/constants.h"
 
 using namespace voxgi;
 
@@ -102,8 +103,8 @@ TEST(TexturePyramid, RayConeFootprintPicksTheLevel) {
     EXPECT_EQ(pyramid.levelForFootprint(INFINITY), 8);
     // 256 rays over the sphere: 4 pi / 256 sr each, a cone of about 0.25 rad.
     float spread = coneSpreadForRays(256);
-    EXPECT_NEAR(2.0f * 3.14159265f * (1.0f - std::cos(0.5f * spread)), 4.0f * 3.14159265f / 256.0f, 1e-5f);
-    EXPECT_NEAR(coneSpreadForRays(1), 2.0f * 3.14159265f, 1e-5f);  // the whole sphere
+    EXPECT_NEAR(2.0f * shading::kPi * (1.0f - std::cos(0.5f * spread)), 4.0f * shading::kPi / 256.0f, 1e-5f);
+    EXPECT_NEAR(coneSpreadForRays(1), 2.0f * shading::kPi, 1e-5f);  // the whole sphere
 }
 
 TEST(TexturePyramid, ConeAlbedoAveragesDistantTexturesAndKeepsNearOnes) {

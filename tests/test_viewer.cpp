@@ -26,6 +26,7 @@
 #include <GLFW/glfw3.h>
 #include "scenes/errors.h"
 #include "scenes/image.h"
+#include "shaders/shared/constants.h"
 #include "support/test_support.h"
 
 namespace voxgi {
@@ -70,7 +71,7 @@ TEST(FlyCamera, TurnsRightWithPositiveYawAndClampsPitch) {
     cam.eye = {0, 0, 0};
     cam.target = {0, 0, -1};
     view::FlyCamera fly(cam);
-    fly.turn(float(M_PI / 2), 0.0f);
+    fly.turn(0.5f * shading::kPi, 0.0f);
     EXPECT_NEAR(glm::length(fly.forward() - glm::vec3(1, 0, 0)), 0.0f, 1e-5f);
     fly.turn(0.0f, 10.0f);  // far past straight up
     EXPECT_NEAR(std::asin(fly.forward().y), glm::radians(89.0f), 1e-4f);

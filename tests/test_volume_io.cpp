@@ -120,6 +120,13 @@ TEST(VolumeIo, CacheReusesMatchingFilesAndRebuildsOtherwise) {
     Scene recoloured = scene;
     recoloured.materials[0].albedo.x *= 0.5f;
     EXPECT_NE(geometryHash(recoloured, settings), geometryHash(scene, settings));
+    // The albedo grid holds the diffuse albedo, which metallic and specular change too.
+    Scene metal = scene;
+    metal.materials[0].metallic = 0.5f;
+    EXPECT_NE(geometryHash(metal, settings), geometryHash(scene, settings));
+    Scene coated = scene;
+    coated.materials[0].specular = 0.04f;
+    EXPECT_NE(geometryHash(coated, settings), geometryHash(scene, settings));
 
     // A damaged cache entry is rebuilt, not trusted and not fatal.
     test::writeFile(path, "not a vdb file");

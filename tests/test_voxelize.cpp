@@ -13,6 +13,7 @@
 
 #include "scenes/errors.h"
 #include "scenes/primitives.h"
+#include "shaders/shared/constants.h"
 #include "support/test_support.h"
 #include "volumes/geometry_volume.h"
 #include "volumes/triangle_box.h"
@@ -112,7 +113,7 @@ TEST(Voxelize, SphereStaysWithinTheShellBoundsAndClosed) {
     Scene scene = sceneWith({makeSphere(glm::scale(glm::translate(glm::mat4(1.0f), center), glm::vec3(r)), 0, 32)});
     SparseGeometryVolume v = voxelize(scene, h);
     // The mesh lies between the sphere and the sphere shrunk by the faces' sagitta.
-    const float inner = r * std::cos(3.14159265f / 16.0f), slack = 1e-4f * h;
+    const float inner = r * std::cos(shading::kPi / 16.0f), slack = 1e-4f * h;
     std::set<std::tuple<int, int, int>> occupied;
     for (const glm::ivec3& c : test::occupiedVoxels(v)) occupied.insert({c.x, c.y, c.z});
     int required = 0;

@@ -120,6 +120,19 @@ TEST(Albedo, AreaWeightedAcrossMaterialsAndTextured) {
     EXPECT_NEAR(glm::length(v.albedo({7, 4, 5})), 0.0f, 1e-4f);
 }
 
+TEST(Albedo, IsTheDiffuseAlbedo) {
+    // What a voxel bounces is the Lambert part of its material: metals and the specular coat's
+    // share go to the GGX lobe.
+    Material coated;
+    coated.albedo = {0.8f, 0.6f, 0.4f};
+    coated.metallic = 0.25f;
+    coated.specular = 0.5f;
+    Mesh wall =
+        makeQuad({glm::vec3(0, 0, 0.05f), glm::vec3(1, 0, 0.05f), glm::vec3(1, 1, 0.05f), glm::vec3(0, 1, 0.05f)}, 0);
+    SparseGeometryVolume v = voxelize(sceneWith({wall}, {coated}), 0.1f);
+    EXPECT_NEAR(glm::length(v.albedo({4, 4, 0}) - 0.75f * 0.5f * coated.albedo), 0.0f, 1e-4f);
+}
+
 TEST(Levels, CoarseLevelsNestAndMatchDirectVoxelization) {
     glm::mat4 t = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.43f, 0.51f, 0.47f)), 0.7f, glm::vec3(1, 1, 0));
     Scene scene = sceneWith({makeSphere(glm::scale(t, glm::vec3(0.3f)), 0, 24), makeBox(glm::scale(t, glm::vec3(0.5f, 0.2f, 0.3f)), 0)});

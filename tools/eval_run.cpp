@@ -36,7 +36,7 @@ std::string sceneKey(const Scene& scene) {
     s << c.eye.x << c.eye.y << c.eye.z << c.target.x << c.target.y << c.target.z << c.fovYDegrees << c.width << 'x'
       << c.height << '|';
     for (const Light& l : scene.lights)
-        s << int(l.type) << l.position.x << l.position.y << l.position.z << l.color.x << l.color.y << l.color.z
+        s << int(l.type) << l.position.x << l.position.y << l.position.z << l.emission.x << l.emission.y << l.emission.z
           << l.direction.x << l.direction.y << l.direction.z << '|';
     for (const Material& m : scene.materials)
         s << m.albedo.x << m.albedo.y << m.albedo.z << m.emission.x << m.roughness << m.metallic << m.specular << '|';

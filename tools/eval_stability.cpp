@@ -98,7 +98,7 @@ Scene closedBox(float albedo, float furnaceEmission, int size) {
         Light l;
         l.type = LightType::Point;
         l.position = glm::vec3(0.2f, 0.5f, 0.3f);
-        l.color = glm::vec3(1.0f);
+        l.emission = glm::vec3(1.0f);
         s.lights.push_back(l);
     }
     return smallCamera(s, size);
@@ -120,7 +120,7 @@ Scene scaled(Scene s, float k) {
 }
 
 Scene brighter(Scene s, float k) {
-    for (Light& l : s.lights) l.color *= k;
+    for (Light& l : s.lights) l.emission *= k;
     for (Material& m : s.materials) m.emission *= k;
     return s;
 }
@@ -148,7 +148,7 @@ Scene grazing(Scene s) {
     sun.type = LightType::Directional;
     // 0.057 degrees above the floor's plane, through the open front.
     sun.direction = glm::normalize(glm::vec3(0.0f, -1e-3f, 1.0f));
-    sun.color = glm::vec3(1000.0f);
+    sun.emission = glm::vec3(1000.0f);
     s.lights.push_back(sun);
     return s;
 }

@@ -82,7 +82,8 @@ public:
 
     bool occupied(const glm::ivec3& ijk, int level = 0) const;
     glm::vec4 blockerSH(const glm::ivec3& ijk, int level = 0) const;  // zero where empty
-    // Area-weighted mean, linear; stored as halves: |error| <= 2^-11 |albedo| (2^-25 below 2^-14).
+    // Area-weighted mean of the diffuse albedo (shaders/shared/material.h), linear; stored as
+    // halves: |error| <= 2^-11 |albedo| (2^-25 below 2^-14).
     glm::vec3 albedo(const glm::ivec3& ijk, int level = 0) const;
     // Sum of clipped area * unit normal / voxel face area: direction = mean normal, length =
     // projected coverage (1 for a wall crossing the voxel along an axis).
@@ -114,7 +115,7 @@ private:
 SparseGeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& settings);
 
 // A 64-bit hash (hex) of everything the volume depends on: positions, indices, uvs, material
-// albedos and textures, and the voxel settings.
+// albedos, metallic and specular, textures, the voxel settings and the voxelizer's revision.
 std::string geometryHash(const Scene& scene, const VoxelizeSettings& settings);
 
 // .vdb files: all grids of all levels plus file metadata. Written to a temporary file then

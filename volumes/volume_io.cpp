@@ -32,7 +32,8 @@ struct Hasher {
 };
 
 // Bumped whenever the voxelizer's output for the same input changes, invalidating caches.
-constexpr int kFormatRevision = 1;
+// 2: the albedo grid holds the diffuse albedo (metallic and specular taken out).
+constexpr int kFormatRevision = 2;
 
 }  // namespace
 
@@ -47,6 +48,8 @@ std::string geometryHash(const Scene& scene, const VoxelizeSettings& settings) {
     }
     for (const Material& m : scene.materials) {
         hs.pod(m.albedo);
+        hs.pod(m.metallic);
+        hs.pod(m.specular);
         hs.pod(m.albedoTexture);
     }
     for (const Texture& t : scene.textures) {

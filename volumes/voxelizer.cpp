@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "scenes/errors.h"
+#include "shaders/shared/material.h"
 #include "volumes/detail/accumulation.h"
 #include "volumes/detail/voxelizer.h"
 #include "volumes/triangle_box.h"
@@ -30,7 +31,7 @@ struct SmallTexture;
 struct PreparedTriangle {
     glm::vec3 p[3];          // world space
     glm::vec3 unitNormal;
-    glm::vec3 albedo;        // material albedo, times the texture average when sampled nowhere
+    glm::vec3 albedo;        // material diffuse albedo, times the texture average when sampled nowhere
     const SmallTexture* texture;  // sampled at each piece's centroid when the mesh has uvs
     glm::vec2 uv[3];
     glm::ivec3 lo, hi;       // voxels touched by the bounding box (closed boxes, with slack)
@@ -248,7 +249,9 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
 
             const Material* material = mesh.materialIds.size() > f && mesh.materialIds[f] < scene.materials.size()
                                            ? &scene.materials[mesh.materialIds[f]] : nullptr;
-            t.albedo = material ? material->albedo : glm::vec3(0.8f);
+            // The diffuse albedo: what the voxel's surfaces bounce as Lambert light.
+            t.albedo = material ? shading::diffuseAlbedo(material->albedo, material->metallic, material->specular)
+                                : glm::vec3(0.8f);
             t.texture = nullptr;
             const int texture = material ? material->albedoTexture : -1;
             if (texture >= 0 && std::size_t(texture) < scene.textures.size() && textureUsable[std::size_t(texture)]) {

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "scenes/image.h"
-#include "gi/sh/sh.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi {
 
@@ -42,7 +42,7 @@ DebugDrawing probeSpheres(const ProbeField& field, ProbeColor color, float expos
         float radius = 0.12f * std::min({volume.spacing.x, volume.spacing.y, volume.spacing.z});
         glm::vec3 c;
         if (color == ProbeColor::Irradiance) {
-            c = toneMapToSrgb(field.meanIrradiance(p) / sh::kPi, exposureStops);
+            c = toneMapToSrgb(field.meanIrradiance(p) * shading::kInvPi, exposureStops);
         } else {
             static const glm::vec3 states[3] = {{0.2f, 0.9f, 0.2f}, {0.2f, 0.4f, 1.0f}, {0.9f, 0.15f, 0.1f}};
             c = states[std::clamp(int(field.probes[std::size_t(p)].state), 0, 2)];

@@ -12,19 +12,10 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/sampling/sequences.h"
+#include "shaders/shared/constants.h"
+#include "shaders/shared/light_model.h"
 
 namespace voxgi {
-
-namespace {
-constexpr float kPi = 3.14159265358979323846f;
-constexpr float kInvPi = 1.0f / kPi;
-
-float smoothstep(float e0, float e1, float x) {
-    if (e1 <= e0) return x >= e1 ? 1.0f : 0.0f;
-    float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
-}  // namespace
 
 float ShadowRayVisibility::visible(int, glm::vec3 p, glm::vec3 n, glm::vec3 l, float range) const {
     glm::vec3 origin = p + n * offset_;
@@ -33,83 +24,36 @@ float ShadowRayVisibility::visible(int, glm::vec3 p, glm::vec3 n, glm::vec3 l, f
     return tracer_.occluded(origin, l, 0.0f, tMax) ? 0.0f : 1.0f;
 }
 
-void lightDirection(const Light& light, glm::vec3 p, glm::vec2 quadSample, glm::vec3* l, float* range) {
-    if (light.type == LightType::Directional) {
-        *l = -glm::normalize(light.direction);
-        *range = INFINITY;
-        return;
-    }
-    glm::vec3 position = light.type == LightType::Quad
-                             ? light.position + quadSample.x * light.edgeU + quadSample.y * light.edgeV
-                             : light.position;
-    glm::vec3 toLight = position - p;
-    *range = glm::length(toLight);
-    *l = *range > 0.0f ? toLight / *range : glm::vec3(0.0f, 1.0f, 0.0f);
-}
-
 namespace {
 
-// A light with its per-frame constants resolved (direction, cone cosines, quad frame), so the
-// per-hit work is the geometry alone.
+// A scene light packed for the shared light model (shaders/shared/light_model.h), once per
+// frame, so the per-hit work is the geometry alone.
 struct PreparedLight {
-    LightType type;
-    glm::vec3 position, edgeU, edgeV, color, direction, quadNormal;
-    float cosOuter = 0.0f, cosInner = 0.0f, area = 0.0f;
-
-    bool dark = false;  // no colour: never worth a shadow ray
+    shading::PackedLight packed;
+    bool dark;  // emits nothing: never worth a shadow ray
 
     explicit PreparedLight(const Light& light)
-        : type(light.type), position(light.position), edgeU(light.edgeU), edgeV(light.edgeV), color(light.color) {
-        if (type == LightType::Directional || type == LightType::Spot) direction = glm::normalize(light.direction);
-        if (type == LightType::Spot) {
-            cosOuter = std::cos(glm::radians(light.outerConeDegrees));
-            cosInner = std::cos(glm::radians(light.innerConeDegrees));
-        }
-        if (type == LightType::Quad) {
-            quadNormal = light.quadNormal();
-            area = light.area();
-        }
-        dark = !(glm::max(color.x, glm::max(color.y, color.z)) > 0.0f);
+        : packed(shading::packLight(light)),
+          dark(!(glm::max(light.emission.x, glm::max(light.emission.y, light.emission.z)) > 0.0f)) {}
+
+    glm::vec3 emission() const { return glm::vec3(packed.emission); }
+
+    // The light as seen from p before the receiver's cosine and visibility; a zero falloff when
+    // it cannot reach p whatever the normal.
+    shading::IncidentLight incident(glm::vec3 p, glm::vec2 quadSample) const {
+        if (dark) return shading::IncidentLight{};
+        return shading::evaluateLight(packed, p, quadSample);
     }
 
-    // The light as seen from p before the receiver's cosine and visibility: a surface facing
-    // it receives colour * weight; l is the unit direction toward it and range its distance
-    // (infinite for the sun). False when it cannot reach p whatever the normal.
-    bool incident(glm::vec3 p, glm::vec2 quadSample, float* weight, glm::vec3* l, float* range) const {
-        if (dark) return false;
-        if (type == LightType::Directional) {
-            *l = -direction;
-            *weight = 1.0f;
-            *range = INFINITY;
-            return true;
-        }
-        glm::vec3 at = position;
-        float scale = 1.0f;  // intensity (W/sr) over colour
-        if (type == LightType::Quad) {
-            at = position + quadSample.x * edgeU + quadSample.y * edgeV;
-            scale = area;
-        }
-        glm::vec3 toLight = at - p;
-        float d2 = glm::dot(toLight, toLight);
-        if (!(d2 > 1e-12f)) return false;
-        float d = std::sqrt(d2);
-        *l = toLight / d;
-        if (type == LightType::Spot) scale *= smoothstep(cosOuter, cosInner, glm::dot(-*l, direction));
-        else if (type == LightType::Quad) scale *= std::max(glm::dot(quadNormal, -*l), 0.0f);
-        if (!(scale > 0.0f)) return false;
-        *weight = scale / d2;
-        *range = d;
-        return true;
-    }
-
-    // Irradiance at (p, n) before visibility, with l and range as above. False when the light
-    // cannot contribute.
-    bool unshadowed(glm::vec3 p, glm::vec3 n, glm::vec2 quadSample, glm::vec3* e, glm::vec3* l, float* range) const {
-        float w;
-        if (!incident(p, quadSample, &w, l, range)) return false;
-        float c = glm::dot(n, *l);
+    // Irradiance e at (p, n) before visibility, with the light as seen from p (its direction and
+    // distance for the shadow test). False when the light cannot contribute.
+    bool unshadowed(glm::vec3 p, glm::vec3 n, glm::vec2 quadSample, glm::vec3& e,
+                    shading::IncidentLight& incident) const {
+        incident = this->incident(p, quadSample);
+        if (!(incident.falloff > 0.0f)) return false;
+        const float c = glm::dot(n, incident.direction);
         if (!(c > 0.0f)) return false;
-        *e = color * (w * c);
+        e = incident.irradiance * c;
         return true;
     }
 };
@@ -126,9 +70,10 @@ glm::vec3 sumLights(const std::vector<PreparedLight>& lights, glm::vec3 p, glm::
                     Visible&& visible) {
     glm::vec3 sum(0.0f);
     for (std::size_t i = 0; i < lights.size(); ++i) {
-        glm::vec3 e, l;
-        float range;
-        if (lights[i].unshadowed(p, n, quadSample, &e, &l, &range)) sum += e * visible(int(i), l, range);
+        glm::vec3 e;
+        shading::IncidentLight incident;
+        if (lights[i].unshadowed(p, n, quadSample, e, incident))
+            sum += e * visible(int(i), incident.direction, incident.distance);
     }
     return sum;
 }
@@ -197,8 +142,8 @@ const std::vector<std::uint32_t>& cageOrder(const ShadeContext& c, const HitCach
 }
 
 // What a group shares, per group: the probe irradiance and, in the `all` mode, per light (the
-// first kSharedLights) the vector weight * visibility * l seen from the representative, so a
-// hit adds colour * max(n . v, 0) with its own normal. A light the representative faced away
+// first kSharedLights) the vector falloff * visibility * l seen from the representative, so a
+// hit adds emission * max(n . v, 0) with its own normal. A light the representative faced away
 // from has no tested visibility: w = 1 marks it, and a hit that faces it tests it itself.
 constexpr int kSharedLights = 4;
 struct GroupValues {
@@ -213,7 +158,7 @@ std::vector<float> lightFingerprint(const Scene& scene) {
     std::vector<float> f;
     for (const Light& l : scene.lights) {
         f.push_back(float(int(l.type)));
-        for (const glm::vec3& v : {l.position, l.direction, l.color, l.edgeU, l.edgeV})
+        for (const glm::vec3& v : {l.position, l.direction, l.emission, l.edgeU, l.edgeV})
             f.insert(f.end(), {v.x, v.y, v.z});
         f.insert(f.end(), {l.innerConeDegrees, l.outerConeDegrees});
     }
@@ -265,16 +210,17 @@ std::int64_t evaluateGroups(const ShadeContext& c, const HitCache& cache, bool s
                              0.0f);
             const glm::vec2 u = c.quadSample(ray, probe);
             for (int l = 0; l < out.lights; ++l) {
-                glm::vec3 dir;
-                float weight, range;
                 v[1 + l] = glm::vec4(0.0f);
-                if (!c.lights[std::size_t(l)].incident(position, u, &weight, &dir, &range)) continue;
+                const shading::IncidentLight incident = c.lights[std::size_t(l)].incident(position, u);
+                if (!(incident.falloff > 0.0f)) continue;
+                const glm::vec3 dir = incident.direction;
                 if (!(glm::dot(dir, normal) > 0.0f)) {
-                    v[1 + l] = glm::vec4(weight * dir, 1.0f);
+                    v[1 + l] = glm::vec4(incident.falloff * dir, 1.0f);
                     continue;
                 }
                 ++count;
-                v[1 + l] = glm::vec4(weight * c.visibility.visible(l, position, normal, dir, range) * dir, 0.0f);
+                const float visible = c.visibility.visible(l, position, normal, dir, incident.distance);
+                v[1 + l] = glm::vec4(incident.falloff * visible * dir, 0.0f);
             }
         }
         queries += count;
@@ -340,7 +286,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
     }
 
     glm::vec3 lightColour[kSharedLights];
-    for (int k = 0; k < shared.lights; ++k) lightColour[k] = prepared[std::size_t(k)].color;
+    for (int k = 0; k < shared.lights; ++k) lightColour[k] = prepared[std::size_t(k)].emission();
     std::atomic<std::int64_t> cachedHits{0};
     const auto hitsStart = std::chrono::steady_clock::now();
     const std::size_t perJob = std::size_t(rays.blendRays);
@@ -376,16 +322,17 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 // One light exactly at this hit: its own light point and shadow ray.
                 auto exact = [&](int k) {
                     const glm::vec3 position = hitPosition();
-                    glm::vec3 e, l;
-                    float range;
-                    if (!prepared[std::size_t(k)].unshadowed(position, s.normal, c.quadSample(int(i), probes[job]), &e,
-                                                            &l, &range))
+                    glm::vec3 e;
+                    shading::IncidentLight incident;
+                    if (!prepared[std::size_t(k)].unshadowed(position, s.normal, c.quadSample(int(i), probes[job]), e,
+                                                             incident))
                         return glm::vec3(0.0f);
                     ++count;
-                    return e * visibility.visible(k, position, s.normal, l, range);
+                    return e * visibility.visible(k, position, s.normal, incident.direction, incident.distance);
                 };
                 glm::vec3 e(0.0f);
-                int firstExact = 0;
+                int firstExact = 0;     // lights from here on are evaluated at this hit
+                unsigned untested = 0;  // and the shared ones set here
                 if (g == HitCache::kNone) {
                     if (c.energy > 0.0f) {
                         const glm::vec3 position = hitPosition();
@@ -397,20 +344,19 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                     // through exact().
                     const glm::vec4* v = &shared.values[std::size_t(g) * std::size_t(shared.stride)];
                     e = glm::vec3(v[0]);
-                    unsigned untested = 0;
                     for (int k = 0; k < shared.lights; ++k) {
                         const float cosine = glm::dot(s.normal, glm::vec3(v[1 + k]));
                         const float facing = cosine > 0.0f ? cosine : 0.0f;
                         e += lightColour[k] * (v[1 + k].w == 0.0f ? facing : 0.0f);
                         untested |= unsigned(v[1 + k].w != 0.0f && cosine > 0.0f) << k;
                     }
-                    for (int k = 0; untested != 0; ++k, untested >>= 1)
-                        if (untested & 1u) e += exact(k);
                     firstExact = shared.lights;
                     ++cached;
                 }
-                for (int k = firstExact; k < int(prepared.size()); ++k) e += exact(k);
-                o = glm::vec4(trace.emission[s.emitter] + s.diffuseAlbedo() * kInvPi * e, s.distance);
+                // One call site, so that exact() is inlined into this loop.
+                for (int k = 0; k < int(prepared.size()); ++k)
+                    if (k >= firstExact || (untested >> k & 1u)) e += exact(k);
+                o = glm::vec4(trace.emission[s.emitter] + s.diffuseAlbedo() * shading::kInvPi * e, s.distance);
             }
         }
         queries += count;

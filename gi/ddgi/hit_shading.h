@@ -32,10 +32,6 @@ private:
     float offset_;
 };
 
-// Where light `light` is seen from p: unit direction l toward it and the distance (infinite for
-// the sun); quad lights at the point `quadSample` of the quad.
-void lightDirection(const Light& light, glm::vec3 p, glm::vec2 quadSample, glm::vec3* l, float* range);
-
 // Irradiance (W/m^2) at p with normal n from the scene's analytic lights; `quadSample` in
 // [0,1)^2 picks the point on quad lights.
 glm::vec3 directIrradiance(const Scene& scene, const LightVisibility& visibility, glm::vec3 p, glm::vec3 n,

@@ -10,6 +10,7 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/octahedral/octahedral.h"
 #include "gi/sampling/sequences.h"
+#include "shaders/shared/light_model.h"
 
 namespace voxgi {
 
@@ -23,6 +24,8 @@ std::int64_t updateOcclusionProbes(const Scene& scene, const LightVisibility& sh
                                    std::uint32_t frame, int stride) {
     if (field.occlusion.texels.empty()) return 0;
     const int lights = std::min<int>(int(scene.lights.size()), kOcclusionLights);
+    std::vector<shading::PackedLight> packed;
+    for (int l = 0; l < lights; ++l) packed.push_back(shading::packLight(scene.lights[std::size_t(l)]));
     const int n = field.desc().distanceTexels;
     const float exponent = field.desc().distanceExponent;
     // The texel weights depend only on this frame's ray subset, the same for every probe:
@@ -60,14 +63,12 @@ std::int64_t updateOcclusionProbes(const Scene& scene, const LightVisibility& sh
                 const glm::vec3 position = trace.position(rays, job.probe, rays.fixedRays + i);
                 glm::vec2 u = r2Sequence(int(frame) * rays.blendRays + i, glm::vec2(0.5f) + 0.137f * float(job.probe % 7));
                 for (int l = 0; l < lights; ++l) {
-                    glm::vec3 dir;
-                    float range;
-                    lightDirection(scene.lights[std::size_t(l)], position, u, &dir, &range);
+                    const shading::IncidentLight incident = shading::evaluateLight(packed[std::size_t(l)], position, u);
                     // A surface facing away says nothing about the light's visibility.
-                    if (glm::dot(dir, s.normal) <= 0.0f) continue;
+                    if (glm::dot(incident.direction, s.normal) <= 0.0f) continue;
                     std::size_t at = std::size_t(l) * std::size_t(padded) + std::size_t(k);
                     tested[at] = 1.0f;
-                    lit[at] = shadowRays.visible(l, position, s.normal, dir, range);
+                    lit[at] = shadowRays.visible(l, position, s.normal, incident.direction, incident.distance);
                     ++count;
                 }
             }

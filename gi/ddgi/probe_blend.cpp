@@ -7,11 +7,11 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/octahedral/octahedral.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi {
 
 namespace {
-constexpr float kPi = 3.14159265358979323846f;
 
 constexpr int kLanes = 8;
 
@@ -55,7 +55,7 @@ glm::vec4 blendIrradianceTexel(const BlendParams& bp, const RayLanes& rays, glm:
     for (int j = 0; j < kLanes; ++j) sum += glm::vec3(sr[j], sg[j], sb[j]), wsum += sw[j];
     if (!(wsum > 0.0f)) return previous;  // no ray in this hemisphere: keep what we had
     // pi * (cosine-weighted mean radiance) estimates the irradiance for uniform directions.
-    glm::vec3 e = glm::max(kPi * sum / wsum, glm::vec3(0.0f));
+    glm::vec3 e = glm::max(shading::kPi * sum / wsum, glm::vec3(0.0f));
     glm::vec3 encoded = glm::pow(e, glm::vec3(1.0f / bp.irradianceGamma));
     glm::vec3 prev(previous);
     // The fast-response rules (RTXGI's) apply between the extremes: 0 takes the new value,

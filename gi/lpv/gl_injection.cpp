@@ -6,6 +6,7 @@
 
 #include "gi/sh/sh.h"
 #include "gl/program.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi {
 
@@ -57,7 +58,7 @@ struct GlInjector::Impl {
         glNamedFramebufferTexture(scratchFbo.id(), GL_COLOR_ATTACHMENT1, scratch.albedo(), 0);
         glNamedFramebufferDrawBuffers(scratchFbo.id(), 2, buffers);
         gl::checkFramebuffer(scratchFbo.id(), "lpv blocker injection");
-        const float pi = sh::kPi, a1 = sh::kCosLobe1;
+        const float pi = shading::kPi, a1 = sh::kCosLobe1;
         for (const gl::Program* p : {&light, &rsmBlockers, &gbufferBlockers}) {
             p->set("uShY", glm::vec2(sh::kY00, sh::kY1));
             p->set("uShCosineLobe", glm::vec4(sh::kCosLobe0, a1, a1, a1));
@@ -179,7 +180,8 @@ void GlInjector::injectBlockers(const GBufferView& g, const GBufferSampling& sam
     p.set("uEye", g.eye);
     p.set("uForward", sampling.forward);
     p.set("uPixel", sampling.pixel);
-    Impl::bindTextures(p, {{"uPosition", g.position}, {"uNormal", g.normal}, {"uAlbedo", g.albedo}});
+    Impl::bindTextures(
+        p, {{"uPosition", g.position}, {"uNormal", g.normal}, {"uAlbedo", g.albedo}, {"uEmission", g.emission}});
     m.drawPoints(p, m.scratchFbo.id(), m.n + 1, sampling.count(), true);
     m.mergeInto(m.scratch.blocker(), m.scratch.albedo(), t);
 }

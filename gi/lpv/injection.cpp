@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gi/sh/sh.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi {
 
@@ -22,7 +23,7 @@ double injectLight(const SurfelSource& source, const InjectionOffsets& offsets, 
         glm::vec3 p = s.position + s.normal * (offsets.normalCells * h) + s.toLight * (offsets.lightCells * h);
         glm::ivec3 cell = grid.cellOf(p);
         if (!grid.contains(cell)) continue;
-        glm::vec4 lobe = toVec4(sh::cosineLobe(s.normal)) / sh::kPi;  // unit-flux cosine lobe
+        glm::vec4 lobe = toVec4(sh::cosineLobe(s.normal)) / shading::kPi;  // unit-flux cosine lobe
         std::size_t i = grid.index(cell);
         volume.r[i] += lobe * s.flux.r;
         volume.g[i] += lobe * s.flux.g;

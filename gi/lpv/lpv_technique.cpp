@@ -18,6 +18,7 @@
 #include "gl/scene_gpu.h"
 #include "scenes/errors.h"
 #include "shaders/lpv/limits.h"
+#include "shaders/shared/gbuffer.h"
 
 namespace voxgi {
 
@@ -36,18 +37,19 @@ SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int targ
     std::vector<float> pos = gl::readTexture(g.position, g.width, g.height, 4);
     std::vector<float> nrm = gl::readTexture(g.normal, g.width, g.height, 4);
     std::vector<float> alb = gl::readTexture(g.albedo, g.width, g.height, 4);
+    std::vector<float> emi = gl::readTexture(g.emission, g.width, g.height, 4);
     const int stride = sampling.stride;
     const float pixel = sampling.pixel;
     const glm::vec3 forward = sampling.forward;
     for (int y = stride / 2; y < g.height; y += stride)
         for (int x = stride / 2; x < g.width; x += stride) {
             std::size_t i = (std::size_t(y) * std::size_t(g.width) + std::size_t(x)) * 4;
-            if (pos[i + 3] <= 0.0f) continue;
+            if (!shading::gbufferHit(glm::vec4(pos[i], pos[i + 1], pos[i + 2], pos[i + 3]))) continue;
             Surfel s;
             s.position = {pos[i], pos[i + 1], pos[i + 2]};
             s.normal = glm::normalize(glm::vec3(nrm[i], nrm[i + 1], nrm[i + 2]));
-            float metallic = alb[i + 3];
-            s.albedo = glm::vec3(alb[i], alb[i + 1], alb[i + 2]) * (1.0f - metallic);
+            s.albedo = shading::gbufferDiffuseAlbedo(glm::vec4(alb[i], alb[i + 1], alb[i + 2], alb[i + 3]),
+                                                     glm::vec4(emi[i], emi[i + 1], emi[i + 2], emi[i + 3]));
             glm::vec3 d = s.position - g.eye;
             float dist = glm::length(d);
             glm::vec3 w = d / dist;
@@ -140,7 +142,7 @@ public:
 
         auto t0 = std::chrono::steady_clock::now();
         std::vector<SurfelSource> sources;
-        for (const Light& light : scene.lights) {
+        for (std::size_t light = 0; light < scene.lights.size(); ++light) {
             auto faces = rsm.render(scene, input.sceneGpu, light);
             for (auto& f : faces) sources.push_back(std::move(f));
         }

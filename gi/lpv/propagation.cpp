@@ -9,6 +9,7 @@
 
 #include "gi/lpv/detail/propagation_soa.h"
 #include "gi/sh/sh.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi {
 
@@ -71,7 +72,7 @@ PropagationKernel buildKernel() {
             FaceCoefficients& c = faces[a][f];
             c.sample = toVec4(sh::basis(pf.direction)) * pf.solidAngle;
             c.block = toVec4(sh::basis(-pf.direction));
-            c.lobe = toVec4(sh::cosineLobe(pf.normal)) / sh::kPi;
+            c.lobe = toVec4(sh::cosineLobe(pf.normal)) / shading::kPi;
             for (int col = 0; col < 4; ++col)
                 for (int row = 0; row < 4; ++row) m[col][row] += c.lobe[row] * c.sample[col];
         }

@@ -7,6 +7,7 @@
 
 #include "gi/lpv/detail/propagation_soa.h"
 #include "gi/sh/sh.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi::lpv_detail {
 
@@ -117,7 +118,7 @@ public:
                             }
                         }
                         r.albedo = 0.25f * a;
-                        const float flux = b.x * (4.0f * sh::kPi * sh::kY00);
+                        const float flux = b.x * (4.0f * shading::kPi * sh::kY00);
                         r.reflects = bounces && flux > 1e-12f && r.albedo != glm::vec3(0.0f);
                         if (r.reflects) r.shape = reflectionShape(b, flux);
                         index_[k][i] = std::int32_t(local.size());

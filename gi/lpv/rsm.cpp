@@ -18,10 +18,13 @@ glm::vec3 anyUp(glm::vec3 d) { return std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0)
 // How one face of a light is rasterized.
 struct FaceView {
     glm::mat4 viewProjection;
-    int kind;  // 0 perspective point-like (point, spot, quad), 2 orthographic (directional)
+    bool orthographic;  // the sun's map; the others are perspective from a point (point, spot, quad)
     glm::vec3 origin, forward;
     float tanHalf, orthoTexelArea;
 };
+
+// Quad lights are rendered from their centre: the light model sees them through that point.
+constexpr glm::vec2 kQuadCentre{0.5f, 0.5f};
 
 std::vector<FaceView> faceViews(const Scene& scene, const Light& light, int size) {
     Bounds b = scene.bounds();
@@ -33,7 +36,7 @@ std::vector<FaceView> faceViews(const Scene& scene, const Light& light, int size
         glm::mat4 view = glm::lookAt(eye, center, anyUp(light.direction));
         glm::mat4 proj = glm::ortho(-radius, radius, -radius, radius, 0.0f, 4.0f * radius);
         float texel = 2.0f * radius / float(size);
-        views.push_back({proj * view, 2, eye, light.direction, 0.0f, texel * texel});
+        views.push_back({proj * view, true, eye, light.direction, 0.0f, texel * texel});
         return views;
     }
     glm::vec3 origin = light.type == LightType::Quad ? light.quadCenter() + light.quadNormal() * (1e-4f * radius)
@@ -43,7 +46,7 @@ std::vector<FaceView> faceViews(const Scene& scene, const Light& light, int size
         float half = glm::radians(light.outerConeDegrees) + 0.02f;
         glm::mat4 view = glm::lookAt(origin, origin + light.direction, anyUp(light.direction));
         glm::mat4 proj = glm::perspective(2.0f * half, 1.0f, nearPlane, farPlane);
-        views.push_back({proj * view, 0, origin, light.direction, std::tan(half), 0.0f});
+        views.push_back({proj * view, false, origin, light.direction, std::tan(half), 0.0f});
         return views;
     }
     // Point lights and quad lights: six 90-degree faces (a quad's back faces receive nothing).
@@ -52,7 +55,7 @@ std::vector<FaceView> faceViews(const Scene& scene, const Light& light, int size
     for (const glm::vec3& d : dirs) {
         if (light.type == LightType::Quad && glm::dot(d, light.quadNormal()) < -0.99f) continue;
         glm::mat4 view = glm::lookAt(origin, origin + d, anyUp(d));
-        views.push_back({proj * view, 0, origin, d, 1.0f, 0.0f});
+        views.push_back({proj * view, false, origin, d, 1.0f, 0.0f});
     }
     return views;
 }
@@ -103,7 +106,8 @@ struct RsmRenderer::Impl {
 
     explicit Impl(int s) : size(s) { program = gl::Program::graphics("lpv/rsm.vert", "lpv/rsm.frag"); }
 
-    RsmFace renderFace(std::size_t slot, const SceneGpu& gpu, const FaceView& v, const Light& light) {
+    RsmFace renderFace(std::size_t slot, const Scene& scene, const SceneGpu& gpu, const FaceView& v,
+                       std::size_t lightIndex) {
         while (targets.size() <= slot) targets.push_back(std::make_unique<FaceTargets>(size));
         const FaceTargets& t = *targets[slot];
         glBindFramebuffer(GL_FRAMEBUFFER, t.fbo.id());
@@ -116,21 +120,17 @@ struct RsmRenderer::Impl {
         glDisable(GL_CULL_FACE);
         program.use();
         program.set("uViewProjection", v.viewProjection);
-        program.set("uKind", v.kind);
-        program.set("uLightPosition", v.origin);
-        program.set("uLightForward", v.forward);
-        program.set("uLightDirection", light.direction);
-        program.set("uLightColor", light.type == LightType::Quad ? light.color * light.area() : light.color);
-        program.set("uEmitterNormal", light.type == LightType::Quad ? light.quadNormal() : glm::vec3(0.0f));
-        float outer = glm::radians(light.outerConeDegrees), inner = glm::radians(light.innerConeDegrees);
-        program.set("uSpotCos", light.type == LightType::Spot ? glm::vec2(std::cos(outer), std::cos(inner))
-                                                               : glm::vec2(-2.0f, -1.0f));
+        program.set("uLight", int(lightIndex));
+        program.set("uQuadSample", kQuadCentre);
+        program.set("uFaceOrigin", v.origin);
+        program.set("uFaceForward", v.forward);
         // Solid angle of one texel on the unit-distance image plane, before the cos^3 factor.
         float texel = 2.0f * v.tanHalf / float(size);
         program.set("uTexelSolidAngle", texel * texel);
         program.set("uOrthoTexelArea", v.orthoTexelArea);
         program.set("uTextures", 0);
         gpu.bind(0);
+        gpu.bindLights(scene.lights);
         gpu.draw();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
@@ -140,9 +140,9 @@ struct RsmRenderer::Impl {
         face.flux = t.flux.id();
         face.albedo = t.albedo.id();
         face.size = size;
-        face.orthographic = v.kind == 2;
+        face.orthographic = v.orthographic;
         face.origin = v.origin;
-        face.toLight = -light.direction;
+        face.toLight = -scene.lights[lightIndex].direction;
         return face;
     }
 };
@@ -150,10 +150,10 @@ struct RsmRenderer::Impl {
 RsmRenderer::RsmRenderer(int size) : impl_(std::make_unique<Impl>(size)) {}
 RsmRenderer::~RsmRenderer() = default;
 
-std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu& gpu, const Light& light) {
+std::vector<SurfelSource> RsmRenderer::render(const Scene& scene, const SceneGpu& gpu, std::size_t lightIndex) {
     std::vector<SurfelSource> sources;
-    for (const FaceView& v : faceViews(scene, light, impl_->size))
-        sources.push_back(readSurfels(impl_->renderFace(0, gpu, v, light)));
+    for (const FaceView& v : faceViews(scene, scene.lights[lightIndex], impl_->size))
+        sources.push_back(readSurfels(impl_->renderFace(0, scene, gpu, v, lightIndex)));
     return sources;
 }
 
@@ -175,10 +175,10 @@ const std::vector<RsmFace>& RsmRenderer::renderToTextures(const Scene& scene, co
                                                           std::size_t count) {
     impl_->faces.clear();
     std::size_t index = 0;
-    for (const Light& light : scene.lights)
-        for (const FaceView& v : faceViews(scene, light, impl_->size)) {
+    for (std::size_t light = 0; light < scene.lights.size(); ++light)
+        for (const FaceView& v : faceViews(scene, scene.lights[light], impl_->size)) {
             if (index >= first && index - first < count)
-                impl_->faces.push_back(impl_->renderFace(impl_->faces.size(), gpu, v, light));
+                impl_->faces.push_back(impl_->renderFace(impl_->faces.size(), scene, gpu, v, light));
             ++index;
         }
     return impl_->faces;

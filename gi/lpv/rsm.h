@@ -1,7 +1,7 @@
 // Reflective shadow maps: the scene rasterized from each light, every texel a surfel with the
 // diffuse flux it reflects (W). Directional lights use an orthographic map over the scene,
 // spot lights a perspective one, point lights six 90-degree faces, quad lights the faces of a
-// hemicube at their centre with intensity L A cos(theta).
+// hemicube at their centre; every texel evaluates its light by shaders/shared/light_model.h.
 #pragma once
 
 #include <memory>
@@ -40,8 +40,9 @@ public:
     RsmRenderer(const RsmRenderer&) = delete;
     RsmRenderer& operator=(const RsmRenderer&) = delete;
 
-    // One source per rendered face, read back to the CPU. Needs a current GL context.
-    std::vector<SurfelSource> render(const Scene& scene, const SceneGpu& gpu, const Light& light);
+    // One source per rendered face of scene.lights[lightIndex], read back to the CPU. Needs a
+    // current GL context.
+    std::vector<SurfelSource> render(const Scene& scene, const SceneGpu& gpu, std::size_t lightIndex);
     // How many faces the scene's lights render (in light order), and how many of them
     // renderToTextures keeps at once: textures of at most about 256 MB, at least one face
     // (a 256^2 face takes 4.25 MB, a 4096^2 one 1.1 GB).

@@ -7,11 +7,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "shaders/shared/constants.h"
+
 namespace voxgi::flip {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // sRGB primaries, D65 white (IEC 61966-2-1).
 glm::vec3 linearRgbToXyz(glm::vec3 c) {
@@ -98,7 +99,7 @@ const std::vector<CsfTerm> kCsf[3] = {
 
 // Filters one channel with its CSF; each Gaussian term is separable, the sum is normalised to 1.
 std::vector<float> csfFilter(const std::vector<float>& plane, int w, int h, int channel, double ppd) {
-    const int radius = int(std::ceil(3.0 * std::sqrt(0.04 / (2.0 * kPi * kPi)) * ppd));
+    const int radius = int(std::ceil(3.0 * std::sqrt(0.04 / (2.0 * shading::kPiDouble * shading::kPiDouble)) * ppd));
     std::vector<float> out(plane.size(), 0.0f);
     double total = 0.0;
     std::vector<std::vector<float>> kernels;
@@ -108,10 +109,10 @@ std::vector<float> csfFilter(const std::vector<float>& plane, int w, int h, int 
         double sum = 0.0;
         for (int i = -radius; i <= radius; ++i) {
             double x = double(i) / ppd;
-            k[std::size_t(i + radius)] = float(std::exp(-kPi * kPi * x * x / t.b));
+            k[std::size_t(i + radius)] = float(std::exp(-shading::kPiDouble * shading::kPiDouble * x * x / t.b));
             sum += k[std::size_t(i + radius)];
         }
-        double amplitude = t.a * std::sqrt(kPi / t.b);
+        double amplitude = t.a * std::sqrt(shading::kPiDouble / t.b);
         total += amplitude * sum * sum;
         kernels.push_back(std::move(k));
         amplitudes.push_back(amplitude);

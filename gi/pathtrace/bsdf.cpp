@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared/constants.h"
+#include "shaders/shared/material.h"
+
 namespace voxgi::pt {
 
 namespace {
@@ -11,7 +14,7 @@ float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * 
 
 float ggxD(float nh, float a2) {
     float d = nh * nh * (a2 - 1.0f) + 1.0f;
-    return a2 / std::max(kPi * d * d, 1e-12f);
+    return a2 / std::max(shading::kPi * d * d, 1e-12f);
 }
 
 // Height-correlated Smith visibility G2 / (4 nl nv), as in brdf.glsl.
@@ -58,7 +61,7 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
 
     transmission_ = std::clamp(m.transmission, 0.0f, 1.0f);
     opaqueWeight_ = 1.0f - transmission_;
-    diffuse_ = (1.0f - m.metallic) * (1.0f - m.specular) * albedo;
+    diffuse_ = shading::diffuseAlbedo(albedo, m.metallic, m.specular);
     f0_ = glm::mix(glm::vec3(m.specular), albedo, m.metallic);
     float r2 = m.roughness * m.roughness;
     alpha_ = std::max(r2, kSmoothAlpha);
@@ -75,8 +78,8 @@ glm::vec3 Bsdf::evalOpaque(glm::vec3 wi, float* pdf) const {
     *pdf = 0.0f;
     float nl = glm::dot(n_, wi), nv = glm::dot(n_, wo_);
     if (nl <= 0.0f || nv <= 0.0f || glm::dot(ng_, wi) <= 0.0f) return glm::vec3(0.0f);
-    glm::vec3 f = diffuse_ * (1.0f / kPi);
-    *pdf = (1.0f - specularProbability_) * nl / kPi;
+    glm::vec3 f = diffuse_ * (1.0f / shading::kPi);
+    *pdf = (1.0f - specularProbability_) * nl / shading::kPi;
     if (specularProbability_ > 0.0f) {  // non-zero exactly when F0 is
         glm::vec3 h = glm::normalize(wo_ + wi);
         float a2 = alpha_ * alpha_;
@@ -154,7 +157,7 @@ float Bsdf::pdf(glm::vec3 wi) const {
 namespace {
 // GGX normal distribution sampling proportional to D(h) (n.h), in the local frame.
 glm::vec3 sampleGgxLocal(float u1, float u2, float a2) {
-    float phi = 2.0f * kPi * u1;
+    float phi = 2.0f * shading::kPi * u1;
     float cos2 = (1.0f - u2) / (1.0f + (a2 - 1.0f) * u2);
     float cosT = std::sqrt(std::max(cos2, 0.0f));
     float sinT = std::sqrt(std::max(1.0f - cos2, 0.0f));
@@ -171,7 +174,7 @@ bool Bsdf::sampleOpaque(glm::vec3 u, BsdfSample& out) const {
         wi = 2.0f * glm::dot(wo_, h) * h - wo_;
     } else {
         // Cosine-weighted hemisphere.
-        float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
+        float r = std::sqrt(u.x), phi = 2.0f * shading::kPi * u.y;
         float z = std::sqrt(std::max(0.0f, 1.0f - u.x));
         wi = r * std::cos(phi) * t_ + r * std::sin(phi) * b_ + z * n_;
     }

@@ -13,7 +13,6 @@
 
 namespace voxgi::pt {
 
-constexpr float kPi = 3.14159265358979323846f;
 constexpr float kSmoothAlpha = 1e-3f;  // the GLSL BRDF clamps alpha here too
 
 struct BsdfSample {

@@ -2,23 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace voxgi::pt {
 
 namespace {
 float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-
-// Same falloff as shaders/frame/direct_light.frag (GLSL smoothstep between the cone cosines).
-float smoothstep(float e0, float e1, float x) {
-    float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
 }  // namespace
 
 LightSampler::LightSampler(const Scene& scene) {
     for (const Light& l : scene.lights)
-        if (l.type != LightType::Quad) deltas_.push_back(l);  // quads are emissive geometry
+        if (l.type != LightType::Quad) deltas_.push_back(shading::packLight(l));  // quads are emissive geometry
 
     std::size_t global = 0;
     std::vector<double> power;
@@ -52,24 +45,12 @@ LightSampler::LightSampler(const Scene& scene) {
 }
 
 LightSample LightSampler::sampleDelta(std::size_t index, glm::vec3 p) const {
-    const Light& l = deltas_[index];
+    // Deltas are never quads: the quad sample point is unused.
+    const shading::IncidentLight incident = shading::evaluateLight(deltas_[index], p, glm::vec2(0.0f));
     LightSample s;
-    if (l.type == LightType::Directional) {
-        s.direction = -glm::normalize(l.direction);
-        s.distance = std::numeric_limits<float>::infinity();
-        s.radiance = l.color;  // irradiance at normal incidence, W/m^2
-        return s;
-    }
-    glm::vec3 toLight = l.position - p;
-    float d2 = std::max(glm::dot(toLight, toLight), 1e-12f);
-    s.distance = std::sqrt(d2);
-    s.direction = toLight / s.distance;
-    glm::vec3 intensity = l.color;
-    if (l.type == LightType::Spot) {
-        float c = glm::dot(-s.direction, glm::normalize(l.direction));
-        intensity *= smoothstep(std::cos(glm::radians(l.outerConeDegrees)), std::cos(glm::radians(l.innerConeDegrees)), c);
-    }
-    s.radiance = intensity / d2;
+    s.direction = incident.direction;
+    s.distance = incident.distance;
+    s.radiance = incident.irradiance;
     return s;
 }
 

@@ -1,7 +1,9 @@
 // Next-event estimation: every light of the scene as something a shading point can sample.
-// Point, spot and directional lights are deltas (sampled every time); emissive triangles,
-// which include the geometry of quad lights, are picked in proportion to their power and
-// sampled uniformly by area, so hitting them by BSDF sampling can be weighted by MIS.
+// Point, spot and directional lights are deltas (sampled every time), evaluated by the shared
+// light model (shaders/shared/light_model.h). Quad lights are not: the path tracer sees them as
+// the emissive triangles of their geometry (Scene::addQuadLightGeometry), which BSDF sampling
+// can hit, so that light and BSDF samples of them are weighted by MIS. Emissive triangles are
+// picked in proportion to their power and sampled uniformly by area.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "scenes/scene.h"
+#include "shaders/shared/light_model.h"
 
 namespace voxgi::pt {
 
@@ -26,7 +29,8 @@ public:
 
     // Delta lights are evaluated exhaustively: index in [0, deltaCount()).
     std::size_t deltaCount() const { return deltas_.size(); }
-    // Incident light from delta light `index` (unoccluded) at `p`: intensity / r^2 etc.
+    // Incident light from delta light `index` (unoccluded) at `p`: its irradiance at normal
+    // incidence (pdf 0).
     LightSample sampleDelta(std::size_t index, glm::vec3 p) const;
 
     bool hasEmissiveTriangles() const { return !triangles_.empty(); }
@@ -42,7 +46,7 @@ private:
         glm::vec3 emission;
         float area;
     };
-    std::vector<Light> deltas_;
+    std::vector<shading::PackedLight> deltas_;
     std::vector<Emitter> triangles_;
     std::vector<float> cdf_;                       // cumulative selection probability
     std::vector<std::size_t> meshFirstTriangle_;  // global triangle index of each mesh's first one

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "shaders/shared/constants.h"
+
 namespace voxgi {
 
 glm::vec2 r2Sequence(int index, glm::vec2 offset) {
@@ -20,7 +22,7 @@ float radicalInverse2(unsigned bits) {
 }
 
 glm::vec3 sphericalFibonacci(int index, int count) {
-    const double goldenAngle = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+    const double goldenAngle = shading::kPiDouble * (3.0 - std::sqrt(5.0));
     double z = 1.0 - (2.0 * double(index) + 1.0) / double(count);
     double r = std::sqrt((1.0 - z * z > 0.0 ? 1.0 - z * z : 0.0));
     double phi = goldenAngle * double(index);

@@ -14,14 +14,15 @@
 
 #include <glm/glm.hpp>
 
+#include "shaders/shared/constants.h"
+
 namespace voxgi::sh {
 
-constexpr float kPi = 3.14159265358979323846f;
 constexpr float kY00 = 0.282094791773878f;   // 1 / (2 sqrt(pi))
 constexpr float kY1 = 0.488602511902920f;    // sqrt(3 / (4 pi))
-constexpr float kCosLobe0 = kPi;             // A_0
-constexpr float kCosLobe1 = 2.0f * kPi / 3.0f;  // A_1
-constexpr float kCosLobe2 = kPi / 4.0f;         // A_2
+constexpr float kCosLobe0 = shading::kPi;             // A_0
+constexpr float kCosLobe1 = 2.0f * shading::kPi / 3.0f;  // A_1
+constexpr float kCosLobe2 = shading::kPi / 4.0f;         // A_2
 
 struct Sh4 {
     std::array<float, 4> c{0.0f, 0.0f, 0.0f, 0.0f};
@@ -61,7 +62,7 @@ inline float convolveCosine(const Sh4& f, glm::vec3 n) {
 }
 
 // Integral of f over the sphere (for an intensity distribution: the total flux).
-inline float integral(const Sh4& f) { return f.c[0] * (4.0f * kPi * kY00); }
+inline float integral(const Sh4& f) { return f.c[0] * (4.0f * shading::kPi * kY00); }
 
 // 3 bands (9 coefficients), for skies.
 struct Sh9 {

@@ -211,19 +211,19 @@ struct FrameRenderer::Impl {
         const char* names[6] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uShadowCube", "uShadow2D"};
         for (int i = 0; i < 6; ++i) lightProgram.set(names[i], i);
         lightProgram.set("uEye", scene.camera.eye);
+        gpu.bindLights(scene.lights);
         glBindVertexArray(emptyVao.id());
     }
 
-    void drawLight(int kind, glm::vec3 position, glm::vec3 direction, glm::vec3 color, glm::vec3 emitterNormal,
-                   glm::vec2 spotCos, const glm::mat4& shadowMatrix, float shadowTexel) {
+    // Light `index` of the scene (the shader reads it from the lights buffer) at quad point
+    // `quadSample`, shadowed by the cube map around `shadowEye` or the 2D map `shadowMatrix`.
+    void drawLight(std::size_t index, glm::vec2 quadSample, glm::vec3 shadowEye, const glm::mat4& shadowMatrix,
+                   float shadowTexel) {
         timers.begin("direct_light");
         beginLightPass();
-        lightProgram.set("uKind", kind);
-        lightProgram.set("uLightPosition", position);
-        lightProgram.set("uLightDirection", direction);
-        lightProgram.set("uLightColor", color);
-        lightProgram.set("uEmitterNormal", emitterNormal);
-        lightProgram.set("uSpotCos", spotCos);
+        lightProgram.set("uLight", int(index));
+        lightProgram.set("uQuadSample", quadSample);
+        lightProgram.set("uShadowEye", shadowEye);
         lightProgram.set("uShadowMatrix", shadowMatrix);
         lightProgram.set("uShadowTexel", shadowTexel);
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -235,18 +235,16 @@ struct FrameRenderer::Impl {
         switch (light.type) {
             case LightType::Point:
                 renderCubeShadow(light.position);
-                drawLight(0, light.position, glm::vec3(0.0f), light.color, glm::vec3(0.0f), glm::vec2(0.0f),
-                          glm::mat4(1.0f), cubeTexel);
+                drawLight(index, glm::vec2(0.0f), light.position, glm::mat4(1.0f), cubeTexel);
                 break;
             case LightType::Quad: {
-                // One sample point per frame on the quad; as a point light its intensity is
-                // L * A * cos(theta) about the quad normal (W/sr), which averages to the area light.
+                // One point of the quad per frame (the light model turns it into a point light);
+                // the shadow cube sits just off the emitter so that it does not shadow itself.
                 glm::vec2 uv = r2Sequence(frames, glm::vec2(0.5f) + 0.1f * float(index));
-                glm::vec3 n = light.quadNormal();
-                glm::vec3 p = light.position + uv.x * light.edgeU + uv.y * light.edgeV + n * (1e-4f * sceneRadius);
+                glm::vec3 p = light.position + uv.x * light.edgeU + uv.y * light.edgeV +
+                              light.quadNormal() * (1e-4f * sceneRadius);
                 renderCubeShadow(p);
-                drawLight(0, p, glm::vec3(0.0f), light.color * light.area(), n, glm::vec2(0.0f), glm::mat4(1.0f),
-                          cubeTexel);
+                drawLight(index, uv, p, glm::mat4(1.0f), cubeTexel);
                 break;
             }
             case LightType::Spot: {
@@ -257,8 +255,7 @@ struct FrameRenderer::Impl {
                                                   glm::length(light.position - sceneCenter) + 2.0f * sceneRadius);
                 glm::mat4 shadow = renderMapShadow(proj * view);
                 float texel = 2.0f * std::tan(outer + 0.025f) / float(options.shadowMapSize);
-                drawLight(1, light.position, light.direction, light.color, glm::vec3(0.0f),
-                          glm::vec2(std::cos(outer), std::cos(glm::radians(light.innerConeDegrees))), shadow, texel);
+                drawLight(index, glm::vec2(0.0f), glm::vec3(0.0f), shadow, texel);
                 break;
             }
             case LightType::Directional: {
@@ -266,7 +263,7 @@ struct FrameRenderer::Impl {
                 glm::mat4 view = glm::lookAt(eye, sceneCenter, anyPerpendicular(light.direction));
                 glm::mat4 proj = glm::ortho(-sceneRadius, sceneRadius, -sceneRadius, sceneRadius, 0.0f, 4.0f * sceneRadius);
                 glm::mat4 shadow = renderMapShadow(proj * view);
-                drawLight(2, glm::vec3(0.0f), light.direction, light.color, glm::vec3(0.0f), glm::vec2(0.0f), shadow,
+                drawLight(index, glm::vec2(0.0f), glm::vec3(0.0f), shadow,
                           2.0f * sceneRadius / float(options.shadowMapSize));
                 break;
             }

@@ -1,9 +1,10 @@
-// The material model, identical to the path tracer's (gi/pathtrace/brdf.h):
+// The material model, identical to the path tracer's (gi/pathtrace/bsdf.h):
 //   f = (1 - metallic)(1 - specular) albedo / pi  +  GGX(alpha = roughness^2, F0 = mix(specular, albedo, metallic))
 // with Schlick Fresnel and the height-correlated Smith visibility term.
 #ifndef VOXGI_BRDF_GLSL
 #define VOXGI_BRDF_GLSL
-#include "common/constants.glsl"
+#include "shared/constants.h"
+#include "shared/material.h"
 
 struct Surface {
     vec3 albedo;
@@ -14,7 +15,7 @@ struct Surface {
 
 float ggxD(float nh, float a2) {
     float d = nh * nh * (a2 - 1.0) + 1.0;
-    return a2 / max(PI * d * d, 1e-12);
+    return a2 / max(kPi * d * d, 1e-12);
 }
 
 float smithVisibility(float nl, float nv, float a2) {
@@ -32,7 +33,7 @@ vec3 evalBrdf(Surface s, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
     float nv = dot(n, v);
     if (nl <= 0.0 || nv <= 0.0) return vec3(0.0);
-    vec3 diffuse = (1.0 - s.metallic) * (1.0 - s.specular) * s.albedo * INV_PI;
+    vec3 diffuse = diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi;
     vec3 f0 = mix(vec3(s.specular), s.albedo, s.metallic);
     if (max(f0.r, max(f0.g, f0.b)) <= 0.0) return diffuse;
     vec3 h = normalize(v + l);

@@ -1,7 +1,8 @@
 #version 450 core
 // Indirect outgoing radiance of every G-buffer pixel from the DDGI field:
-// (1 - metallic)(1 - specular) albedo / pi * E_indirect.
-#include "common/constants.glsl"
+// diffuse albedo / pi * E_indirect.
+#include "shared/constants.h"
+#include "shared/gbuffer.h"
 #include "ddgi/sampling.glsl"
 
 uniform sampler2D uPosition;
@@ -14,14 +15,16 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 pos = texelFetch(uPosition, pixel, 0);
-    if (pos.w == 0.0) { outColor = vec4(0.0); return; }
-    vec3 n = normalize(texelFetch(uNormal, pixel, 0).xyz);
-    vec4 am = texelFetch(uAlbedo, pixel, 0);
-    float specular = texelFetch(uEmission, pixel, 0).w;
-    vec3 toViewer = uEye - pos.xyz;
+    GBufferTexels t;
+    t.position = texelFetch(uPosition, pixel, 0);
+    if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
+    t.normal = texelFetch(uNormal, pixel, 0);
+    t.albedo = texelFetch(uAlbedo, pixel, 0);
+    t.emission = texelFetch(uEmission, pixel, 0);
+    GBufferSurface s = decodeGBuffer(t);
+    vec3 toViewer = uEye - s.position;
     float len = length(toViewer);
-    toViewer = len > 0.0 ? toViewer / len : n;
-    vec3 e = ddgiSampleIrradiance(pos.xyz, n, toViewer);
-    outColor = vec4((1.0 - am.w) * (1.0 - specular) * am.rgb * INV_PI * e, 1.0);
+    toViewer = len > 0.0 ? toViewer / len : s.normal;
+    vec3 e = ddgiSampleIrradiance(s.position, s.normal, toViewer);
+    outColor = vec4(diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * e, 1.0);
 }

@@ -3,7 +3,7 @@
 // DISTANCE 0 (irradiance, cosine weights, stored as E^(1/gamma)) or 1 (moments, cos^exponent).
 // The CPU reference is CpuBlend in gi/ddgi/probe_blend.cpp.
 #include "common/octahedral.glsl"
-#include "common/constants.glsl"
+#include "shared/constants.h"
 #include "ddgi/blend_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -87,7 +87,7 @@ void main() {
 #if DISTANCE
     imageStore(uAtlas, at, vec4(mix(sum / wsum, previous.xy, hysteresis), 0.0, 0.0));
 #else
-    vec3 e = max(PI * sum / wsum, vec3(0.0));
+    vec3 e = max(kPi * sum / wsum, vec3(0.0));
     vec3 encoded = pow(e, vec3(1.0 / uGamma));
     vec3 prev = previous.rgb;
     if (hysteresis > 0.0 && hysteresis < 1.0) {

@@ -1,7 +1,10 @@
 #version 450 core
-// Adds one light sample's reflected radiance (W/(m^2 sr)) to the accumulation target.
-// Light kinds: 0 point / quad sample (cube shadow), 1 spot (2D shadow), 2 directional (2D shadow).
+// Adds one light sample's reflected radiance (W/(m^2 sr)) to the accumulation target. The light
+// is lights[uLight], evaluated by the shared light model (shaders/shared/light_model.h); its
+// shadow is the cube map for point and quad lights, the 2D map for spot and directional ones.
 #include "common/brdf.glsl"
+#include "common/scene_data.glsl"
+#include "shared/gbuffer.h"
 
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;
@@ -10,23 +13,20 @@ uniform sampler2D uEmission;
 uniform samplerCube uShadowCube;
 uniform sampler2DShadow uShadow2D;
 
-uniform int uKind;
+uniform int uLight;
+uniform vec2 uQuadSample;       // quad lights: this frame's point of the quad, in [0,1)^2
 uniform vec3 uEye;
-uniform vec3 uLightPosition;
-uniform vec3 uLightDirection;   // the way light travels (spot axis, sun direction)
-uniform vec3 uLightColor;       // W/sr for point/spot/quad sample, W/m^2 for directional
-uniform vec3 uEmitterNormal;    // quad samples: cosine emission about this normal; zero = isotropic
-uniform vec2 uSpotCos;          // cos(outer), cos(inner)
+uniform vec3 uShadowEye;        // the cube map's centre (point light; quad sample lifted off the quad)
 uniform mat4 uShadowMatrix;     // world -> shadow texture space (2D maps)
 uniform float uShadowTexel;     // world size of one shadow texel at unit distance (normal offset)
 
 layout(location = 0) out vec4 outColor;
 
 float cubeVisibility(vec3 p, vec3 n) {
-    vec3 d = p - uLightPosition;
+    vec3 d = p - uShadowEye;
     float dist = length(d);
     vec3 offset = p + n * (2.0 * uShadowTexel * dist);
-    vec3 dir = offset - uLightPosition;
+    vec3 dir = offset - uShadowEye;
     float stored = texture(uShadowCube, dir).r;
     return length(dir) <= stored * 1.002 ? 1.0 : 0.0;
 }
@@ -45,37 +45,28 @@ float mapVisibility(vec3 p, vec3 n, float dist) {
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 pos = texelFetch(uPosition, pixel, 0);
-    if (pos.w == 0.0) { outColor = vec4(0.0); return; }
-    vec4 nr = texelFetch(uNormal, pixel, 0);
-    vec4 am = texelFetch(uAlbedo, pixel, 0);
-    vec4 es = texelFetch(uEmission, pixel, 0);
-    Surface s = Surface(am.rgb, nr.w, am.w, es.w);
-    vec3 p = pos.xyz;
-    vec3 n = normalize(nr.xyz);
+    GBufferTexels t;
+    t.position = texelFetch(uPosition, pixel, 0);
+    if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
+    t.normal = texelFetch(uNormal, pixel, 0);
+    t.albedo = texelFetch(uAlbedo, pixel, 0);
+    t.emission = texelFetch(uEmission, pixel, 0);
+    GBufferSurface g = decodeGBuffer(t);
+    Surface s = Surface(g.albedo, g.roughness, g.metallic, g.specular);
+    vec3 p = g.position;
+    vec3 n = g.normal;
     vec3 v = normalize(uEye - p);
 
-    vec3 l;
-    vec3 incident;  // irradiance at normal incidence (W/m^2) times visibility
-    if (uKind == 2) {
-        l = -uLightDirection;
-        incident = uLightColor * mapVisibility(p, n, 1.0);
-    } else {
-        vec3 toLight = uLightPosition - p;
-        float d2 = max(dot(toLight, toLight), 1e-12);
-        float d = sqrt(d2);
-        l = toLight / d;
-        vec3 intensity = uLightColor;
-        if (uKind == 1) {
-            float c = dot(-l, uLightDirection);
-            intensity *= smoothstep(uSpotCos.x, uSpotCos.y, c);
-        }
-        if (dot(uEmitterNormal, uEmitterNormal) > 0.0) intensity *= max(dot(uEmitterNormal, -l), 0.0);
-        if (max(intensity.r, max(intensity.g, intensity.b)) <= 0.0) { outColor = vec4(0.0); return; }
-        float vis = uKind == 1 ? mapVisibility(p, n, d) : cubeVisibility(p, n);
-        incident = intensity / d2 * vis;
-    }
+    PackedLight light = lights[uLight];
+    IncidentLight incident = evaluateLight(light, p, uQuadSample);
+    if (!(incident.falloff > 0.0)) { outColor = vec4(0.0); return; }
+    vec3 l = incident.direction;
     float nl = dot(n, l);
     if (nl <= 0.0) { outColor = vec4(0.0); return; }
-    outColor = vec4(evalBrdf(s, n, v, l) * incident * nl, 1.0);
+    int kind = light.kind.x;
+    float vis;
+    if (kind == kLightDirectional) vis = mapVisibility(p, n, 1.0);  // orthographic: texels do not grow
+    else if (kind == kLightSpot) vis = mapVisibility(p, n, incident.distance);
+    else vis = cubeVisibility(p, n);
+    outColor = vec4(evalBrdf(s, n, v, l) * incident.irradiance * vis * nl, 1.0);
 }

@@ -1,7 +1,8 @@
 #version 450 core
-// Writes the G-buffer: world position, camera-facing shading normal + roughness,
-// albedo + metallic, emission (front faces only) + specular.
+// Writes the G-buffer (encoding in shaders/shared/gbuffer.h): world position, camera-facing
+// shading normal + roughness, albedo + metallic, emission (front faces only) + specular.
 #include "common/scene_data.glsl"
+#include "shared/gbuffer.h"
 
 in vec3 vPosition;
 in vec3 vNormal;
@@ -25,8 +26,17 @@ void main() {
     if (dot(n, geometric) < 0.0) n = -n;
     vec3 albedo = m.albedo.rgb;
     if (m.textureLayer >= 0) albedo *= texture(uTextures, vec3(vUv.x, 1.0 - vUv.y, float(m.textureLayer))).rgb;
-    outPosition = vec4(vPosition, 1.0);
-    outNormal = vec4(n, m.roughness);
-    outAlbedo = vec4(albedo, m.metallic);
-    outEmission = vec4(gl_FrontFacing ? m.emission.rgb : vec3(0.0), m.specular);
+    GBufferSurface s;
+    s.position = vPosition;
+    s.normal = n;
+    s.albedo = albedo;
+    s.emission = gl_FrontFacing ? m.emission.rgb : vec3(0.0);
+    s.roughness = m.roughness;
+    s.metallic = m.metallic;
+    s.specular = m.specular;
+    GBufferTexels t = encodeGBuffer(s);
+    outPosition = t.position;
+    outNormal = t.normal;
+    outAlbedo = t.albedo;
+    outEmission = t.emission;
 }

@@ -4,9 +4,9 @@
 // blended finest-first with each cascade's border fade, times the diffuse albedo / pi.
 // Radiance of a cell is its intensity over the cell face area (the seed's A_s / A_c weight).
 #include "common/sh.glsl"
-#include "common/constants.glsl"
 #include "lpv/limits.h"
-
+#include "shared/constants.h"
+#include "shared/gbuffer.h"
 
 uniform sampler2D uPosition;
 uniform sampler2D uNormal;
@@ -84,29 +84,30 @@ vec3 glossyRadiance(vec3 p, vec3 r, float roughness) {
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec4 pos = texelFetch(uPosition, pixel, 0);
-    if (pos.w == 0.0) { outColor = vec4(0.0); return; }
-    vec4 nr = texelFetch(uNormal, pixel, 0);
-    vec4 am = texelFetch(uAlbedo, pixel, 0);
-    float specular = texelFetch(uEmission, pixel, 0).w;
-    vec3 n = normalize(nr.xyz);
+    GBufferTexels t;
+    t.position = texelFetch(uPosition, pixel, 0);
+    if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
+    t.normal = texelFetch(uNormal, pixel, 0);
+    t.albedo = texelFetch(uAlbedo, pixel, 0);
+    t.emission = texelFetch(uEmission, pixel, 0);
+    GBufferSurface s = decodeGBuffer(t);
+    vec3 n = s.normal;
     vec3 e = vec3(0.0);
     float remaining = 1.0;
     for (int c = 0; c < uCascadeCount && remaining > 0.0; ++c) {
-        vec3 p = pos.xyz + n * (uApplyNormalOffset * uCellSize[c]);
+        vec3 p = s.position + n * (uApplyNormalOffset * uCellSize[c]);
         float w = inlier(c, p) * remaining;
         if (w <= 0.0) continue;
         e += w * irradiance(c, p, n);
         remaining -= w;
     }
-    vec3 diffuse = (1.0 - am.w) * (1.0 - specular) * am.rgb;
-    vec3 color = diffuse * INV_PI * e;
-    vec3 f0 = mix(vec3(specular), am.rgb, am.w);
-    if (uGlossy != 0 && max(f0.r, max(f0.g, f0.b)) > 0.0 && nr.w < 0.6) {
-        vec3 v = normalize(uEye - pos.xyz);
+    vec3 color = diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * e;
+    vec3 f0 = mix(vec3(s.specular), s.albedo, s.metallic);
+    if (uGlossy != 0 && max(f0.r, max(f0.g, f0.b)) > 0.0 && s.roughness < 0.6) {
+        vec3 v = normalize(uEye - s.position);
         vec3 r = reflect(-v, n);
         vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(n, v), 0.0), 5.0);
-        color += fresnel * glossyRadiance(pos.xyz + n * (0.5 * uCellSize[0]), r, nr.w);
+        color += fresnel * glossyRadiance(s.position + n * (0.5 * uCellSize[0]), r, s.roughness);
     }
     outColor = vec4(color, 1.0);
 }

@@ -2,10 +2,12 @@
 // One sampled G-buffer pixel as a blocker (the camera's source; gbufferSurfels in
 // gi/lpv/lpv_technique.cpp gives the CPU twin): its area is the pixel's footprint at its depth.
 #include "lpv/inject_common.glsl"
+#include "shared/gbuffer.h"
 
-uniform sampler2D uPosition;  // xyz, w = 1 where a surface was hit
+uniform sampler2D uPosition;  // the G-buffer (shaders/shared/gbuffer.h)
 uniform sampler2D uNormal;
-uniform sampler2D uAlbedo;    // rgb, w = metallic
+uniform sampler2D uAlbedo;
+uniform sampler2D uEmission;
 uniform int uStride;
 uniform int uColumns;
 uniform vec3 uEye;
@@ -17,13 +19,12 @@ uniform float uFaceArea;      // h * h
 void main() {
     ivec2 pixel = ivec2(gl_VertexID % uColumns, gl_VertexID / uColumns) * uStride + uStride / 2;
     vec4 p4 = texelFetch(uPosition, pixel, 0);
-    if (!(p4.w > 0.0)) {
+    if (!gbufferHit(p4)) {
         dropPoint();
         return;
     }
     vec3 n = normalizeExact(texelFetch(uNormal, pixel, 0).xyz);
-    vec4 a4 = texelFetch(uAlbedo, pixel, 0);
-    precise vec3 albedo = a4.rgb * (1.0 - a4.w);
+    precise vec3 albedo = gbufferDiffuseAlbedo(texelFetch(uAlbedo, pixel, 0), texelFetch(uEmission, pixel, 0));
     precise vec3 d = p4.xyz - uEye;
     precise float dist = sqrt(dotExact(d, d));
     precise vec3 w = d / dist;

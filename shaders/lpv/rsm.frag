@@ -1,21 +1,19 @@
 #version 450 core
 // One reflective-shadow-map texel: the surfel's position and area, normal, the diffuse flux it
-// reflects (W) and its diffuse albedo. Units as in direct_light.frag.
+// reflects (W) and its diffuse albedo. The light is lights[uLight], evaluated by the shared
+// light model (shaders/shared/light_model.h).
 #include "common/scene_data.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 
-uniform int uKind;               // 0 perspective (point, spot, quad hemicube), 2 orthographic (sun)
-uniform vec3 uLightPosition;
-uniform vec3 uLightForward;      // the face's viewing axis
-uniform vec3 uLightDirection;    // spot axis / sun direction (the way light travels)
-uniform vec3 uLightColor;        // W/sr (point, spot; quad: L * A) or W/m^2 (sun)
-uniform vec3 uEmitterNormal;     // quad: cosine emission about this normal
-uniform vec2 uSpotCos;
+uniform int uLight;
+uniform vec2 uQuadSample;        // quad lights: the point of the quad the map is rendered from
+uniform vec3 uFaceOrigin;        // perspective faces: the eye of the face
+uniform vec3 uFaceForward;       // the face's viewing axis
 uniform float uTexelSolidAngle;  // perspective: texel solid angle on the unit image plane
-uniform float uOrthoTexelArea;   // orthographic: texel area in m^2
+uniform float uOrthoTexelArea;   // orthographic (sun): texel area in m^2
 uniform sampler2DArray uTextures;
 
 layout(location = 0) out vec4 outPosition;  // xyz, w = surfel area (m^2)
@@ -25,31 +23,31 @@ layout(location = 3) out vec4 outAlbedo;    // rgb diffuse albedo
 
 void main() {
     MaterialGpu m = materials[triangleMaterial[gl_PrimitiveID]];
+    PackedLight light = lights[uLight];
+    IncidentLight incident = evaluateLight(light, vPosition, uQuadSample);
+    vec3 toLight = incident.direction;
     vec3 geometric = normalize(cross(dFdx(vPosition), dFdy(vPosition)));
     vec3 n = length(vNormal) > 0.0 ? normalize(vNormal) : geometric;
-    vec3 toLight = uKind == 2 ? -uLightDirection : normalize(uLightPosition - vPosition);
     if (dot(geometric, toLight) < 0.0) geometric = -geometric;
     if (dot(n, geometric) < 0.0) n = -n;  // two-sided, like the frame renderer
     vec3 albedo = m.albedo.rgb;
     if (m.textureLayer >= 0) albedo *= texture(uTextures, vec3(vUv.x, 1.0 - vUv.y, float(m.textureLayer))).rgb;
-    vec3 diffuse = (1.0 - m.metallic) * (1.0 - m.specular) * albedo;
+    vec3 diffuse = diffuseAlbedo(albedo, m.metallic, m.specular);
     float cosSurface = max(dot(n, toLight), 0.0);
 
     vec3 incidentFlux;  // W arriving on the surfel
     float area;
-    if (uKind == 2) {
-        incidentFlux = uLightColor * uOrthoTexelArea;  // E cos * (texel area / cos)
+    if (light.kind.x == kLightDirectional) {
+        incidentFlux = incident.irradiance * uOrthoTexelArea;  // E cos * (texel area / cos)
         area = uOrthoTexelArea / max(cosSurface, 0.05);
     } else {
-        vec3 d = vPosition - uLightPosition;
+        // The texel's solid angle seen from the face's eye; the light's intensity toward the
+        // surfel is its irradiance at normal incidence times the distance squared.
+        vec3 d = vPosition - uFaceOrigin;
         float dist = length(d);
-        vec3 w = d / dist;
-        float c = max(dot(w, uLightForward), 1e-4);
+        float c = max(dot(d / dist, uFaceForward), 1e-4);
         float solidAngle = uTexelSolidAngle * c * c * c;
-        vec3 intensity = uLightColor;
-        if (uSpotCos.x > -1.5) intensity *= smoothstep(uSpotCos.x, uSpotCos.y, dot(w, uLightDirection));
-        if (dot(uEmitterNormal, uEmitterNormal) > 0.0) intensity *= max(dot(uEmitterNormal, w), 0.0);
-        incidentFlux = intensity * solidAngle;
+        incidentFlux = incident.irradiance * (incident.distance * incident.distance) * solidAngle;
         area = solidAngle * dist * dist / max(cosSurface, 0.05);
     }
     if (cosSurface <= 0.0) incidentFlux = vec3(0.0);

@@ -1,6 +1,7 @@
 #version 450 core
 // Instanced spheres (probes, light-volume cells) without a vertex buffer: a latitude-longitude
 // mesh of kRings x kSegments quads from gl_VertexID.
+#include "shared/constants.h"
 struct Sphere {
     vec4 centerRadius;
     vec4 r;  // constant colour in .x of r, g, b, or 2-band SH per colour channel
@@ -15,7 +16,6 @@ flat out int vInstance;
 
 const int kRings = 8;
 const int kSegments = 12;
-const float kPi = 3.14159265;
 
 vec3 pointOn(int ring, int segment) {
     float theta = kPi * float(ring) / float(kRings);

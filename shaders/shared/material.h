@@ -1,0 +1,37 @@
+// The material as the GPU reads it (SSBO 0 of gl/scene_gpu.cpp, declared in
+// shaders/common/scene_data.glsl) and the one diffuse albedo of the material model
+// (shaders/common/brdf.glsl, gi/pathtrace/bsdf.h):
+//   f = (1 - metallic)(1 - specular) albedo / pi + GGX(alpha = roughness^2, F0 = mix(specular, albedo, metallic))
+#ifndef VOXGI_SHARED_MATERIAL_H
+#define VOXGI_SHARED_MATERIAL_H
+
+#include "language.h"
+
+#ifdef __cplusplus
+namespace voxgi::shading {
+using namespace glm;
+#endif
+
+// std430, 48 bytes.
+struct MaterialGpu {
+    vec4 albedo;       // rgb linear base colour, a unused
+    vec4 emission;     // rgb emitted radiance W/(m^2 sr), a unused
+    float roughness;   // GGX perceptual roughness
+    float metallic;
+    float specular;    // F0 of the dielectric coat
+    int textureLayer;  // layer of the albedo texture array; -1 = none
+};
+
+// The albedo of the Lambert lobe: what a surface scatters diffusely, the rest going to the GGX
+// lobe (metals and the dielectric coat's F0). Every diffuse bounce (probe-ray hits, RSM texels,
+// LPV blockers, voxel albedo, the apply passes) uses this.
+inline vec3 diffuseAlbedo(vec3 albedo, float metallic, float specular) {
+    return (1.0f - metallic) * (1.0f - specular) * albedo;
+}
+
+#ifdef __cplusplus
+static_assert(sizeof(MaterialGpu) == 48, "std430 layout of MaterialGpu");
+}  // namespace voxgi::shading
+#endif
+
+#endif
