@@ -21,7 +21,8 @@ namespace voxgi {
 
 class SceneGpu;
 
-// The G-buffer of the current frame (textures owned by the frame renderer).
+// The G-buffer of the current frame (textures owned by the frame renderer), encoded as
+// shaders/shared/gbuffer.h says (encodeGBuffer / decodeGBuffer, for C++ and GLSL).
 struct GBufferView {
     GLuint position = 0;  // RGBA32F: world position, w = 1 where a surface was hit
     GLuint normal = 0;    // RGBA16F: camera-facing shading normal, w = roughness
