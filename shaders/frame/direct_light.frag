@@ -4,12 +4,8 @@
 // shadow is the cube map for point and quad lights, the 2D map for spot and directional ones.
 #include "common/brdf.glsl"
 #include "common/scene_data.glsl"
-#include "shared/gbuffer.h"
+#include "common/gbuffer_textures.glsl"
 
-uniform sampler2D uPosition;
-uniform sampler2D uNormal;
-uniform sampler2D uAlbedo;
-uniform sampler2D uEmission;
 uniform samplerCube uShadowCube;
 uniform sampler2DShadow uShadow2D;
 
@@ -45,12 +41,8 @@ float mapVisibility(vec3 p, vec3 n, float dist) {
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    GBufferTexels t;
-    t.position = texelFetch(uPosition, pixel, 0);
+    GBufferTexels t = fetchGBuffer(pixel);
     if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
-    t.normal = texelFetch(uNormal, pixel, 0);
-    t.albedo = texelFetch(uAlbedo, pixel, 0);
-    t.emission = texelFetch(uEmission, pixel, 0);
     GBufferSurface g = decodeGBuffer(t);
     Surface s = Surface(g.albedo, g.roughness, g.metallic, g.specular);
     vec3 p = g.position;

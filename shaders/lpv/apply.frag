@@ -6,12 +6,8 @@
 #include "common/sh.glsl"
 #include "lpv/limits.h"
 #include "shared/constants.h"
-#include "shared/gbuffer.h"
+#include "common/gbuffer_textures.glsl"
 
-uniform sampler2D uPosition;
-uniform sampler2D uNormal;
-uniform sampler2D uAlbedo;
-uniform sampler2D uEmission;
 uniform sampler3D uLpvR[kLpvMaxCascades];
 uniform sampler3D uLpvG[kLpvMaxCascades];
 uniform sampler3D uLpvB[kLpvMaxCascades];
@@ -84,12 +80,8 @@ vec3 glossyRadiance(vec3 p, vec3 r, float roughness) {
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    GBufferTexels t;
-    t.position = texelFetch(uPosition, pixel, 0);
+    GBufferTexels t = fetchGBuffer(pixel);
     if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
-    t.normal = texelFetch(uNormal, pixel, 0);
-    t.albedo = texelFetch(uAlbedo, pixel, 0);
-    t.emission = texelFetch(uEmission, pixel, 0);
     GBufferSurface s = decodeGBuffer(t);
     vec3 n = s.normal;
     vec3 e = vec3(0.0);
