@@ -64,7 +64,6 @@ SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int targ
 namespace {
 
 class LpvTechnique final : public GiTechnique {
-public:
     const Scene& scene;
     LpvDesc desc;
     bool cascaded;
@@ -83,6 +82,7 @@ public:
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
     bool valid = false;
 
+public:
     LpvTechnique(const Scene& s, const LpvDesc& d, bool c)
         : scene(s), desc(d), cascaded(c), rsm(d.rsmSize),
           apply(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply.frag")) {
@@ -332,12 +332,14 @@ public:
         if (view == kLpvCellsView && valid) {
             const LpvCellsOptions o = lpvCellsOptions().read(context.options);
             if (o.cascade >= int(placements.size())) return {};
-            return lpvCellSpheres(lightVolumes()[std::size_t(o.cascade)], o.stride, context.exposureStops);
+            return lpvCellSpheres(lightVolume(std::size_t(o.cascade)), o.stride, context.exposureStops);
         }
         return {};
     }
 
+    // The CPU propagation's parts (the gl back end propagates in one dispatch per step).
     std::vector<TechniqueStat> stats() const override {
+        if (desc.backend != Backend::Cpu) return {};
         return {{"propagate_operator", last.operatorMs, "ms"},
                 {"propagate_steps", last.stepsMs, "ms"},
                 {"active_bricks", double(last.activeBricks), "bricks"},
@@ -351,10 +353,16 @@ private:
         std::size_t activeBricks = 0, totalBricks = 0;
     } last;
 
-    // The propagated light and the geometry of every cascade, read back from the GPU if there.
+    // The propagated light of a cascade and the geometry of every cascade, read back from the
+    // GPU with the gl back end.
+    LightVolume lightVolume(std::size_t c) const {
+        LightVolume light = accumulated[c];
+        if (c < glPropagators.size()) glPropagators[c]->readBack(light);
+        return light;
+    }
     std::vector<LightVolume> lightVolumes() const {
-        std::vector<LightVolume> light = accumulated;
-        for (std::size_t c = 0; c < glPropagators.size(); ++c) glPropagators[c]->readBack(light[c]);
+        std::vector<LightVolume> light;
+        for (std::size_t c = 0; c < accumulated.size(); ++c) light.push_back(lightVolume(c));
         return light;
     }
     std::vector<BlockerVolume> geometryVolumes() const {
