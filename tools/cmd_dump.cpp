@@ -27,7 +27,8 @@ int runDump(const std::vector<std::string>& argv) {
     const int frames = args.integer("--frame", 0, 0, 1 << 20) + 1;
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
-    const std::string method = args.value("--method", scene.gi.getString("method", "direct"));
+    const std::string method = args.value("--method", scene.gi.getString("method", ""));
+    if (method.empty()) throw InputError("--method NAME is required: " + args.positional()[0] + " names no gi.method");
     if (!validateMethod(method, scene).create) throw InputError("--method " + method + " has no volumes to dump");
     auto context = gl::Context::createHeadless();
     FrameRenderer renderer(scene, FrameOptions{}, method);
