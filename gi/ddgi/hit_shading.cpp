@@ -64,30 +64,6 @@ std::vector<PreparedLight> prepareLights(const Scene& scene) {
     return lights;
 }
 
-// Sum over lights of unshadowed irradiance times visibility(light index, l, range).
-template <typename Visible>
-glm::vec3 sumLights(const std::vector<PreparedLight>& lights, glm::vec3 p, glm::vec3 n, glm::vec2 quadSample,
-                    Visible&& visible) {
-    glm::vec3 sum(0.0f);
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        glm::vec3 e;
-        shading::IncidentLight incident;
-        if (lights[i].unshadowed(p, n, quadSample, e, incident))
-            sum += e * visible(int(i), incident.direction, incident.distance);
-    }
-    return sum;
-}
-
-}  // namespace
-
-glm::vec3 directIrradiance(const Scene& scene, const LightVisibility& visibility, glm::vec3 p, glm::vec3 n,
-                           glm::vec2 quadSample) {
-    return sumLights(prepareLights(scene), p, n, quadSample,
-                     [&](int i, glm::vec3 l, float range) { return visibility.visible(i, p, n, l, range); });
-}
-
-namespace {
-
 struct ShadeContext {
     const Scene& scene;
     const LightVisibility& visibility;

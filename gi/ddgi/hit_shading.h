@@ -32,11 +32,6 @@ private:
     float offset_;
 };
 
-// Irradiance (W/m^2) at p with normal n from the scene's analytic lights; `quadSample` in
-// [0,1)^2 picks the point on quad lights.
-glm::vec3 directIrradiance(const Scene& scene, const LightVisibility& visibility, glm::vec3 p, glm::vec3 n,
-                           glm::vec2 quadSample);
-
 // Per blend job ray: rgb = radiance toward the probe (W/(m^2 sr)), a = signed hit distance.
 struct ShadedRays {
     int raysPerJob = 0;
