@@ -74,15 +74,19 @@ SceneGpu::SceneGpu(const Scene& scene) {
         glTextureSubImage3D(textures_.id(), 0, 0, 0, 0, kTextureSize, kTextureSize, 1, GL_RGBA, GL_UNSIGNED_BYTE,
                             resized.data());
     glGenerateTextureMipmap(textures_.id());
+    updateLights(scene.lights);
 }
 
 void SceneGpu::bind(GLuint textureUnit) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, materials_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, triangleMaterials_.id());
+    bindLights();
     glBindTextureUnit(textureUnit, textures_.id());
 }
 
-void SceneGpu::bindLights(const std::vector<Light>& lights) const {
+void SceneGpu::bindLights() const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights_.id()); }
+
+void SceneGpu::updateLights(const std::vector<Light>& lights) {
     std::vector<shading::PackedLight> packed;
     for (const Light& l : lights) packed.push_back(shading::packLight(l));
     const std::size_t bytes = packed.size() * sizeof(shading::PackedLight);
@@ -95,7 +99,6 @@ void SceneGpu::bindLights(const std::vector<Light>& lights) const {
         if (bytes > 0) glNamedBufferSubData(lights_.id(), 0, GLsizeiptr(bytes), packed.data());
         packedLights_ = std::move(packed);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights_.id());
 }
 
 void SceneGpu::draw() const {

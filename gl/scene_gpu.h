@@ -16,11 +16,13 @@ class SceneGpu {
 public:
     explicit SceneGpu(const Scene& scene);
 
-    // Binds materials (SSBO 0), triangle materials (SSBO 1) and the texture array.
+    // Binds materials (SSBO 0), triangle materials (SSBO 1), the lights and the texture array.
     void bind(GLuint textureUnit) const;
-    // Binds `lights` packed (SSBO 2), uploading them first when they differ from the last
-    // upload: the viewer moves the scene's lights between frames.
-    void bindLights(const std::vector<Light>& lights) const;
+    // Binds the packed lights alone (SSBO 2), for passes whose texture units are their own.
+    void bindLights() const;
+    // Uploads `lights` packed when they differ from the last upload (the viewer moves the
+    // scene's lights between frames); the frame renderer calls it once per frame.
+    void updateLights(const std::vector<Light>& lights);
     // Draws every triangle in one call (so gl_PrimitiveID is the global triangle index).
     void draw() const;
 
@@ -30,9 +32,8 @@ public:
 private:
     gl::Handle vao_, vertices_, indices_, materials_, triangleMaterials_, textures_;
     std::size_t triangles_ = 0;
-    // What bindLights last uploaded, and its buffer (a cache of GL state, hence mutable).
-    mutable std::vector<shading::PackedLight> packedLights_;
-    mutable gl::Handle lights_;
+    std::vector<shading::PackedLight> packedLights_;  // what updateLights last uploaded
+    gl::Handle lights_;
 };
 
 }  // namespace voxgi

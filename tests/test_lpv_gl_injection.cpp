@@ -138,7 +138,7 @@ GlCascadeTargets targetsOf(const GlPropagator& p, const CascadeGrid& grid) {
 void expectGpuInjectionMatchesCpu(const Scene& scene, std::size_t expectedFaces, std::size_t batch) {
     SceneGpu gpu(scene);
     RsmRenderer rsm(96);
-    ASSERT_EQ(rsm.faceCount(scene), expectedFaces);
+    ASSERT_EQ(rsmFaceCount(scene), expectedFaces);
     std::vector<SurfelSource> sources;
     for (const RsmFace& f : rsm.renderToTextures(scene, gpu, 0, expectedFaces)) sources.push_back(readSurfels(f));
     ASSERT_EQ(sources.size(), expectedFaces);

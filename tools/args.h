@@ -10,6 +10,9 @@
 
 namespace voxgi::cli {
 
+// "a,b,,c" -> {"a", "b", "c"}: the comma lists of options like --methods and --sizes.
+std::vector<std::string> splitList(const std::string& text);
+
 class Args {
 public:
     // `valued` options take one value ("-o out.exr" or "--width=512"); `flags` take none.

@@ -4,6 +4,7 @@
 // method with a benchmark of its own (ddgi) runs that one for `voxgi bench METHOD`.
 #include <algorithm>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -13,11 +14,10 @@
 
 #include "gi/methods.h"
 #include "gl/context.h"
-#include "gl/timers.h"
-#include "render/frame/frame_renderer.h"
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "tools/bench_registry.h"
+#include "tools/eval_run.h"
 #include "tools/scene_arg.h"
 
 namespace voxgi::cli {
@@ -29,21 +29,6 @@ const char* kUsage =
     "                  [--threads N] [--set k=v]... [-o results.csv]\n"
     "  also `voxgi bench NAME` for a method without a benchmark of its own; SCENE: default cornell-box and,\n"
     "  when ../shared/scenes is there, sibenik and sponza; variants: the method's (voxgi methods NAME)";
-
-std::vector<std::string> split(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
-
-double median(std::vector<double> v) { return gl::summarize(std::move(v)).median; }
-
-std::vector<double> from(const std::vector<double>& v, std::size_t first) {
-    return first < v.size() ? std::vector<double>(v.begin() + std::ptrdiff_t(first), v.end()) : std::vector<double>{};
-}
 
 // Scenes named on the command line, else the defaults that load (a missing mesh is skipped).
 std::vector<std::pair<std::string, Scene>> benchScenes(const Args& args) {
@@ -69,39 +54,29 @@ struct Row {
     std::map<std::string, double> values;  // "<stage>_ms" and technique stats
 };
 
-// One scene, size and variant: warm-up frames, then the medians of the timed ones.
-Row benchOne(const std::string& name, Scene scene, int size, const MethodInfo& method, const Preset& variant,
+// One scene, size and variant: warm-up frames, then the medians of the timed ones (eval's
+// renderMethod), the user's --set over the variant's settings.
+Row benchOne(const std::string& name, const Scene& scene, int size, const MethodInfo& method, const Preset& variant,
              const Args& args, int warmup, int frames) {
-    scene.camera.width = scene.camera.height = size;
-    // The variant over the scene's settings, then --set again so that the user's settings win.
-    for (const auto& [k, v] : variant.settings) scene.gi.set(k, v);
-    for (const std::string& s : args.values("--set")) scene.gi.applyOverride(s);
-    FrameRenderer renderer(scene, FrameOptions{}, method.name);
-    for (int f = 0; f < warmup; ++f) renderer.renderFrame();
-    std::map<std::string, std::size_t> first;
-    for (const auto& [stage, samples] : renderer.timers().samples()) first[stage] = samples.cpuMs.size();
-    std::map<std::string, std::vector<double>> stats;
-    for (int f = 0; f < frames; ++f) {
-        renderer.renderFrame();
-        if (const GiTechnique* t = renderer.technique())
-            for (const TechniqueStat& st : t->stats()) stats[st.unit == "ms" ? st.name + "_ms" : st.name].push_back(st.value);
-    }
+    GiSettings user;
+    for (const std::string& s : args.values("--set")) user.applyOverride(s);
+    const SettingList extra(user.values().begin(), user.values().end());
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.warmup = warmup;
+    settings.frames = warmup + frames;
+    const MethodRun run = renderMethod(scene, method.name, variant, settings, extra);
     Row row{name, variant.name, size, {}};
-    for (const std::string& stage : renderer.timers().stageOrder()) {
-        auto it = renderer.timers().samples().find(stage);
-        if (it == renderer.timers().samples().end()) continue;
-        const std::size_t start = first.count(stage) ? first[stage] : 0;
-        // llvmpipe runs compute on the calling thread and its timer queries read 0 for it: a
-        // stage costs the larger of its GPU and CPU medians.
-        const double gpu = median(from(it->second.gpuMs, start)), cpu = median(from(it->second.cpuMs, start));
-        if (start < it->second.cpuMs.size()) row.values[stage + "_ms"] = std::max(gpu, cpu);
-    }
-    for (const auto& [stat, values] : stats) row.values[stat] = median(values);
+    // llvmpipe runs compute on the calling thread and its timer queries read 0 for it: a stage
+    // costs the larger of its GPU and CPU medians.
+    for (const auto& [stage, t] : run.stages)
+        if (t.samples > 0) row.values[stage + "_ms"] = std::fmax(t.gpuMs, t.cpuMs);  // fmax skips a NaN GPU time
+    for (const auto& [stat, value] : run.stats) row.values[stat] = value;
     return row;
 }
 
 int runFrameBench(const MethodInfo& method, const Args& args) {
-    const std::vector<std::string> sizes = split(args.value("--sizes", "512,1024"));
+    const std::vector<std::string> sizes = splitList(args.value("--sizes", "512,1024"));
     const int frames = args.integer("--frames", 5, 1, 1000);
     const int warmup = args.integer("--warmup", 1, 0, 1000);
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -109,7 +84,7 @@ int runFrameBench(const MethodInfo& method, const Args& args) {
     std::vector<Preset> variants = method.benchVariants.empty() ? std::vector<Preset>{{"default", {}}} : method.benchVariants;
     if (auto wanted = args.value("--variants")) {
         std::vector<Preset> chosen;
-        for (const std::string& w : split(*wanted)) {
+        for (const std::string& w : splitList(*wanted)) {
             auto it = std::find_if(variants.begin(), variants.end(), [&](const Preset& p) { return p.name == w; });
             if (it == variants.end()) throw InputError("--variants " + w + ": not a variant of " + method.name);
             chosen.push_back(*it);

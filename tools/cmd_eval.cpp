@@ -32,15 +32,6 @@ const char* kUsage =
     "  --spp: reference samples per pixel (default 256); --cache: reference cache (default DIR/cache)\n"
     "  --frames: frames accumulated per run (default the scene's, at least warm-up + 5); --warmup: untimed frames (4)";
 
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> out;
-    std::stringstream in(text);
-    std::string part;
-    while (std::getline(in, part, ','))
-        if (!part.empty()) out.push_back(part);
-    return out;
-}
-
 std::string sceneName(const std::string& argument) {
     std::string stem = std::filesystem::path(argument).stem().string();
     for (char& c : stem)

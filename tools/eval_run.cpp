@@ -65,6 +65,7 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
     run.timedFrames = settings.frames - run.warmupFrames;
     std::map<std::string, std::size_t> gpuStart, cpuStart;
     std::vector<double> frameMs;
+    std::map<std::string, std::vector<double>> stats;
     Image warm;
     for (int f = 0; f < settings.frames; ++f) {
         if (f == run.warmupFrames) {
@@ -77,16 +78,22 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
         auto start = Clock::now();
         renderer.renderFrame();
         double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        if (f >= run.warmupFrames) frameMs.push_back(ms);
+        if (f < run.warmupFrames) continue;
+        frameMs.push_back(ms);
+        if (const GiTechnique* t = renderer.technique())
+            for (const TechniqueStat& st : t->stats()) stats[st.unit == "ms" ? st.name + "_ms" : st.name].push_back(st.value);
     }
     run.frameMs = median(frameMs);
+    for (const auto& [name, values] : stats) run.stats.emplace_back(name, median(values));
     const auto& samples = renderer.timers().samples();
     for (const std::string& stage : renderer.timers().stageOrder()) {
         auto it = samples.find(stage);
         if (it == samples.end()) continue;
         StageTiming t;
         t.gpuMs = median(tailFrom(it->second.gpuMs, gpuStart.count(stage) ? gpuStart[stage] : 0));
-        t.cpuMs = median(tailFrom(it->second.cpuMs, cpuStart.count(stage) ? cpuStart[stage] : 0));
+        const std::vector<double> cpu = tailFrom(it->second.cpuMs, cpuStart.count(stage) ? cpuStart[stage] : 0);
+        t.cpuMs = median(cpu);
+        t.samples = cpu.size();
         run.stages.emplace_back(stage, t);
     }
     run.image = renderer.resolve();

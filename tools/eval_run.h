@@ -16,6 +16,7 @@ namespace voxgi::cli {
 struct StageTiming {
     double gpuMs = 0.0;  // median over the timed frames (0 for CPU-only stages)
     double cpuMs = 0.0;
+    std::size_t samples = 0;  // timed frames in which the stage ran
 };
 
 struct MethodRun {
@@ -24,6 +25,9 @@ struct MethodRun {
     int warmupFrames = 0;
     int timedFrames = 0;
     std::vector<std::pair<std::string, StageTiming>> stages;  // in the renderer's order
+    // The technique's stats (GiTechnique::stats), medians over the timed frames; times get
+    // "_ms" appended to their name.
+    std::vector<std::pair<std::string, double>> stats;
 };
 
 struct RenderSettings {

@@ -238,7 +238,7 @@ public:
     void updateOnGpu(const FrameInput& input, const GBufferView& g) {
         if (input.plan.runs("lpv.static_blockers")) refreshStaticBlockers(input);
         const InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
-        const std::size_t faceCount = rsm.faceCount(scene), batch = rsm.facesPerBatch();
+        const std::size_t faceCount = rsmFaceCount(scene), batch = rsm.facesPerBatch();
         for (std::size_t first = 0; first == 0 || first < faceCount; first += batch) {
             const bool firstBatch = first == 0, lastBatch = first + batch >= faceCount;
             input.timers.begin("lpv.rsm");

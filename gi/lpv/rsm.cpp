@@ -130,7 +130,6 @@ struct RsmRenderer::Impl {
         program.set("uOrthoTexelArea", v.orthoTexelArea);
         program.set("uTextures", 0);
         gpu.bind(0);
-        gpu.bindLights(scene.lights);
         gpu.draw();
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
@@ -162,8 +161,6 @@ std::size_t rsmFaceCount(const Scene& scene) {
     for (const Light& light : scene.lights) count += faceViews(scene, light, 1).size();
     return count;
 }
-
-std::size_t RsmRenderer::faceCount(const Scene& scene) const { return rsmFaceCount(scene); }
 
 std::size_t RsmRenderer::facesPerBatch() const {
     // Four RGBA32F colour targets and a 32-bit depth buffer per texel.

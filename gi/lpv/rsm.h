@@ -43,10 +43,9 @@ public:
     // One source per rendered face of scene.lights[lightIndex], read back to the CPU. Needs a
     // current GL context.
     std::vector<SurfelSource> render(const Scene& scene, const SceneGpu& gpu, std::size_t lightIndex);
-    // How many faces the scene's lights render (in light order), and how many of them
-    // renderToTextures keeps at once: textures of at most about 256 MB, at least one face
-    // (a 256^2 face takes 4.25 MB, a 4096^2 one 1.1 GB).
-    std::size_t faceCount(const Scene& scene) const;
+    // How many of the faces (rsmFaceCount, in light order) renderToTextures keeps at once:
+    // textures of at most about 256 MB, at least one face (a 256^2 face takes 4.25 MB, a 4096^2
+    // one 1.1 GB).
     std::size_t facesPerBatch() const;
     // Faces [first, first + count) of the scene's lights, kept on the GPU: the textures stay
     // valid until the next call of either render function.

@@ -40,22 +40,17 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     plan.passes.insert(plan.passes.end(), plan.technique.update.begin(), plan.technique.update.end());
 
     int cube = 0, maps = 0;
-    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-        const LightType t = scene.lights[i].type;
-        const bool point = t == LightType::Point || t == LightType::Quad;
-        plan.lights.push_back({i, point ? FramePlan::Shadow::Cube : FramePlan::Shadow::Map});
-        (point ? cube : maps) += 1;
-    }
+    for (const Light& l : scene.lights) (l.type == LightType::Point || l.type == LightType::Quad ? cube : maps) += 1;
     if (cube) add("shadow_cube", lightCount(cube, "point or area") + ": a distance cube map each per frame");
     else skip("shadow_cube", "no point or area lights");
     if (maps) add("shadow_map", lightCount(maps, "spot or directional") + ": a depth map each");
     else skip("shadow_map", "no spot or directional lights");
     if (!scene.lights.empty()) add("direct_light", "Lambert + GGX in physical units, one light at a time after its shadow");
     else skip("direct_light", "no lights");
-    if (hasEmission(scene) || scene.sky.enabled)
-        add("emission_sky", std::string(hasEmission(scene) ? "emitters" : "") +
-                                (hasEmission(scene) && scene.sky.enabled ? " and " : "") +
-                                (scene.sky.enabled ? "the constant sky behind the scene" : ""));
+    const bool emitters = hasEmission(scene), sky = scene.sky.enabled;
+    if (emitters || sky)
+        add("emission_sky", std::string(emitters ? "emitters" : "") + (emitters && sky ? " and " : "") +
+                                (sky ? "the constant sky behind the scene" : ""));
     else skip("emission_sky", "no emitters and no sky");
     plan.passes.insert(plan.passes.end(), plan.technique.apply.begin(), plan.technique.apply.end());
     plan.skipped.insert(plan.skipped.end(), plan.technique.skipped.begin(), plan.technique.skipped.end());

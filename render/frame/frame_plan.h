@@ -12,19 +12,12 @@
 namespace voxgi {
 
 struct FramePlan {
-    enum class Shadow { Cube, Map };
-    struct LightPass {
-        std::size_t light;  // index into scene.lights
-        Shadow shadow;
-    };
-
     std::string method;
     int frames = 1;
     std::vector<PlannedPass> passes;   // in the order they run, the method's included
     std::vector<PlannedPass> skipped;  // passes left out, with why
     std::vector<std::string> notes;
     TechniquePlan technique;           // the method's own passes
-    std::vector<LightPass> lights;     // the direct-light pass, light by light
 
     bool runs(const std::string& pass) const;
     std::string describe() const;

@@ -211,7 +211,7 @@ struct FrameRenderer::Impl {
         const char* names[6] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uShadowCube", "uShadow2D"};
         for (int i = 0; i < 6; ++i) lightProgram.set(names[i], i);
         lightProgram.set("uEye", scene.camera.eye);
-        gpu.bindLights(scene.lights);
+        gpu.bindLights();
         glBindVertexArray(emptyVao.id());
     }
 
@@ -289,12 +289,13 @@ struct FrameRenderer::Impl {
     }
 
     void renderFrame() {
+        gpu.updateLights(scene.lights);
         if (plan.runs("gbuffer")) renderGBuffer();
         FrameInput input{scene, gpu, frames, timers, plan.technique};
         GBufferView view = gbufferView();
         if (technique) technique->update(input, view);
         if (plan.runs("direct_light"))
-            for (const FramePlan::LightPass& l : plan.lights) renderLight(scene.lights[l.light], l.light);
+            for (std::size_t i = 0; i < scene.lights.size(); ++i) renderLight(scene.lights[i], i);
         if (plan.runs("emission_sky")) renderEmission();
         if (technique) {
             glBindFramebuffer(GL_FRAMEBUFFER, indirectFbo.id());
