@@ -198,6 +198,72 @@ TEST(PathTracer, SquareLightFormFactor) {
     EXPECT_LT(se, 0.01 * expected);
 }
 
+TEST(PathTracer, QuadLightOverParallelFaceAtAnyScaleAndPlace) {
+    // One 0.5 x 0.5 m light facing down from h = 0.5 m over one end of an 8 x 8 m face: every
+    // point of the face sees it, ever more grazing with distance, and L = rho Le F with F the
+    // form factor of the parallel rectangle (sums of corner terms). The same scene scaled down
+    // and moved far from the origin must give the same radiance: offsets that do not follow
+    // the coordinates' magnitude either lose the far half of the face to the light's own
+    // plane or lift points off their surfaces.
+    const double h = 0.5, Le = 3.0, rho = 0.8;
+    // Over a point at height hp below the light, in the light's plane coordinates.
+    auto corner = [](double a, double b, double hp) {  // signed: odd in a and in b
+        double x = a / hp, y = b / hp;
+        return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
+                y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2.0 * shading::kPiDouble);
+    };
+    const double x0 = -4.0, x1 = -3.5, z0 = -0.25, z1 = 0.25;
+    // From the float coordinates the scene really holds: 1 cm at 1 km is rounded by 0.6 %.
+    auto formFactor = [&](glm::dvec3 p, glm::dvec3 lo, glm::dvec3 hi) {
+        double hp = lo.y - p.y;
+        return corner(hi.x - p.x, hi.z - p.z, hp) - corner(lo.x - p.x, hi.z - p.z, hp) -
+               corner(hi.x - p.x, lo.z - p.z, hp) + corner(lo.x - p.x, lo.z - p.z, hp);
+    };
+    struct Placement {
+        float scale, offset;
+    };
+    for (Placement place : {Placement{1.0f, 0.0f}, Placement{1.0f, 1000.0f}, Placement{1e-4f, 0.0f},
+                            Placement{1e-4f, 1.0f}, Placement{0.1f, 1000.0f}}) {
+        auto at = [&](double x, double y, double z) {
+            return glm::vec3(glm::dvec3(x, y, z) * double(place.scale) + glm::dvec3(place.offset));
+        };
+        auto json = [&](glm::vec3 v) {
+            char b[128];
+            std::snprintf(b, sizeof b, "[%.9g, %.9g, %.9g]", v.x, v.y, v.z);
+            return std::string(b);
+        };
+        Scene s = parseSceneJson(R"({
+          "camera": {"eye": )" + json(at(0, 3, 3)) + R"(, "target": )" + json(at(0, 0, 0)) +
+                                     R"(, "fov": 60, "resolution": [16, 16]},
+          "materials": {"m": {"albedo": 0.8}},
+          "lights": [{"type": "quad", "corner": )" + json(at(x0, h, z0)) + R"(, "edge_u": )" +
+                                     json(at(x1 - x0, 0, 0) - at(0, 0, 0)) + R"(, "edge_v": )" +
+                                     json(at(0, 0, z1 - z0) - at(0, 0, 0)) + R"(, "radiance": 3}],
+          "meshes": [{"type": "quad", "material": "m", "corners": [)" +
+                                     json(at(-4, 0, 4)) + "," + json(at(4, 0, 4)) + "," + json(at(4, 0, -4)) + "," +
+                                     json(at(-4, 0, -4)) + "]}]}",
+                                 "parallel.json");
+        PathTracerOptions o;
+        o.maxBounces = 1;
+        PathTracer tracer(s, o);
+        for (double x : {-3.75, -2.0, 0.0, 2.0, 3.9}) {
+            const glm::vec3 p = at(x, 0, 0.1), eye = at(x + 0.3, 0.2, 0.6);
+            double sum = 0.0, sumSq = 0.0;
+            const int n = 4000;
+            for (int i = 0; i < n; ++i) {
+                double value = tracer.trace(eye, p - eye, std::uint64_t(i)).beauty().g;
+                sum += value;
+                sumSq += value * value;
+            }
+            double mean = sum / n, se = std::sqrt(std::max(sumSq / n - mean * mean, 0.0) / (n - 1));
+            double expected = rho * Le * formFactor(glm::dvec3(p), glm::dvec3(at(x0, h, z0)), glm::dvec3(at(x1, h, z1)));
+            EXPECT_LT(std::abs(mean - expected), 4.0 * se + 2e-3 * expected)
+                << "scale " << place.scale << " offset " << place.offset << " x " << x << ": " << mean << " +- " << se
+                << ", analytic " << expected;
+        }
+    }
+}
+
 TEST(PathTracer, GlossyUnderSquareLightMatchesQuadrature) {
     // Light sampling, BSDF sampling and their MIS weights must add up to the integral of the
     // BRDF over the light, L = Le * integral f cos cos' / r^2 dA, here by a 400x400 midpoint rule.

@@ -17,11 +17,15 @@ float maxComponent(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 }  // namespace
 
 glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, float sceneScale) {
-    // Relative to the scene's size and the coordinates' magnitude, never an absolute length, so
-    // a scene scaled to 1e-4 m is not lifted off its own surfaces.
+    // 8 to 16 units in the last place of the larger of the scene's size and the point's distance
+    // from the origin: hit points are rebuilt from vertices and barycentrics, and Embree's plane
+    // tests round, at that magnitude, so the surface left behind is never found again; and the
+    // offset stays a fixed fraction of float precision at any scale and any translation (an
+    // absolute length would lift a 0.1 mm scene off its surfaces).
+    constexpr float kUlps = 8.0f / 8388608.0f;  // 8 * 2^-23
     float scale = sceneScale + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z)));
     float side = glm::dot(geometric, direction) >= 0.0f ? 1.0f : -1.0f;
-    return p + geometric * (side * 2e-5f * scale);
+    return p + geometric * (side * kUlps * scale);
 }
 
 Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces)
@@ -29,6 +33,19 @@ Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounc
       sky_(scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f)) {
     Bounds b = scene.bounds();
     sceneScale_ = b.valid() ? std::max(glm::length(b.extent()), 1e-6f) : 1.0f;
+}
+
+bool Integrator::segmentOccluded(glm::vec3 p, glm::vec3 n, glm::vec3 q, glm::vec3 nq) const {
+    // Both ends leave their surfaces the way rays do and the segment stops at the far end's
+    // offset point: neither the shading point's surface nor the emitter's own plane can count
+    // as a blocker, whatever the angles, the scene's size or its distance from the origin
+    // (each end's offset is measured at that end).
+    glm::vec3 d = q - p;
+    glm::vec3 from = offsetOrigin(p, n, d, sceneScale_);
+    glm::vec3 to = offsetOrigin(q, nq, -d, sceneScale_);
+    glm::vec3 segment = to - from;
+    float length = glm::length(segment);
+    return length > 0.0f && tracer_.occluded(from, segment / length, 0.0f, length);
 }
 
 glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, Rng& rng, std::uint32_t& rays) const {
@@ -51,11 +68,8 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, 
             float bsdfPdf;
             glm::vec3 f = bsdf.evalPdf(ls.direction, &bsdfPdf);
             if (maxComponent(f) > 0.0f) {
-                glm::vec3 o = offsetOrigin(p, ng, ls.direction, sceneScale_);
-                // Stop short of the emitter so its own triangle does not count as a blocker.
-                float tMax = ls.distance - 2e-5f * (2.0f * sceneScale_);
                 ++rays;
-                if (tMax > 0.0f && !tracer_.occluded(o, ls.direction, 0.0f, tMax))
+                if (!segmentOccluded(p, ng, ls.position, ls.normal))
                     sum += f * ls.radiance * powerHeuristic(ls.pdf, bsdfPdf);
             }
         }

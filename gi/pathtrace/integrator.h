@@ -23,6 +23,9 @@ private:
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
     glm::vec3 sampleLights(const class Bsdf& bsdf, glm::vec3 position, glm::vec3 geometric, Rng& rng,
                            std::uint32_t& rays) const;
+    // Whether anything lies between surface point p (geometric normal n) and emitter point q
+    // (normal nq).
+    bool segmentOccluded(glm::vec3 p, glm::vec3 n, glm::vec3 q, glm::vec3 nq) const;
 
     const Scene& scene_;
     const RayTracer& tracer_;

@@ -66,6 +66,8 @@ LightSample LightSampler::sampleEmissive(glm::vec3 p, float u0, float u1, float 
     if (!(d2 > 0.0f)) return s;
     s.distance = std::sqrt(d2);
     s.direction = d / s.distance;
+    s.position = q;
+    s.normal = e.normal;
     float cosLight = -glm::dot(e.normal, s.direction);
     if (cosLight <= 0.0f) return s;  // emitters shine from their front face only
     float pdfArea = (i == 0 ? cdf_[0] : cdf_[i] - cdf_[i - 1]) / e.area;

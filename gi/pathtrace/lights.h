@@ -21,6 +21,8 @@ struct LightSample {
     float distance = 0.0f;       // to the light point; infinity for directional lights
     glm::vec3 radiance{0.0f};    // arriving radiance (area) or irradiance-like value (delta) / pdf
     float pdf = 0.0f;            // solid-angle pdf for area lights; 0 marks a delta light
+    glm::vec3 position{0.0f};    // area lights: the sampled point on the emitter
+    glm::vec3 normal{0.0f};      // area lights: the emitter's unit normal (its emitting side)
 };
 
 class LightSampler {
