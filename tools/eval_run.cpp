@@ -44,7 +44,7 @@ std::string sceneKey(const Scene& scene) {
         s << m.positions.size() << ':' << m.indices.size();
         for (const glm::vec3& p : m.positions) s << p.x << p.y << p.z;
     }
-    s << scene.sky.enabled << scene.sky.radiance.x;
+    s << scene.sky.enabled << scene.sky.radiance.x << "|pt" << kPathTracerRevision;
     std::ostringstream hex;
     hex << std::hex << std::hash<std::string>{}(s.str());
     return hex.str();

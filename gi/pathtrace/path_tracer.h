@@ -14,6 +14,10 @@
 
 namespace voxgi {
 
+// Changes whenever the images the path tracer makes change (its estimator, its sampling or its
+// random numbers): cached references are keyed by it (tools/eval_run.cpp).
+constexpr int kPathTracerRevision = 2;
+
 struct PathTracerOptions {
     int maxBounces = 0;         // scattering events per path; 0 = unlimited (roulette ends paths)
     std::uint64_t seed = 0;
