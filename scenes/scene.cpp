@@ -93,11 +93,15 @@ bool Scene::hasGlossyOrRefractive() const {
     });
 }
 
+std::string Scene::quadLightMeshName(std::size_t light) const {
+    return "quad_light_" + (lights[light].name.empty() ? std::to_string(light) : lights[light].name);
+}
+
 void Scene::addQuadLightGeometry() {
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
         if (l.type != LightType::Quad) continue;
-        std::string meshName = "quad_light_" + (l.name.empty() ? std::to_string(i) : l.name);
+        std::string meshName = quadLightMeshName(i);
         bool present = std::any_of(meshes.begin(), meshes.end(),
                                    [&](const Mesh& m) { return m.name == meshName; });
         if (present) continue;

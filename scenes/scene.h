@@ -126,6 +126,8 @@ struct Scene {
     // Appends the emitting geometry of every quad light as a one-sided mesh, so rasterizers
     // see the light and path tracers can hit it. Called by the loader; idempotent.
     void addQuadLightGeometry();
+    // The name of the mesh addQuadLightGeometry gives quad light `light` (an index into lights).
+    std::string quadLightMeshName(std::size_t light) const;
 };
 
 }  // namespace voxgi

@@ -264,6 +264,53 @@ TEST(PathTracer, QuadLightOverParallelFaceAtAnyScaleAndPlace) {
     }
 }
 
+TEST(PathTracer, LowPolySphereUnderGrazingSunMatchesTheSmoothSphere) {
+    // A 12 x 6 UV sphere with interpolated normals, sun from near +x, seen from +z: its terminator
+    // band (cosine to the sun below 0.3) must be as bright as the smooth sphere's,
+    // rho/pi E (n.l). Dropping light below each triangle's plane, or shadow rays blocked by
+    // the neighbouring facets, darken that band by several per cent.
+    Scene s;
+    Material m;
+    m.albedo = glm::vec3(0.8f);
+    s.materials.push_back(m);
+    s.meshes.push_back(makeSphere(glm::mat4(1.0f), 0, 12));
+    ASSERT_FALSE(s.meshes[0].normals.empty());
+    Light sun;
+    sun.type = LightType::Directional;
+    // 7.5 degrees off the meridians of the sphere's vertices: the terminator crosses a facet that
+    // faces away from the sun while part of it has normals that face it.
+    const glm::vec3 toSun = glm::normalize(glm::vec3(1.0f, 0.0f, 0.1317f));
+    sun.direction = -toSun;
+    sun.emission = glm::vec3(2.0f);
+    s.lights.push_back(sun);
+    s.camera.eye = glm::vec3(0.0f, 0.0f, 4.0f);
+    s.camera.width = s.camera.height = 8;
+    PathTracerOptions o;
+    o.maxBounces = 1;
+    PathTracer tracer(s, o);
+    const glm::vec3 eye = s.camera.eye;
+    double rendered = 0.0, smooth = 0.0;
+    int dark = 0, band = 0;
+    const int grid = 200;
+    for (int j = 0; j < grid; ++j)
+        for (int i = 0; i < grid; ++i) {
+            const glm::vec3 target(-1.0f + 2.0f * (float(i) + 0.5f) / grid, -1.0f + 2.0f * (float(j) + 0.5f) / grid, 0.0f);
+            const glm::vec3 d = glm::normalize(target - eye);
+            const PathSample p = tracer.trace(eye, d, std::uint64_t(j * grid + i));
+            if (p.depth <= 0.0f) continue;
+            const float cosine = glm::dot(glm::normalize(eye + p.depth * d), toSun);
+            if (!(cosine > 0.0f && cosine < 0.3f)) continue;
+            ++band;
+            rendered += p.direct.g;
+            smooth += 0.8 / shading::kPiDouble * 2.0 * double(cosine);
+            if (p.direct.g <= 0.0f) ++dark;
+        }
+    std::printf("terminator band: %d hits, %d black, rendered / smooth sphere = %.4f\n", band, dark, rendered / smooth);
+    ASSERT_GT(band, 1000);
+    EXPECT_NEAR(rendered / smooth, 1.0, 0.02);
+    EXPECT_LT(dark, band / 100);
+}
+
 TEST(PathTracer, GlossyUnderSquareLightMatchesQuadrature) {
     // Light sampling, BSDF sampling and their MIS weights must add up to the integral of the
     // BRDF over the light, L = Le * integral f cos cos' / r^2 dA, here by a 400x400 midpoint rule.

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <tbb/info.h>
+#include <tbb/parallel_for.h>
 
 #include "gi/metrics/image_metrics.h"
 #include "gi/pathtrace/path_tracer.h"
@@ -25,11 +26,12 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi bench pathtrace [--scenes cornell-box,sibenik,sponza] [--size 128] [--reference-spp 4096]\n"
+    "voxgi bench pathtrace [--scenes cornell-box,sibenik,sponza] [--size 128] [--reference-spp 16384]\n"
     "       [--seconds 8] [--cache DIR] [--csv OUT.csv]\n"
     "  RMSE of the beauty layer against a cached --reference-spp render (another seed) after\n"
     "  --seconds/8, /4, /2 and --seconds of CPU time (all threads) of progressive rendering, and\n"
-    "  rays per CPU second.\n"
+    "  rays per CPU second; then the path tracer's rays per CPU second against Embree's alone\n"
+    "  (rtcIntersect1 / rtcOccluded1) on the very same rays.\n"
     "  --cache: reference cache (default $VOXGI_EVAL_CACHE, else out/eval-cache). Scenes whose\n"
     "  meshes are absent are skipped.";
 
@@ -38,6 +40,31 @@ double cpuSeconds() {
     getrusage(RUSAGE_SELF, &u);
     return double(u.ru_utime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_sec) +
            1e-6 * double(u.ru_stime.tv_usec);
+}
+
+// The path tracer's rays per CPU second against Embree's alone on the very same rays: `n` more
+// samples per pixel are rendered and timed, traced again with the ray log on (samples are
+// deterministic: the same paths), and the logged rays replayed through rtcIntersect1 and
+// rtcOccluded1 alone.
+void embreeShare(PathTracer& tracer, int n) {
+    const int first = tracer.samplesPerPixel();
+    const std::uint64_t raysBefore = tracer.raysTraced();
+    double start = cpuSeconds();
+    tracer.render(n);
+    const double pathCpu = cpuSeconds() - start;
+    const double rays = double(tracer.raysTraced() - raysBefore);
+    tracer.rayTracer().startLog();
+    tbb::parallel_for(0, tracer.height(), [&](int y) {
+        for (int x = 0; x < tracer.width(); ++x)
+            for (int s = first; s < first + n; ++s) tracer.samplePixel(x, y, std::uint64_t(s));
+    });
+    const std::vector<LoggedRay> logged = tracer.rayTracer().stopLog();
+    start = cpuSeconds();
+    tracer.rayTracer().replayBare(logged);
+    const double bareCpu = cpuSeconds() - start;
+    const double path = rays / pathCpu, bare = double(logged.size()) / bareCpu;
+    std::printf("  the same %.3g rays (%d spp): path tracer %.2f M rays per CPU s, Embree alone %.2f M: %.0f %%\n",
+                double(logged.size()), n, path * 1e-6, bare * 1e-6, 100.0 * path / bare);
 }
 
 void benchScene(const std::string& name, Scene scene, int size, int referenceSpp, double budget,
@@ -70,13 +97,14 @@ void benchScene(const std::string& name, Scene scene, int size, int referenceSpp
             << "," << referenceSpp << "\n";
         std::fflush(stdout);
     }
+    embreeShare(tracer, std::max(1, tracer.samplesPerPixel() / 8));
 }
 
 int runBench(const std::vector<std::string>& argv) {
     Args args(argv, {"--scenes", "--size", "--reference-spp", "--seconds", "--cache", "--csv"}, {});
     const std::vector<std::string> scenes = splitList(args.value("--scenes", "cornell-box,sibenik,sponza"));
     const int size = args.integer("--size", 128, 8, 8192);
-    const int referenceSpp = args.integer("--reference-spp", 4096, 1, 1 << 24);
+    const int referenceSpp = args.integer("--reference-spp", 16384, 1, 1 << 24);
     const double budget = args.number("--seconds", 8.0, 0.01, 1e6);
     const char* env = std::getenv("VOXGI_EVAL_CACHE");
     const std::string cache = args.value("--cache", env ? env : "out/eval-cache");

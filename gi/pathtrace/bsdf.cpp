@@ -77,7 +77,10 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
 glm::vec3 Bsdf::evalOpaque(glm::vec3 wi, float* pdf) const {
     *pdf = 0.0f;
     float nl = glm::dot(n_, wi), nv = glm::dot(n_, wo_);
-    if (nl <= 0.0f || nv <= 0.0f || glm::dot(ng_, wi) <= 0.0f) return glm::vec3(0.0f);
+    // The shading normal alone decides what is above the surface (the convention every voxgi
+    // renderer shares, docs/reference.md): light below the triangle's plane but above the
+    // interpolated one counts, as in the rasterizer.
+    if (nl <= 0.0f || nv <= 0.0f) return glm::vec3(0.0f);
     glm::vec3 f = diffuse_ * (1.0f / shading::kPi);
     *pdf = (1.0f - specularProbability_) * nl / shading::kPi;
     if (specularProbability_ > 0.0f) {  // non-zero exactly when F0 is

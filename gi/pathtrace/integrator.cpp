@@ -35,41 +35,48 @@ Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounc
     sceneScale_ = b.valid() ? std::max(glm::length(b.extent()), 1e-6f) : 1.0f;
 }
 
-bool Integrator::segmentOccluded(glm::vec3 p, glm::vec3 n, glm::vec3 q, glm::vec3 nq) const {
-    // Both ends leave their surfaces the way rays do and the segment stops at the far end's
-    // offset point: neither the shading point's surface nor the emitter's own plane can count
-    // as a blocker, whatever the angles, the scene's size or its distance from the origin
-    // (each end's offset is measured at that end).
-    glm::vec3 d = q - p;
-    glm::vec3 from = offsetOrigin(p, n, d, sceneScale_);
-    glm::vec3 to = offsetOrigin(q, nq, -d, sceneScale_);
+bool Integrator::segmentOccluded(glm::vec3 from, glm::vec3 q, glm::vec3 nq) const {
+    // The far end leaves the emitter the way rays leave surfaces and the segment stops at that
+    // offset point: the emitter's own plane never counts as a blocker, whatever the angles, the
+    // scene's size or its distance from the origin (each end's offset is measured at that end).
+    glm::vec3 to = offsetOrigin(q, nq, from - q, sceneScale_);
     glm::vec3 segment = to - from;
     float length = glm::length(segment);
     return length > 0.0f && tracer_.occluded(from, segment / length, 0.0f, length);
 }
 
-glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, Rng& rng, std::uint32_t& rays) const {
+glm::vec3 leavingPoint(const RayHit& hit, glm::vec3 direction, float sceneScale) {
+    // The smooth surface lies on the side the vertex normals face: rays leaving to that side of
+    // the shading normal start from it, offset outwards even when they dip below the triangle's
+    // plane (which is what they clear the neighbouring facets by). Others (a refraction into a
+    // low-poly sphere, light through a leaf) start at the triangle, offset to their side.
+    if (glm::dot(direction, hit.shadingNormal) > 0.0f)
+        return offsetOrigin(hit.smoothPosition, hit.geometricNormal, hit.shadingNormal, sceneScale);
+    return offsetOrigin(hit.position, hit.geometricNormal, direction, sceneScale);
+}
+
+glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, std::uint32_t& rays) const {
+    const glm::vec3 p = hit.position;
     glm::vec3 sum(0.0f);
     for (std::size_t i = 0; i < lights_.deltaCount(); ++i) {
         LightSample ls = lights_.sampleDelta(i, p);
         if (maxComponent(ls.radiance) <= 0.0f) continue;
         glm::vec3 f = bsdf.eval(ls.direction);
         if (maxComponent(f) <= 0.0f) continue;
-        glm::vec3 o = offsetOrigin(p, ng, ls.direction, sceneScale_);
+        glm::vec3 o = leavingPoint(hit, ls.direction, sceneScale_);
         float tMax = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
                                              : ls.distance * (1.0f - 1e-5f);
         ++rays;
         if (!tracer_.occluded(o, ls.direction, 0.0f, tMax)) sum += f * ls.radiance;
     }
-    if (lights_.hasEmissiveTriangles()) {
-        float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        LightSample ls = lights_.sampleEmissive(p, u0, u1, u2);
+    if (lights_.hasEmitters()) {
+        LightSample ls = lights_.sampleEmitter(p, glm::vec2(u.x, u.y), u.z);
         if (ls.pdf > 0.0f) {
             float bsdfPdf;
             glm::vec3 f = bsdf.evalPdf(ls.direction, &bsdfPdf);
             if (maxComponent(f) > 0.0f) {
                 ++rays;
-                if (!segmentOccluded(p, ng, ls.position, ls.normal))
+                if (!segmentOccluded(leavingPoint(hit, ls.direction, sceneScale_), ls.position, ls.normal))
                     sum += f * ls.radiance * powerHeuristic(ls.pdf, bsdfPdf);
             }
         }
@@ -77,7 +84,7 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, glm::vec3 p, glm::vec3 ng, 
     return sum;
 }
 
-PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) const {
+PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler) const {
     PathSample out;
     glm::vec3 throughput(1.0f);
     float radianceScale = 1.0f;
@@ -107,8 +114,8 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) co
         if (hit.frontFace && material.isEmissive()) {
             float weight = 1.0f;
             if (!previousDelta) {
-                float d2 = glm::dot(hit.position - previousPosition, hit.position - previousPosition);
-                float lightPdf = lights_.emissivePdf(hit.mesh, hit.triangle, d2, -glm::dot(hit.geometricNormal, direction));
+                float lightPdf = lights_.emitterPdf(hit.mesh, hit.triangle, previousPosition, hit.position,
+                                                    -glm::dot(hit.geometricNormal, direction));
                 weight = powerHeuristic(previousPdf, lightPdf);
             }
             deposit(depth, throughput * material.emission * weight);
@@ -117,9 +124,12 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) co
 
         glm::vec3 wo = -direction;
         Bsdf bsdf(material, albedo, wo, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
-        if (bsdf.hasSmoothPart()) deposit(depth + 1, throughput * sampleLights(bsdf, hit.position, hit.geometricNormal, rng, out.rays));
+        // The bounce's decisions: light sample, BSDF sample, roulette (gi/pathtrace/sampler.h).
+        const std::uint32_t decision = 1 + 3 * std::uint32_t(std::min(depth, 1 << 20));
+        if (bsdf.hasSmoothPart())
+            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), out.rays));
 
-        glm::vec3 u(rng.uniform(), rng.uniform(), rng.uniform());
+        glm::vec3 u = sampler.get3D(decision + 1);
         BsdfSample s;
         if (!bsdf.sample(u, s)) break;
         throughput *= s.weight;
@@ -135,12 +145,12 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) co
             // lose no energy are never cut; kBounceGuard ends those.
             float q = maxComponent(throughput) / radianceScale;
             if (q < 1.0f) {
-                if (!(rng.uniform() < q)) break;
+                if (!(sampler.get1D(decision + 2) < q)) break;
                 throughput /= q;
             }
         }
         if (maxComponent(throughput) <= 0.0f) break;
-        origin = offsetOrigin(hit.position, hit.geometricNormal, s.direction, sceneScale_);
+        origin = leavingPoint(hit, s.direction, sceneScale_);
         direction = s.direction;
     }
     return out;

@@ -4,7 +4,7 @@
 
 #include "gi/pathtrace/lights.h"
 #include "gi/pathtrace/path_tracer.h"
-#include "gi/pathtrace/random.h"
+#include "gi/pathtrace/sampler.h"
 #include "gi/raytrace/ray_tracer.h"
 
 namespace voxgi::pt {
@@ -17,15 +17,16 @@ constexpr int kBounceGuard = 10000;
 class Integrator {
 public:
     Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces);
-    PathSample trace(glm::vec3 origin, glm::vec3 direction, Rng& rng) const;
+    // Decision 0 of `sampler` is the caller's (the pixel position); bounce k uses 1 + 3k..3 + 3k.
+    PathSample trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler) const;
 
 private:
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
-    glm::vec3 sampleLights(const class Bsdf& bsdf, glm::vec3 position, glm::vec3 geometric, Rng& rng,
-                           std::uint32_t& rays) const;
-    // Whether anything lies between surface point p (geometric normal n) and emitter point q
+    // u: the emitter point (x, y) and the emitter choice (z).
+    glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, std::uint32_t& rays) const;
+    // Whether anything lies between `from` (a ray origin, leavingPoint) and emitter point q
     // (normal nq).
-    bool segmentOccluded(glm::vec3 p, glm::vec3 n, glm::vec3 q, glm::vec3 nq) const;
+    bool segmentOccluded(glm::vec3 from, glm::vec3 q, glm::vec3 nq) const;
 
     const Scene& scene_;
     const RayTracer& tracer_;
@@ -38,5 +39,8 @@ private:
 // Origin offset so a ray leaving a surface does not hit it again: along the geometric normal,
 // on the side the ray leaves to, relative to the scene size and the coordinates' magnitude.
 glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, float sceneScale);
+// The origin of a ray leaving `hit` in `direction`: offsetOrigin of the smooth surface point
+// (RayHit::smoothPosition) when it leaves to the side the shading normal faces, else of the hit.
+glm::vec3 leavingPoint(const RayHit& hit, glm::vec3 direction, float sceneScale);
 
 }  // namespace voxgi::pt

@@ -2,44 +2,151 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+
+#include "shaders/shared/constants.h"
 
 namespace voxgi::pt {
 
 namespace {
 float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+// Below this solid angle (sr) a rectangle is sampled by area: the spherical mapping's
+// cancellations (an angle excess of four angles near pi/2) lose precision there even in double,
+// and from that far the two pdfs differ by far less than the noise.
+constexpr double kMinSolidAngle = 1e-6;
+// Float leaves the angle excess about 3e-7 sr wrong: below this solid angle the rectangle is
+// set up again in double (1e-4 relative at most in float above it).
+constexpr float kFloatSolidAngle = 3e-3f;
+
+// The spherical rectangle of Urena et al. seen from the origin of the rectangle's frame: the
+// rectangle spans [x0, x1] x [y0, y1] at depth z0 < 0 along its normal.
+template <typename T>
+struct SphericalRectangle {
+    using V = glm::vec<3, T>;
+    T x0, x1, y0, y1, z0;
+    T b0, b1, k, solidAngle;
+
+    SphericalRectangle(T x0_, T x1_, T y0_, T y1_, T z0_) : x0(x0_), x1(x1_), y0(y0_), y1(y1_), z0(z0_) {
+        // Normals of the four planes through the origin and an edge, in the rectangle's frame.
+        const V n0 = glm::normalize(V(0, z0, -y0));
+        const V n1 = glm::normalize(V(-z0, 0, x1));
+        const V n2 = glm::normalize(V(0, -z0, y1));
+        const V n3 = glm::normalize(V(z0, 0, -x0));
+        auto angle = [](V a, V b) { return std::acos(std::clamp(-glm::dot(a, b), T(-1), T(1))); };
+        const T g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
+        b0 = n0.z;
+        b1 = n2.z;
+        k = T(2.0 * shading::kPiDouble) - g2 - g3;
+        solidAngle = g0 + g1 - k;  // the spherical quadrilateral's angle excess
+    }
+
+    // The point (x, y) of the rectangle's plane for u in [0, 1)^2.
+    glm::dvec2 sample(glm::vec2 u) const {
+        const T au = T(u.x) * solidAngle + k;
+        const T fu = (std::cos(au) * b0 - b1) / std::sin(au);
+        T cu = std::copysign(T(1), fu) / std::sqrt(fu * fu + b0 * b0);
+        cu = std::clamp(cu, T(-1), T(1));
+        const T xu = std::clamp(-(cu * z0) / std::sqrt(std::max(T(1) - cu * cu, T(1e-30))), x0, x1);
+        const T d2 = xu * xu + z0 * z0;
+        const T h0 = y0 / std::sqrt(d2 + y0 * y0), h1 = y1 / std::sqrt(d2 + y1 * y1);
+        const T hv = h0 + T(u.y) * (h1 - h0), hv2 = hv * hv;
+        const T yv = hv2 < T(1) - T(1e-6) ? std::clamp(hv * std::sqrt(d2) / std::sqrt(T(1) - hv2), y0, y1) : y1;
+        return {double(xu), double(yv)};
+    }
+};
+
+// The rectangle seen from p, in float where float is precise enough, else in double; nullopt
+// when p is behind (or in) its emitting plane. Sampling and pdf both go through here, so they
+// always agree on the precision and on the switch to area sampling.
+struct RectangleView {
+    double solidAngle = 0.0;
+    double x0 = 0.0, y0 = 0.0;
+    std::optional<SphericalRectangle<float>> single;
+    std::optional<SphericalRectangle<double>> precise;
+    glm::dvec2 sample(glm::vec2 u) const { return single ? single->sample(u) : precise->sample(u); }
+};
+
+template <typename Rect>
+bool view(const Rect& r, glm::vec3 p, RectangleView& out) {
+    const glm::vec3 d = r.corner - p;
+    const float z0 = glm::dot(d, r.normal);
+    if (!(z0 < 0.0f)) return false;
+    const float x0 = glm::dot(d, r.ex), y0 = glm::dot(d, r.ey);
+    out.single.emplace(x0, x0 + r.width, y0, y0 + r.height, z0);
+    out.x0 = x0;
+    out.y0 = y0;
+    out.solidAngle = out.single->solidAngle;
+    if (out.single->solidAngle < kFloatSolidAngle) {
+        out.single.reset();
+        const glm::dvec3 dd = glm::dvec3(r.corner) - glm::dvec3(p);
+        const double dz = glm::dot(dd, glm::dvec3(r.normal));
+        if (!(dz < 0.0)) return false;
+        const double dx = glm::dot(dd, glm::dvec3(r.ex)), dy = glm::dot(dd, glm::dvec3(r.ey));
+        out.precise.emplace(dx, dx + r.width, dy, dy + r.height, dz);
+        out.x0 = dx;
+        out.y0 = dy;
+        out.solidAngle = out.precise->solidAngle;
+    }
+    return true;
+}
 }  // namespace
 
 LightSampler::LightSampler(const Scene& scene) {
     for (const Light& l : scene.lights)
         if (l.type != LightType::Quad) deltas_.push_back(shading::packLight(l));  // quads are emissive geometry
 
-    std::size_t global = 0;
     std::vector<double> power;
-    std::vector<std::size_t> globalIndex;
-    for (const Mesh& mesh : scene.meshes) {
+    meshRectangle_.assign(scene.meshes.size(), -1);
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
+        if (l.type != LightType::Quad) continue;
+        const float w = glm::length(l.edgeU), h = glm::length(l.edgeV);
+        // Parallelograms that are not rectangles keep per-triangle area sampling.
+        if (!(w > 0.0f && h > 0.0f) || std::abs(glm::dot(l.edgeU, l.edgeV)) > 1e-4f * w * h) continue;
+        const std::string name = scene.quadLightMeshName(i);
+        auto mesh = std::find_if(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) { return m.name == name; });
+        if (mesh == scene.meshes.end() || luminance(l.emission) <= 0.0f) continue;
+        meshRectangle_[std::size_t(mesh - scene.meshes.begin())] = std::int32_t(rectangles_.size());
+        rectangles_.push_back({l.position, l.edgeU / w, l.edgeV / h, l.quadNormal(), w, h, l.emission});
+        emitters_.push_back({true, std::uint32_t(rectangles_.size() - 1), 0.0f});
+        power.push_back(double(w) * double(h) * double(luminance(l.emission)));
+    }
+
+    std::size_t global = 0;
+    std::vector<std::size_t> triangleGlobal;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
         meshFirstTriangle_.push_back(global);
         for (std::size_t t = 0; t < mesh.triangleCount(); ++t, ++global) {
-            const Material& m = scene.materials[mesh.materialIds[t]];
-            if (!m.isEmissive()) continue;
+            const Material& material = scene.materials[mesh.materialIds[t]];
+            if (meshRectangle_[m] >= 0 || !material.isEmissive()) continue;
             glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
             glm::vec3 b = mesh.positions[mesh.indices[3 * t + 1]];
             glm::vec3 c = mesh.positions[mesh.indices[3 * t + 2]];
             glm::vec3 cr = glm::cross(b - a, c - a);
             float area = 0.5f * glm::length(cr);
             if (!(area > 0.0f) || !std::isfinite(area)) continue;
-            triangles_.push_back({a, b - a, c - a, glm::normalize(cr), m.emission, area});
-            power.push_back(double(area) * double(std::max(luminance(m.emission), 1e-6f)));
-            globalIndex.push_back(global);
+            triangles_.push_back({a, b - a, c - a, glm::normalize(cr), material.emission, area});
+            emitters_.push_back({false, std::uint32_t(triangles_.size() - 1), 0.0f});
+            power.push_back(double(area) * double(std::max(luminance(material.emission), 1e-6f)));
+            triangleGlobal.push_back(global);
         }
     }
-    selectionPdf_.assign(global, 0.0f);
+    trianglePdfArea_.assign(global, 0.0f);
+    rectangleProbability_.assign(rectangles_.size(), 0.0f);
     double total = 0.0;
     for (double p : power) total += p;
     double running = 0.0;
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+    for (std::size_t i = 0; i < emitters_.size(); ++i) {
         running += power[i];
         cdf_.push_back(float(running / total));
-        selectionPdf_[globalIndex[i]] = float(power[i] / total / double(triangles_[i].area));
+        Emitter& e = emitters_[i];
+        e.probability = float(power[i] / total);
+        if (e.rectangle)
+            rectangleProbability_[e.index] = e.probability;
+        else
+            trianglePdfArea_[triangleGlobal[e.index]] = e.probability / triangles_[e.index].area;
     }
     if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
@@ -54,31 +161,77 @@ LightSample LightSampler::sampleDelta(std::size_t index, glm::vec3 p) const {
     return s;
 }
 
-LightSample LightSampler::sampleEmissive(glm::vec3 p, float u0, float u1, float u2) const {
-    LightSample s;
-    std::size_t i = std::size_t(std::lower_bound(cdf_.begin(), cdf_.end(), u0) - cdf_.begin());
-    i = std::min(i, triangles_.size() - 1);
-    const Emitter& e = triangles_[i];
-    float su = std::sqrt(u1);
-    glm::vec3 q = e.a + (1.0f - u2) * su * e.e1 + u2 * su * e.e2;
+namespace {
+// Fills direction and distance from p to q; false when q is p or lies behind the emitter.
+bool aim(LightSample& s, glm::vec3 p, glm::vec3 q, glm::vec3 normal, float* cosLight) {
     glm::vec3 d = q - p;
     float d2 = glm::dot(d, d);
-    if (!(d2 > 0.0f)) return s;
+    if (!(d2 > 0.0f)) return false;
     s.distance = std::sqrt(d2);
     s.direction = d / s.distance;
     s.position = q;
-    s.normal = e.normal;
-    float cosLight = -glm::dot(e.normal, s.direction);
-    if (cosLight <= 0.0f) return s;  // emitters shine from their front face only
-    float pdfArea = (i == 0 ? cdf_[0] : cdf_[i] - cdf_[i - 1]) / e.area;
-    s.pdf = pdfArea * d2 / cosLight;
-    s.radiance = e.emission / s.pdf;
+    s.normal = normal;
+    *cosLight = -glm::dot(normal, s.direction);
+    return *cosLight > 0.0f;  // emitters shine from their front face only
+}
+}  // namespace
+
+LightSample LightSampler::sampleTriangle(const Triangle& t, glm::vec3 p, glm::vec2 u) const {
+    LightSample s;
+    float su = std::sqrt(u.x);
+    glm::vec3 q = t.a + (1.0f - u.y) * su * t.e1 + u.y * su * t.e2;
+    float cosLight;
+    if (!aim(s, p, q, t.normal, &cosLight)) return LightSample{};
+    s.pdf = s.distance * s.distance / (cosLight * t.area);
     return s;
 }
 
-float LightSampler::emissivePdf(std::uint32_t mesh, std::uint32_t triangle, float d2, float cosLight) const {
-    float pdfArea = selectionPdf_[meshFirstTriangle_[mesh] + triangle];
-    return pdfArea > 0.0f && cosLight > 0.0f ? pdfArea * d2 / cosLight : 0.0f;
+LightSample LightSampler::sampleRectangle(const Rectangle& r, glm::vec3 p, glm::vec2 u) const {
+    RectangleView v;
+    if (!view(r, p, v)) return LightSample{};
+    LightSample s;
+    float cosLight;
+    if (v.solidAngle >= kMinSolidAngle) {
+        // Rebuilt from the corner, so the point lies on the rectangle's plane to rounding.
+        const glm::dvec2 local = v.sample(u);
+        if (!aim(s, p, r.corner + float(local.x - v.x0) * r.ex + float(local.y - v.y0) * r.ey, r.normal, &cosLight))
+            return LightSample{};
+        s.pdf = float(1.0 / v.solidAngle);
+    } else {
+        if (!aim(s, p, r.corner + u.x * r.width * r.ex + u.y * r.height * r.ey, r.normal, &cosLight))
+            return LightSample{};
+        s.pdf = s.distance * s.distance / (cosLight * r.width * r.height);
+    }
+    return s;
+}
+
+LightSample LightSampler::sampleEmitter(glm::vec3 p, glm::vec2 u, float select) const {
+    std::size_t i = std::size_t(std::lower_bound(cdf_.begin(), cdf_.end(), select) - cdf_.begin());
+    i = std::min(i, emitters_.size() - 1);
+    const Emitter& e = emitters_[i];
+    LightSample s = e.rectangle ? sampleRectangle(rectangles_[e.index], p, u) : sampleTriangle(triangles_[e.index], p, u);
+    if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return LightSample{};
+    s.pdf *= e.probability;
+    s.radiance = (e.rectangle ? rectangles_[e.index].emission : triangles_[e.index].emission) / s.pdf;
+    return s;
+}
+
+float LightSampler::rectanglePdf(const Rectangle& r, glm::vec3 from, glm::vec3 at, float cosLight) const {
+    RectangleView v;
+    if (!view(r, from, v)) return 0.0f;
+    if (v.solidAngle >= kMinSolidAngle) return float(1.0 / v.solidAngle);
+    const glm::vec3 to = at - from;
+    return glm::dot(to, to) / (cosLight * r.width * r.height);
+}
+
+float LightSampler::emitterPdf(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 from, glm::vec3 at,
+                               float cosLight) const {
+    if (!(cosLight > 0.0f)) return 0.0f;
+    if (const std::int32_t r = meshRectangle_[mesh]; r >= 0)
+        return rectangleProbability_[std::size_t(r)] * rectanglePdf(rectangles_[std::size_t(r)], from, at, cosLight);
+    const float pdfArea = trianglePdfArea_[meshFirstTriangle_[mesh] + triangle];
+    const glm::vec3 to = at - from;
+    return pdfArea * glm::dot(to, to) / cosLight;
 }
 
 }  // namespace voxgi::pt

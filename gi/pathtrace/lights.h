@@ -2,8 +2,14 @@
 // Point, spot and directional lights are deltas (sampled every time), evaluated by the shared
 // light model (shaders/shared/light_model.h). Quad lights are not: the path tracer sees them as
 // the emissive triangles of their geometry (Scene::addQuadLightGeometry), which BSDF sampling
-// can hit, so that light and BSDF samples of them are weighted by MIS. Emissive triangles are
-// picked in proportion to their power and sampled uniformly by area.
+// can hit, so that light and BSDF samples of them are weighted by MIS.
+//
+// Emitters are picked in proportion to their power. A rectangular quad light is one emitter,
+// sampled uniformly in the solid angle it subtends (Urena, Fajardo and King 2013, "An
+// area-preserving parametrization for spherical rectangles"): no 1/r^2 or cosine in the
+// estimate, so the floor under a light and the walls beside it are as quiet as the far end of
+// the room. Seen under a tiny solid angle, where that mapping loses precision and gains
+// nothing, it is sampled by area. Every other emissive triangle is sampled uniformly by area.
 #pragma once
 
 #include <cstdint>
@@ -27,6 +33,7 @@ struct LightSample {
 
 class LightSampler {
 public:
+    // `scene` holds the quad lights' geometry (Scene::addQuadLightGeometry).
     explicit LightSampler(const Scene& scene);
 
     // Delta lights are evaluated exhaustively: index in [0, deltaCount()).
@@ -35,24 +42,44 @@ public:
     // incidence (pdf 0).
     LightSample sampleDelta(std::size_t index, glm::vec3 p) const;
 
-    bool hasEmissiveTriangles() const { return !triangles_.empty(); }
-    // One emissive-triangle sample; radiance is Le / pdf (solid angle), zero on the back side.
-    LightSample sampleEmissive(glm::vec3 p, float u0, float u1, float u2) const;
-    // Solid-angle pdf with which sampleEmissive picks a point of (mesh, triangle) seen at
-    // squared distance d2 under cosine cosLight (> 0) to the emitter's normal.
-    float emissivePdf(std::uint32_t mesh, std::uint32_t triangle, float d2, float cosLight) const;
+    bool hasEmitters() const { return !cdf_.empty(); }
+    // One emitter sample seen from p: `u` places the point, `select` picks the emitter. radiance
+    // is Le / pdf (solid angle), zero on the back side.
+    LightSample sampleEmitter(glm::vec3 p, glm::vec2 u, float select) const;
+    // Solid-angle pdf with which sampleEmitter, from `from`, picks the point `at` of (mesh,
+    // triangle), seen under cosine cosLight (> 0) to the emitter's normal.
+    float emitterPdf(std::uint32_t mesh, std::uint32_t triangle, glm::vec3 from, glm::vec3 at, float cosLight) const;
 
 private:
-    struct Emitter {
+    struct Triangle {
         glm::vec3 a, e1, e2, normal;
         glm::vec3 emission;
         float area;
     };
+    struct Rectangle {
+        glm::vec3 corner, ex, ey, normal;  // ex, ey unit; normal = cross(ex, ey), the emitting side
+        float width, height;
+        glm::vec3 emission;
+    };
+    // Either a rectangle or a triangle, with the probability of picking it.
+    struct Emitter {
+        bool rectangle;
+        std::uint32_t index;
+        float probability;
+    };
+    LightSample sampleRectangle(const Rectangle& r, glm::vec3 p, glm::vec2 u) const;
+    LightSample sampleTriangle(const Triangle& t, glm::vec3 p, glm::vec2 u) const;
+    float rectanglePdf(const Rectangle& r, glm::vec3 from, glm::vec3 at, float cosLight) const;
+
     std::vector<shading::PackedLight> deltas_;
-    std::vector<Emitter> triangles_;
-    std::vector<float> cdf_;                       // cumulative selection probability
-    std::vector<std::size_t> meshFirstTriangle_;  // global triangle index of each mesh's first one
-    std::vector<float> selectionPdf_;              // per global triangle: probability / area
+    std::vector<Rectangle> rectangles_;
+    std::vector<Triangle> triangles_;
+    std::vector<Emitter> emitters_;
+    std::vector<float> cdf_;                       // cumulative selection probability over emitters_
+    std::vector<std::size_t> meshFirstTriangle_;   // global triangle index of each mesh's first one
+    std::vector<std::int32_t> meshRectangle_;      // per mesh: its rectangle emitter, or -1
+    std::vector<float> rectangleProbability_;      // per rectangle
+    std::vector<float> trianglePdfArea_;           // per global triangle: selection probability / area
 };
 
 }  // namespace voxgi::pt

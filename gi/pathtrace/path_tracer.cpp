@@ -18,20 +18,15 @@ namespace {
 constexpr int kTile = 16;
 constexpr double kMaxImageBytes = 6.0 * double(1 << 30);
 
-// Whether Scene::addQuadLightGeometry would add nothing, asked of a copy holding only the
-// lights and mesh names, so the naming rule lives in one place and the meshes are not copied.
+// Whether every quad light already has its emitting mesh (Scene::addQuadLightGeometry).
 bool hasQuadGeometry(const Scene& scene) {
-    Scene probe;
-    probe.lights = scene.lights;
-    probe.meshes.reserve(scene.meshes.size());
-    for (const Mesh& m : scene.meshes) {
-        Mesh named;
-        named.name = m.name;
-        probe.meshes.push_back(std::move(named));
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        if (scene.lights[i].type != LightType::Quad) continue;
+        const std::string name = scene.quadLightMeshName(i);
+        if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) { return m.name == name; }))
+            return false;
     }
-    std::size_t before = probe.meshes.size();
-    probe.addQuadLightGeometry();
-    return probe.meshes.size() == before;
+    return true;
 }
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -88,12 +83,13 @@ struct PathTracer::Impl {
 
     PathSample samplePixel(int x, int y, std::uint64_t index) const {
         std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
-        pt::Rng rng(options.seed, pixel, index);
+        const pt::PathSampler sampler(options.seed, pixel, index);
         // Box filter: a uniform point in the pixel, as the rasterizer's jittered accumulation.
-        float sx = (float(x) + rng.uniform()) / float(width);
-        float sy = (float(y) + rng.uniform()) / float(height);
+        const glm::vec2 jitter = sampler.get2D(0);
+        float sx = (float(x) + jitter.x) / float(width);
+        float sy = (float(y) + jitter.y) / float(height);
         glm::vec3 d = forward + (2.0f * sx - 1.0f) * tanHalfY * aspect * right + (1.0f - 2.0f * sy) * tanHalfY * up;
-        return integrator.trace(eye, glm::normalize(d), rng);
+        return integrator.trace(eye, glm::normalize(d), sampler);
     }
 
     void renderTile(int tile, int count) {
@@ -175,9 +171,11 @@ std::uint64_t PathTracer::droppedSamples() const { return impl_->dropped.load();
 
 PathSample PathTracer::samplePixel(int x, int y, std::uint64_t index) const { return impl_->samplePixel(x, y, index); }
 
+const RayTracer& PathTracer::rayTracer() const { return impl_->tracer; }
+
 PathSample PathTracer::trace(glm::vec3 origin, glm::vec3 direction, std::uint64_t stream) const {
-    pt::Rng rng(impl_->options.seed, ~std::uint64_t(0), stream);
-    return impl_->integrator.trace(origin, glm::normalize(direction), rng);
+    const pt::PathSampler sampler(impl_->options.seed, ~std::uint64_t(0), stream);
+    return impl_->integrator.trace(origin, glm::normalize(direction), sampler);
 }
 
 }  // namespace voxgi

@@ -9,14 +9,16 @@
 
 #include <glm/glm.hpp>
 
+#include "gi/raytrace/ray_tracer.h"
 #include "scenes/image.h"
 #include "scenes/scene.h"
 
 namespace voxgi {
 
-// Changes whenever the images the path tracer makes change (its estimator, its sampling or its
-// random numbers): cached references are keyed by it (tools/eval_run.cpp).
-constexpr int kPathTracerRevision = 2;
+// Changes whenever what the path tracer converges to changes (a bias fixed, a shading
+// convention): cached references are keyed by it (tools/eval_run.cpp). 2: shadow segments that
+// miss the light's own plane; 3: the shading normal alone decides what is above a surface.
+constexpr int kPathTracerRevision = 3;
 
 struct PathTracerOptions {
     int maxBounces = 0;         // scattering events per path; 0 = unlimited (roulette ends paths)
@@ -60,6 +62,8 @@ public:
 
     // The path render() traces for pixel (x, y), sample `index` (box filter over the pixel).
     PathSample samplePixel(int x, int y, std::uint64_t index) const;
+    // The Embree scene the paths are traced in (benchmarks log and replay its rays).
+    const RayTracer& rayTracer() const;
     // A path along any ray; `stream` keys its random numbers.
     PathSample trace(glm::vec3 origin, glm::vec3 direction, std::uint64_t stream) const;
 

@@ -10,6 +10,9 @@
 #include <vector>
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "gi/raytrace/texture_pyramid.h"
@@ -31,6 +34,8 @@ struct RayTracer::Impl {
     std::once_flag surfacesOnce;
     std::atomic<bool> surfacesBuilt{false};
     std::vector<TriangleSurface> surfaces;  // per triangle, from meshFirst
+    std::atomic<bool> logging{false};
+    tbb::enumerable_thread_specific<std::vector<LoggedRay>> log;
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
@@ -151,10 +156,22 @@ void makeHit(const Scene& scene, const RawHit& raw, glm::vec3 d, RayHit& hit) {
     hit.geometricNormal = glm::normalize(glm::cross(b - a, c - a));
     hit.frontFace = glm::dot(hit.geometricNormal, d) < 0.0f;
     hit.shadingNormal = hit.geometricNormal;
+    hit.smoothPosition = hit.position;
     if (!mesh.normals.empty()) {
-        glm::vec3 n = w * mesh.normals[tri[0]] + u * mesh.normals[tri[1]] + v * mesh.normals[tri[2]];
+        const glm::vec3 &na = mesh.normals[tri[0]], &nb = mesh.normals[tri[1]], &nc = mesh.normals[tri[2]];
+        glm::vec3 n = w * na + u * nb + v * nc;
         float len = glm::length(n);
-        if (len > 0.0f && std::isfinite(len)) hit.shadingNormal = n / len;
+        if (len > 0.0f && std::isfinite(len)) {
+            hit.shadingNormal = n / len;
+            const glm::vec3 p = hit.position;
+            auto onTangentPlane = [&](const glm::vec3& vertex, const glm::vec3& normal) {
+                return p - std::min(glm::dot(p - vertex, normal), 0.0f) * normal;
+            };
+            const glm::vec3 smooth = w * onTangentPlane(a, na) + u * onTangentPlane(b, nb) + v * onTangentPlane(c, nc);
+            if (glm::dot(smooth - p, hit.geometricNormal) * glm::dot(hit.shadingNormal, hit.geometricNormal) > 0.0f &&
+                std::isfinite(smooth.x + smooth.y + smooth.z))
+                hit.smoothPosition = smooth;
+        }
     }
     if (!mesh.uvs.empty()) hit.uv = w * mesh.uvs[tri[0]] + u * mesh.uvs[tri[1]] + v * mesh.uvs[tri[2]];
     hit.material = mesh.materialIds[hit.triangle];
@@ -162,6 +179,7 @@ void makeHit(const Scene& scene, const RawHit& raw, glm::vec3 d, RayHit& hit) {
 }  // namespace
 
 RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const {
+    if (impl_->logging.load(std::memory_order_relaxed)) impl_->log.local().push_back({o, tMin, d, tMax, false});
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RayHit hit;
@@ -205,11 +223,49 @@ float RayTracer::nearestHit(glm::vec3 o, glm::vec3 d) const {
 }
 
 bool RayTracer::occluded(glm::vec3 o, glm::vec3 d, float tMin, float tMax) const {
+    if (impl_->logging.load(std::memory_order_relaxed)) impl_->log.local().push_back({o, tMin, d, tMax, true});
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray = makeRay(o, d, tMin, tMax);
     rtcOccluded1(impl_->scene, &context, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
+void RayTracer::startLog() const {
+    impl_->log.clear();
+    impl_->logging.store(true);
+}
+
+std::vector<LoggedRay> RayTracer::stopLog() const {
+    impl_->logging.store(false);
+    std::vector<LoggedRay> all;
+    for (std::vector<LoggedRay>& part : impl_->log) all.insert(all.end(), part.begin(), part.end());
+    impl_->log.clear();
+    return all;
+}
+
+std::size_t RayTracer::replayBare(const std::vector<LoggedRay>& rays) const {
+    tbb::combinable<std::size_t> hits([] { return std::size_t(0); });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        std::size_t local = 0;
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            const LoggedRay& ray = rays[i];
+            if (ray.occlusion) {
+                RTCRay q = makeRay(ray.origin, ray.direction, ray.tMin, ray.tMax);
+                rtcOccluded1(impl_->scene, &context, &q);
+                local += q.tfar < 0.0f ? 1 : 0;
+            } else {
+                local += nearest(impl_->scene, context, ray.origin, ray.direction, ray.tMin, ray.tMax).hit.geomID !=
+                                 RTC_INVALID_GEOMETRY_ID
+                             ? 1
+                             : 0;
+            }
+        }
+        hits.local() += local;
+    });
+    return hits.combine([](std::size_t a, std::size_t b) { return a + b; });
 }
 
 void RayTracer::prepareCones() const {

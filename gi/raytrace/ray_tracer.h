@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -17,6 +18,12 @@ struct RayHit {
     glm::vec3 position{0.0f};
     glm::vec3 geometricNormal{0.0f};  // unit, from the triangle's winding (front = counter-clockwise)
     glm::vec3 shadingNormal{0.0f};    // unit, interpolated vertex normal (or the geometric one)
+    // Where rays leaving towards the side the vertex normals face start from: the point of the
+    // smooth surface those normals describe (Hanika 2021's shadow-terminator fix: the barycentric
+    // blend of the hit projected onto each vertex's tangent plane) where that surface bulges
+    // out of the triangle, else `position`. A low-poly sphere lit at a grazing angle then casts
+    // no facet-shaped shadows onto itself.
+    glm::vec3 smoothPosition{0.0f};
     glm::vec2 uv{0.0f};
     bool frontFace = true;            // the ray arrived against the geometric normal
     std::uint32_t mesh = 0;           // index into Scene::meshes
@@ -49,6 +56,16 @@ struct alignas(64) TriangleSurface {
     glm::vec2 uv(float u, float v) const { return (1.0f - u - v) * uvs[0] + u * uvs[1] + v * uvs[2]; }
 };
 
+// One query a RayTracer answered (intersect or occluded), for replaying the same rays through
+// Embree alone: how much of a renderer's time Embree itself takes (voxgi bench pathtrace).
+struct LoggedRay {
+    glm::vec3 origin{0.0f};
+    float tMin = 0.0f;
+    glm::vec3 direction{0.0f};
+    float tMax = 0.0f;
+    bool occlusion = false;
+};
+
 class RayTracer {
 public:
     explicit RayTracer(const Scene& scene);
@@ -68,6 +85,13 @@ public:
     // The distance to the nearest hit (infinity for a miss) and nothing else: Embree's own cost
     // of a ray, without the hit record intersect() builds (benchmarks compare against it).
     float nearestHit(glm::vec3 origin, glm::vec3 direction) const;
+
+    // While logging, every intersect() and occluded() call is recorded (per thread, in order).
+    void startLog() const;
+    std::vector<LoggedRay> stopLog() const;
+    // Embree's rtcIntersect1 / rtcOccluded1 on each ray and nothing else, over all threads;
+    // returns the number of hits (so the work cannot be optimised away).
+    std::size_t replayBare(const std::vector<LoggedRay>& rays) const;
 
     // Material albedo at a hit, times the diffuse texture when there is one.
     glm::vec3 albedoAt(const RayHit& hit) const;
