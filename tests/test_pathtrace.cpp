@@ -52,6 +52,20 @@ Estimate estimate(const PathTracer& tracer, glm::vec3 origin, int count, bool di
     return e;
 }
 
+// The same over n paths along the one ray from `eye` through `target`.
+Estimate alongRay(const PathTracer& tracer, glm::vec3 eye, glm::vec3 target, int n) {
+    double sum = 0.0, sumSq = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double v = tracer.trace(eye, target - eye, std::uint64_t(i)).beauty().g;
+        sum += v;
+        sumSq += v * v;
+    }
+    Estimate e;
+    e.mean = sum / n;
+    e.standardError = std::sqrt(std::max(sumSq / n - e.mean * e.mean, 0.0) / (n - 1));
+    return e;
+}
+
 Scene furnace(float albedo, float emission) {
     Scene s;
     Material m;
@@ -183,15 +197,8 @@ TEST(PathTracer, SquareLightFormFactor) {
     PathTracerOptions o;
     o.maxBounces = 1;
     PathTracer tracer(s, o);
-    double sum = 0.0, sumSq = 0.0;
-    const int n = 20000;
-    glm::vec3 eye(3.0f, 0.2f, 0.0f);
-    for (int i = 0; i < n; ++i) {
-        double v = tracer.trace(eye, -eye, std::uint64_t(i)).beauty().g;
-        sum += v;
-        sumSq += v * v;
-    }
-    double mean = sum / n, se = std::sqrt(std::max(sumSq / n - mean * mean, 0.0) / (n - 1));
+    const Estimate e = alongRay(tracer, glm::vec3(3.0f, 0.2f, 0.0f), glm::vec3(0.0f), 20000);
+    const double mean = e.mean, se = e.standardError;
     double expected = rho * Le * F;
     std::printf("square light: L = %.5f +- %.5f, analytic rho Le F = %.5f (F = %.5f)\n", mean, se, expected, F);
     EXPECT_LT(std::abs(mean - expected), 3.0 * se + 1e-6);
@@ -248,14 +255,8 @@ TEST(PathTracer, QuadLightOverParallelFaceAtAnyScaleAndPlace) {
         PathTracer tracer(s, o);
         for (double x : {-3.75, -2.0, 0.0, 2.0, 3.9}) {
             const glm::vec3 p = at(x, 0, 0.1), eye = at(x + 0.3, 0.2, 0.6);
-            double sum = 0.0, sumSq = 0.0;
-            const int n = 4000;
-            for (int i = 0; i < n; ++i) {
-                double value = tracer.trace(eye, p - eye, std::uint64_t(i)).beauty().g;
-                sum += value;
-                sumSq += value * value;
-            }
-            double mean = sum / n, se = std::sqrt(std::max(sumSq / n - mean * mean, 0.0) / (n - 1));
+            const Estimate e = alongRay(tracer, eye, p, 4000);
+            const double mean = e.mean, se = e.standardError;
             double expected = rho * Le * formFactor(glm::dvec3(p), glm::dvec3(at(x0, h, z0)), glm::dvec3(at(x1, h, z1)));
             EXPECT_LT(std::abs(mean - expected), 4.0 * se + 2e-3 * expected)
                 << "scale " << place.scale << " offset " << place.offset << " x " << x << ": " << mean << " +- " << se
@@ -344,14 +345,8 @@ TEST(PathTracer, GlossyUnderSquareLightMatchesQuadrature) {
                 integral += double(bsdf.eval(wi).g) * double(wi.y) / double(r2) / double(grid * grid);
             }
         double expected = 2.0 * integral;
-        double sum = 0.0, sumSq = 0.0;
-        const int n = 20000;
-        for (int i = 0; i < n; ++i) {
-            double v = tracer.trace(eye, p - eye, std::uint64_t(i)).beauty().g;
-            sum += v;
-            sumSq += v * v;
-        }
-        double mean = sum / n, se = std::sqrt(std::max(sumSq / n - mean * mean, 0.0) / (n - 1));
+        const Estimate e = alongRay(tracer, eye, p, 20000);
+        const double mean = e.mean, se = e.standardError;
         std::printf("%s under a square light: L = %.5f +- %.5f, quadrature %.5f\n", k.material, mean, se, expected);
         EXPECT_LT(std::abs(mean - expected), 3.0 * se + 1e-4 * expected) << k.material;
         EXPECT_LT(se, 0.02 * expected) << k.material;

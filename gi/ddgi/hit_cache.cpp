@@ -9,6 +9,8 @@
 
 #include <tbb/task_arena.h>
 
+#include "gi/sampling/hash.h"
+
 namespace voxgi {
 
 namespace {
@@ -17,14 +19,6 @@ constexpr std::int64_t kCellRange = std::int64_t(1) << (kCellBits - 1);
 // Ids are handed to the threads' tables in blocks, so they stay dense (the per-id arrays stay
 // in cache) without a shared counter per key.
 constexpr std::uint32_t kIdBlock = 256;
-
-std::uint64_t mix64(std::uint64_t x) {  // splitmix64's finalizer
-    x ^= x >> 30;
-    x *= 0xBF58476D1CE4E5B9ull;
-    x ^= x >> 27;
-    x *= 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
 
 // Open addressing over a power-of-two slot array holding indices into an entry list, so
 // entries keep their index when the slots are rebuilt; at most 70 % full.

@@ -1,21 +1,13 @@
 #include "gi/pathtrace/sampler.h"
 
+#include "gi/sampling/hash.h"
 #include "gi/sampling/sobol.h"
 
 namespace voxgi::pt {
 
-namespace {
-std::uint64_t mix64(std::uint64_t z) {
-    z += 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-}  // namespace
-
 PathSampler::PathSampler(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample)
     // Samples past 2^32 of one pixel (never reached in practice) start a new pattern.
-    : pixelKey_(std::uint32_t(mix64(seed ^ mix64(pixel ^ mix64(sample >> 32))))), reversedIndex_(reverseBits(std::uint32_t(sample))) {}
+    : pixelKey_(std::uint32_t(mix64(seed ^ mix64(pixel ^ mix64((sample >> 32) + 0x9E3779B97F4A7C15ull))))), reversedIndex_(reverseBits(std::uint32_t(sample))) {}
 
 glm::vec3 PathSampler::point(std::uint32_t decision, int dimensions) const {
     const std::uint32_t key = hash32(pixelKey_ ^ hash32(decision + 0x68E31DA4u));

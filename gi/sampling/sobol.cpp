@@ -72,15 +72,6 @@ ByteTables makeReversedTables() {
 const ByteTables kReversedTables = makeReversedTables();
 }  // namespace
 
-std::uint32_t hash32(std::uint32_t x) {
-    // Wellons' lowbias32 constants.
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
 
 std::uint32_t sobolReversed(std::uint32_t reversedIndex, int dimension) {
     const auto& t = kReversedTables[std::size_t(dimension)];

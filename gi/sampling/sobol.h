@@ -23,7 +23,4 @@ std::uint32_t reverseBits(std::uint32_t x);
 std::uint32_t sobolReversed(std::uint32_t reversedIndex, int dimension);
 std::uint32_t owenPermutationReversed(std::uint32_t x, std::uint32_t seed);
 
-// A 32-bit integer hash with full avalanche, for keying scrambles.
-std::uint32_t hash32(std::uint32_t x);
-
 }  // namespace voxgi
