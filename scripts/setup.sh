@@ -10,6 +10,7 @@ packages=(
   libassimp-dev nlohmann-json3-dev libstb-dev libimgui-dev
   libgtest-dev xvfb xauth
   gnuplot-nox
+  python3-skimage  # test_metrics_reference compares PSNR, SSIM and Pearson with scikit-image
 )
 
 missing=()

@@ -112,6 +112,16 @@ TEST(Metrics, HdrFlipExposureRange) {
     EXPECT_NEAR(start, std::log2(x85 / 16.0), 1e-6);
     EXPECT_NEAR(stop - start, 4.0, 1e-6);
     EXPECT_EQ(count, 4);
+    // The median counts black pixels (as NVIDIA's FLIP does): luminances 0, 0, 1, 4, 16 give 1.
+    std::vector<float> dark;
+    for (float v : {0.0f, 0.0f, 1.0f, 4.0f, 16.0f})
+        for (int k = 0; k < 3; ++k) dark.push_back(v);
+    flip::exposureRange(dark, start, stop, count);
+    EXPECT_NEAR(stop, std::log2(x85), 1e-6);
+    // A mostly black reference falls back to the median of its lit pixels (4 of 1, 4, 16).
+    dark.insert(dark.begin(), 6, 0.0f);
+    flip::exposureRange(dark, start, stop, count);
+    EXPECT_NEAR(stop, std::log2(x85 / 4.0), 1e-6);
     EXPECT_EQ(flip::acesToneMap(0.0f), 0.0f);
     EXPECT_LE(flip::acesToneMap(1e6f), 1.0f);
 }
@@ -139,6 +149,21 @@ TEST(Metrics, ComputeMetricsOnLayers) {
 
     EXPECT_THROW(computeMetrics(same, ref, "indirect"), InputError);
     EXPECT_THROW(computeMetrics(uniform(8, 16, glm::vec3(0.5f)), ref, "beauty"), InputError);
+}
+
+TEST(Metrics, OneChannelSsimUsesTheReferenceRange) {
+    // Depth from 10 to 25: L is 15 (max - min), not 25 (max - 0).
+    const int n = 16;
+    Image ref(n, n), test(n, n);
+    ImageLayer& r = ref.layer("depth", 1);
+    ImageLayer& t = test.layer("depth", 1);
+    for (std::size_t i = 0; i < r.data.size(); ++i) {
+        r.data[i] = 10.0f + float(i) * 15.0f / float(r.data.size() - 1);
+        t.data[i] = r.data[i] + ((i * 7) % 5 == 0 ? 1.5f : -0.5f);
+    }
+    double ssim = computeMetrics(test, ref, "depth").ssim;
+    EXPECT_NEAR(ssim, structuralSimilarity(t.data, r.data, n, n, 1, 15.0), 1e-12);
+    EXPECT_GT(std::abs(ssim - structuralSimilarity(t.data, r.data, n, n, 1, 25.0)), 1e-3);
 }
 
 TEST(Metrics, CompareCommand) {

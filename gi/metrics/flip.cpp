@@ -232,11 +232,12 @@ float acesToneMap(float x) {
 
 void exposureRange(const std::vector<float>& reference, double& start, double& stop, int& count) {
     std::vector<float> luminance;
+    luminance.reserve(reference.size() / 3);
     float maxLum = 0.0f;
     for (std::size_t i = 0; i + 2 < reference.size(); i += 3) {
         float y = 0.2126f * reference[i] + 0.7152f * reference[i + 1] + 0.0722f * reference[i + 2];
         maxLum = std::max(maxLum, y);
-        if (y > 0.0f) luminance.push_back(y);
+        luminance.push_back(y);
     }
     start = stop = 0.0;
     count = 2;
@@ -245,11 +246,21 @@ void exposureRange(const std::vector<float>& reference, double& start, double& s
     const double a = 0.6 * 0.6 * 2.51, b = 0.6 * 0.03, c = 0.6 * 0.6 * 2.43, d = 0.6 * 0.59, e = 0.14, y = 0.85;
     double qa = a - y * c, qb = b - y * d, qc = -y * e;
     double x85 = (-qb + std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
-    // The median of the lit pixels, so a mostly black reference still gets a finite range.
-    std::nth_element(luminance.begin(), luminance.begin() + std::ptrdiff_t(luminance.size() / 2), luminance.end());
-    double median = luminance[luminance.size() / 2];
+    // The median over all pixels (element n/2), as NVIDIA's FLIP takes it: black background
+    // pixels count (leaving them out moved the mean FLIP by ~5e-4 on the metrics-reference
+    // images). When that median is black, the median of the lit pixels keeps the range finite.
+    auto median = [](std::vector<float>& v) {
+        std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+        return double(v[v.size() / 2]);
+    };
+    double mid = median(luminance);
+    if (!(mid > 0.0)) {
+        luminance.erase(std::remove_if(luminance.begin(), luminance.end(), [](float v) { return !(v > 0.0f); }),
+                        luminance.end());
+        mid = median(luminance);
+    }
     start = std::log2(x85 / double(maxLum));
-    stop = std::log2(x85 / median);
+    stop = std::log2(x85 / mid);
     count = std::max(2, int(std::ceil(stop - start)));
 }
 

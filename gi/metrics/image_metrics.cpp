@@ -146,11 +146,8 @@ ImageMetrics computeMetrics(const Image& test, const Image& reference, const std
     m.rmse = std::sqrt(m.mse);
     m.relMse = relativeMse(t->data, r->data);
     m.mae = meanAbsoluteError(t->data, r->data);
-    float peak = 0.0f, low = 0.0f;
-    for (float v : r->data) {
-        peak = std::max(peak, v);
-        low = std::min(low, v);
-    }
+    float peak = 0.0f;
+    for (float v : r->data) peak = std::max(peak, v);
     m.psnr = peakSignalToNoise(m.mse, peak > 0.0f ? peak : 1.0);
     if (r->channels == 3) {
         std::vector<float> td = displayValues(*t, 1.0f), rd = displayValues(*r, 1.0f);
@@ -161,7 +158,9 @@ ImageMetrics computeMetrics(const Image& test, const Image& reference, const std
         m.pearson = pearsonCorrelation(td, rd);
         m.flip = flip::hdrFlip(t->data, r->data, reference.width(), reference.height()).mean;
     } else {
-        double range = double(peak) - double(low);
+        // L is the reference's own range (max - min), not max - min(0, min): depth does not start at 0.
+        auto [low, high] = std::minmax_element(r->data.begin(), r->data.end());
+        double range = double(*high) - double(*low);
         m.ssim = structuralSimilarity(t->data, r->data, reference.width(), reference.height(), r->channels,
                                       range > 0.0 ? range : 1.0);
         m.meanError = m.mae;

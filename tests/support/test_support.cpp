@@ -53,6 +53,12 @@ std::string sharedScenesDir() {
     return fs::is_directory(dir) ? dir.string() : std::string();
 }
 
+std::string sharedDataDir(const std::string& name) {
+    const char* env = std::getenv("VOXGI_SHARED");
+    fs::path dir = (env && *env ? fs::path(env) : fs::path(VOXGI_SHARED_DIR)) / name;
+    return fs::is_directory(dir) ? dir.string() : std::string();
+}
+
 Scene cornellBox() { return loadSceneFile(sourcePath("scenes/cornell-box.json")); }
 
 std::vector<glm::ivec3> occupiedVoxels(const SparseGeometryVolume& v, int level) {

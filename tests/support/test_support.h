@@ -27,6 +27,8 @@ bool fileExists(const std::string& path);
 std::string sourcePath(const std::string& relative);
 // ../shared/scenes, or $VOXGI_SCENES; empty when absent (tests then skip).
 std::string sharedScenesDir();
+// ../shared/<name> (or $VOXGI_SHARED/<name>), e.g. "metrics-reference"; empty when absent.
+std::string sharedDataDir(const std::string& name);
 
 // The built-in Cornell box.
 Scene cornellBox();
