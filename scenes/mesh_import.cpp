@@ -120,13 +120,25 @@ MeshImportStats importMeshFile(const std::string& path, const glm::mat4& transfo
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
-    const aiScene* ai = importer.ReadFile(
-        path, aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
-                  aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
-    if (!ai || !ai->mRootNode) {
-        std::string why = importer.GetErrorString();
+    // Read and validate first (indices in range, counts consistent), check what assimp's
+    // post-processing asserts on, and only then post-process: a malformed file is an error
+    // message, never a crash inside assimp.
+    const aiScene* ai = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+    auto fail = [&](const std::string& why) {
         throw InputError(path + ": cannot load mesh (" + (why.empty() ? "unknown format" : why) + ")");
+    };
+    if (!ai || !ai->mRootNode) fail(importer.GetErrorString());
+    for (unsigned mi = 0; mi < ai->mNumMeshes; ++mi) {
+        const aiMesh* am = ai->mMeshes[mi];
+        if (!(am->mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON))) continue;
+        for (unsigned f = 0; f < am->mNumFaces; ++f)
+            if (am->mFaces[f].mNumIndices < 3 || !am->mFaces[f].mIndices)
+                fail("mesh " + std::to_string(mi) + " face " + std::to_string(f) + " has " +
+                     std::to_string(am->mFaces[f].mNumIndices) + " indices among polygons; truncated or malformed file");
     }
+    ai = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_GenSmoothNormals |
+                                      aiProcess_SortByPType | aiProcess_JoinIdenticalVertices);
+    if (!ai || !ai->mRootNode) fail(importer.GetErrorString());
     MeshImportStats stats;
     Importer imp{ai, fs::path(path).parent_path(), scene, {}};
     std::vector<std::uint32_t> materialMap(ai->mNumMaterials, 0);

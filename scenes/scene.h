@@ -2,6 +2,7 @@
 // lights in physical units, the camera, the sky and the GI settings block.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -103,7 +104,12 @@ struct Mesh {
 struct Bounds {
     glm::vec3 min{1e30f};
     glm::vec3 max{-1e30f};
-    void extend(glm::vec3 p) { min = glm::min(min, p); max = glm::max(max, p); }
+    // Non-finite points (NaN vertices, which renderers skip) are left out.
+    void extend(glm::vec3 p) {
+        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return;
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
     bool valid() const { return min.x <= max.x && min.y <= max.y && min.z <= max.z; }
     glm::vec3 center() const { return 0.5f * (min + max); }
     glm::vec3 extent() const { return max - min; }

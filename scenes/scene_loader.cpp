@@ -1,6 +1,7 @@
 #include "scenes/scene_loader.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -418,6 +419,36 @@ std::string builtinScenePath(const std::string& name) {
     const char* env = std::getenv("VOXGI_SCENE_DIR");
     fs::path dir = env && *env ? fs::path(env) : fs::path(VOXGI_SCENE_DIR);
     return (dir / (name + ".json")).string();
+}
+
+void requireRenderable(const Scene& scene, const std::string& source) {
+    auto finite = [](glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    std::size_t usable = 0;
+    float largest = 0.0f;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const glm::vec3& p : mesh.positions)
+            if (finite(p)) largest = std::max(largest, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+        for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]],
+                            c = mesh.positions[mesh.indices[3 * t + 2]];
+            const float area = glm::length(glm::cross(b - a, c - a));
+            usable += finite(a) && finite(b) && finite(c) && std::isfinite(area) && area > 0.0f;
+        }
+    }
+    if (largest > kMaxCoordinate) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%.3g", double(largest));
+        throw InputError(source + ": meshes: coordinates reach " + value + " m; voxgi accepts up to 1e12 m from the origin");
+    }
+    if (usable == 0) throw InputError(source + ": meshes: no triangle with finite vertices and non-zero area");
+    const Camera& c = scene.camera;
+    const glm::vec3 forward = c.target - c.eye;
+    if (!finite(c.eye) || !finite(c.target) || !finite(c.up) || !(glm::length(forward) > 0.0f))
+        throw InputError(source + ": camera: eye and target must be finite and distinct");
+    if (!(glm::length(glm::cross(forward, c.up)) > 0.0f))
+        throw InputError(source + ": camera: up is parallel to the view direction");
+    if (!(c.fovYDegrees > 0.0f && c.fovYDegrees < 180.0f))
+        throw InputError(source + ": camera: fov must be between 0 and 180 degrees");
 }
 
 }  // namespace voxgi

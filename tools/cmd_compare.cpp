@@ -53,8 +53,7 @@ int runCompare(const std::vector<std::string>& argv) {
     Args args(argv, {"--aov", "--diff", "--json"}, {});
     args.requirePositional(2, kUsage);
     const std::string layer = args.value("--aov", "beauty");
-    if (auto d = args.value("--diff")) requireWritable(*d, "--diff");
-    if (auto j = args.value("--json")) requireWritable(*j, "--json");
+    requireOutputs(args, {"--diff", "--json"});
     Image test = readExr(args.positional()[0]);
     Image reference = readExr(args.positional()[1]);
     ImageMetrics m = computeMetrics(test, reference, layer);

@@ -23,7 +23,7 @@ int runDump(const std::vector<std::string>& argv) {
     args.requirePositional(1, kUsage);
     auto out = args.value("-o");
     if (!out) throw InputError("-o OUT.vdb is required; usage: " + std::string(kUsage));
-    requireWritable(*out, "-o");
+    requireOutputs(args, {"-o"});
     const int frames = args.integer("--frame", 0, 0, 1 << 20) + 1;
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);

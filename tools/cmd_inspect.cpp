@@ -108,7 +108,7 @@ int runInspect(const std::vector<std::string>& argv) {
         }
         if (axis < 0 || !end || *end != '\0' || !std::isfinite(world))
             throw InputError("--slice: expected x=WORLD, y=WORLD or z=WORLD, got '" + s + "'");
-        requireWritable(*out, "-o");
+        requireOutputs(args, {"-o"});
     }
 
     VdbFileInfo info = inspectVdbFile(path);

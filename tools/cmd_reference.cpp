@@ -37,8 +37,7 @@ int runReference(const std::vector<std::string>& argv) {
     if (args.has("--spp") == args.has("--time")) throw InputError("give exactly one of --spp N or --time SECONDS");
     auto out = args.value("-o");
     if (!out) throw InputError("-o OUT.exr is required; usage: " + std::string(kUsage));
-    requireWritable(*out, "-o");
-    if (auto png = args.value("--png")) requireWritable(*png, "--png");
+    requireOutputs(args, {"-o", "--png"});
     const int spp = args.integer("--spp", 0, 1, 1 << 24);
     const double seconds = args.number("--time", 0.0, 1e-3, 1e7);
     const float exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));

@@ -29,9 +29,7 @@ int runRender(const std::vector<std::string>& argv) {
     args.requirePositional(1, kUsage);
     auto out = args.value("-o");
     if (!out && !args.flag("--plan")) throw InputError("-o OUT.exr is required; usage: " + std::string(kUsage));
-    if (out) requireWritable(*out, "-o");
-    if (auto png = args.value("--png")) requireWritable(*png, "--png");
-    if (auto t = args.value("--timings")) requireWritable(*t, "--timings");
+    requireOutputs(args, {"-o", "--png", "--timings"});
     float exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
 
     Scene scene = loadSceneArgument(args.positional()[0]);

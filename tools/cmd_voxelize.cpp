@@ -57,7 +57,7 @@ int runVoxelize(const std::vector<std::string>& argv) {
     if (!args.has("--voxel-size")) throw InputError("--voxel-size S is required; usage: " + std::string(kUsage));
     auto out = args.value("-o");
     if (!out) throw InputError("-o OUT.vdb is required; usage: " + std::string(kUsage));
-    requireWritable(*out, "-o");
+    requireOutputs(args, {"-o"});
 
     VoxelizeSettings settings;
     settings.voxelSize = float(args.number("--voxel-size", 0.0, 1e-30, 1e30));

@@ -173,7 +173,10 @@ std::vector<std::string> plot(const std::string& dir, const SceneEval& s) {
     std::ostringstream front;
     for (std::size_t i : paretoFront(time, error))
         front << fmt(std::max(time[i], 1e-3), "%.6g") << " " << fmt(error[i], "%.6g") << "\n";
-    // Paths relative to the report folder, where gnuplot runs, so the folder can move.
+    // Paths relative to the report folder, where gnuplot runs, so the folder can move. gnuplot
+    // reads its inputs from disk and writes the PNGs itself: these files cannot wait for the
+    // command's outputs to be committed together.
+    OutputBatch::Immediate plotFiles;
     const std::string base = "plots/" + s.name;
     writeTextAtomically(dir + "/" + base + ".dat", data.str());
     writeTextAtomically(dir + "/" + base + "-pareto.dat", front.str());

@@ -138,6 +138,8 @@ Reference loadOrRenderReference(const Scene& scene, const std::string& name, int
     std::fprintf(stderr, "\n");
     ref.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     ref.image = tracer.image();
+    // The cache is not the command's output: it stays even if the command fails later.
+    OutputBatch::Immediate cache;
     writeExr(ref.path, ref.image);
     writeTextAtomically(stem + ".json",
                         nlohmann::json{{"spp", spp}, {"seconds", ref.seconds}, {"rays", tracer.raysTraced()}}.dump(2) + "\n");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gl/context.h"
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
 
@@ -81,7 +82,11 @@ int main(int argc, char** argv) {
         return kOk;
     }
     try {
-        return command->run(rest);
+        // A command's outputs appear together when it returns, or not at all when it throws.
+        voxgi::OutputBatch outputs;
+        const int status = command->run(rest);
+        outputs.commit();
+        return status;
     } catch (const voxgi::InputError& e) {
         std::fprintf(stderr, "voxgi %s: error: %s\n", verb.c_str(), e.what());
         return kBadInput;

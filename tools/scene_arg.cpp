@@ -1,8 +1,12 @@
 #include "tools/scene_arg.h"
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <vector>
 
 #include "gi/methods.h"
+#include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 
@@ -10,7 +14,8 @@ namespace voxgi::cli {
 
 namespace fs = std::filesystem;
 
-Scene loadSceneArgument(const std::string& argument) {
+namespace {
+Scene loadSceneOrBuiltin(const std::string& argument) {
     if (!fs::exists(argument) && argument.find('/') == std::string::npos && fs::path(argument).extension().empty()) {
         std::string builtin = builtinScenePath(argument);
         if (fs::exists(builtin)) return loadSceneFile(builtin);
@@ -18,6 +23,13 @@ Scene loadSceneArgument(const std::string& argument) {
     if (!fs::exists(argument)) throw InputError(argument + ": file not found");
     if (fs::is_directory(argument)) throw InputError(argument + ": is a directory, expected a scene or mesh file");
     return loadSceneOrMesh(argument);
+}
+}  // namespace
+
+Scene loadSceneArgument(const std::string& argument) {
+    Scene scene = loadSceneOrBuiltin(argument);
+    requireRenderable(scene, argument);
+    return scene;
 }
 
 void applySceneOverrides(const Args& args, Scene& scene) {
@@ -34,10 +46,44 @@ void applySceneOverrides(const Args& args, Scene& scene) {
 }
 
 void requireWritable(const std::string& path, const std::string& option) {
-    fs::path parent = fs::path(path).parent_path();
-    if (!parent.empty() && !fs::is_directory(parent))
+    std::string target;
+    try {
+        target = outputTarget(path);
+    } catch (const InputError& e) {
+        throw InputError(option + " " + e.what());
+    }
+    fs::path parent = fs::path(target).parent_path();
+    if (parent.empty()) parent = ".";
+    if (!fs::is_directory(parent))
         throw InputError(option + " " + path + ": directory " + parent.string() + " does not exist");
-    if (fs::is_directory(path)) throw InputError(option + " " + path + ": is a directory");
+    if (::access(parent.c_str(), W_OK) != 0)
+        throw InputError(option + " " + path + ": directory " + parent.string() + " is not writable");
+}
+
+namespace {
+bool sameFile(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+    return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+}  // namespace
+
+void requireOutputs(const Args& args, std::initializer_list<const char*> options) {
+    std::vector<std::pair<std::string, std::string>> outputs;  // option, path
+    for (const char* option : options)
+        if (auto path = args.value(option)) {
+            requireWritable(*path, option);
+            outputs.emplace_back(option, *path);
+        }
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const auto& [option, path] = outputs[i];
+        for (const std::string& input : args.positional())
+            if (fs::exists(input) && sameFile(outputTarget(path), input))
+                throw InputError(option + " " + path + ": is an input of this command (" + input + "); it would be overwritten");
+        for (std::size_t j = 0; j < i; ++j)
+            if (sameFile(outputTarget(path), outputTarget(outputs[j].second)))
+                throw InputError(option + " " + path + ": the same file as " + outputs[j].first);
+    }
 }
 
 }  // namespace voxgi::cli

@@ -2,6 +2,7 @@
 // ("cornell-box"), plus the camera-size and --set overrides every renderer accepts.
 #pragma once
 
+#include <initializer_list>
 #include <string>
 
 #include "scenes/scene.h"
@@ -14,7 +15,11 @@ Scene loadSceneArgument(const std::string& argument);
 // Applies --width/--height, --backend cpu|gl (the backend setting of every method that has one)
 // and --set section.key=value to a loaded scene.
 void applySceneOverrides(const Args& args, Scene& scene);
-// Refuses an output path whose directory does not exist before any work starts.
+// Refuses, before any work starts, an output path whose directory does not exist or is not
+// writable, or that names a directory, FIFO or device (a symlink names its target).
 void requireWritable(const std::string& path, const std::string& option);
+// requireWritable for each of `options` given, and none of them may name the same file as an
+// input (a positional argument) or as another of them.
+void requireOutputs(const Args& args, std::initializer_list<const char*> options);
 
 }  // namespace voxgi::cli
