@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -58,11 +59,18 @@ public:
         return float(v);
     }
     float number(const std::string& key, float fallback) const { return has(key) ? child(key).number() : fallback; }
+    // An integer that fits in int: larger JSON integers are an error, not a wrapped value.
+    int integerValue() const {
+        if (!value_.is_number_integer()) fail("expected an integer");
+        const double v = value_.get<double>();
+        if (v < double(std::numeric_limits<int>::min()) || v > double(std::numeric_limits<int>::max()))
+            fail("integer out of range");
+        return int(value_.get<long long>());
+    }
     int integer(const std::string& key, int fallback) const {
         if (!has(key)) return fallback;
         Reader r = child(key);
-        if (!r.value_.is_number_integer()) r.fail("expected an integer");
-        return r.value_.get<int>();
+        return r.integerValue();
     }
     std::string string() const {
         if (!value_.is_string()) fail("expected a string");
@@ -142,8 +150,8 @@ void readCamera(const Reader& r, Camera& cam) {
         Reader res = r.child("resolution");
         if (res.size() != 2 || !res.raw()[0].is_number_integer() || !res.raw()[1].is_number_integer())
             res.fail("expected [width, height] integers");
-        cam.width = res.raw()[0].get<int>();
-        cam.height = res.raw()[1].get<int>();
+        cam.width = res.at(0).integerValue();
+        cam.height = res.at(1).integerValue();
         if (cam.width < 1 || cam.height < 1 || cam.width > 16384 || cam.height > 16384)
             res.fail("width and height must be in 1..16384");
     }
@@ -342,6 +350,11 @@ Scene parseSceneJson(const std::string& text, const std::string& path) {
         auto pos = what.find("parse error");
         throw InputError(path + ": " + lineAndColumn(text, e.byte > 0 ? e.byte - 1 : 0) +
                          ": malformed JSON (" + (pos == std::string::npos ? what : what.substr(pos)) + ")");
+    } catch (const json::exception& e) {
+        // A number beyond double's range (1e999): the library reports no position.
+        std::string what = e.what();
+        auto pos = what.find("] ");
+        throw InputError(path + ": malformed JSON (" + (pos == std::string::npos ? what : what.substr(pos + 2)) + ")");
     }
     Reader root(path, doc, "");
     root.requireObject({"camera", "lights", "sky", "materials", "meshes", "gi", "description"});

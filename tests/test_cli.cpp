@@ -69,6 +69,12 @@ TEST(Cli, BadOptionValuesExitTwo) {
     EXPECT_EQ(runVoxgi("render cornell-box -o " + dir + "/a.exr --frames many").exitCode, 2);
     EXPECT_EQ(runVoxgi("render cornell-box -o /nonexistent-dir/a.exr").exitCode, 2);
     EXPECT_EQ(runVoxgi("render cornell-box").exitCode, 2);  // no -o
+    // --set names a declared setting: a typo is not a setting nothing reads.
+    for (const char* set : {"bogus.key=1", "lpv.bogus=1"}) {
+        auto r = runVoxgi("render cornell-box --method direct --frames 1 -o " + dir + "/a.exr --set " + set);
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find("unknown setting"), std::string::npos) << r.output;
+    }
     EXPECT_FALSE(fileExists(dir + "/a.exr"));
 }
 

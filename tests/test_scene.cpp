@@ -82,6 +82,14 @@ TEST(Scene, MalformedJsonNamesLine) {
     EXPECT_NE(e.find("malformed JSON"), std::string::npos) << e;
 }
 
+TEST(Scene, NumbersBeyondTheirTypeAreErrorsNotWrappedValues) {
+    // 1e999 overflows double inside the JSON library; a resolution past int would wrap to 64.
+    EXPECT_NE(errorOf(R"({"camera": {"eye": [0, 0, 1e999], "target": [0, 0, 0]}})").find("bad.json: malformed JSON"),
+              std::string::npos);
+    const std::string wrapped = errorOf(R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "resolution": [4294967360, 64]}})");
+    EXPECT_NE(wrapped.find("/camera/resolution/0: integer out of range"), std::string::npos) << wrapped;
+}
+
 TEST(Scene, UnknownFieldIsNamed) {
     std::string e = errorOf(minimal(R"(, "lights": [{"type": "point", "position": [0,0,0], "intensty": 1}])"));
     EXPECT_NE(e.find("/lights/0/intensty"), std::string::npos) << e;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <set>
 #include <vector>
 
 #include "gi/methods.h"
@@ -32,6 +33,31 @@ Scene loadSceneArgument(const std::string& argument) {
     return scene;
 }
 
+namespace {
+// --set names a setting some method declares (gi/settings_table.h): a typo is an error, not a
+// setting nothing reads.
+void requireDeclaredSetting(const std::string& assignment) {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    std::set<std::string> sections, keys;
+    for (const MethodInfo& m : methods()) {
+        if (m.section.empty()) continue;
+        sections.insert(m.section);
+        for (const SettingInfo& info : m.settings) keys.insert(info.key);
+    }
+    if (keys.count(key)) return;
+    const std::string section = key.substr(0, key.find('.'));
+    std::string known;
+    if (sections.count(section)) {
+        for (const std::string& k : keys)
+            if (k.compare(0, section.size() + 1, section + ".") == 0) known += (known.empty() ? "" : ", ") + k;
+    } else {
+        for (const std::string& k : sections) known += (known.empty() ? "" : ", ") + k;
+        known = "sections: " + known;
+    }
+    throw InputError("--set " + assignment + ": unknown setting (" + known + ")");
+}
+}  // namespace
+
 void applySceneOverrides(const Args& args, Scene& scene) {
     scene.camera.width = args.integer("--width", scene.camera.width, 1, 16384);
     scene.camera.height = args.integer("--height", scene.camera.height, 1, 16384);
@@ -42,7 +68,10 @@ void applySceneOverrides(const Args& args, Scene& scene) {
             throw InputError("--backend " + *backend + ": " + e.what());
         }
     }
-    for (const std::string& s : args.values("--set")) scene.gi.applyOverride(s);
+    for (const std::string& s : args.values("--set")) {
+        requireDeclaredSetting(s);
+        scene.gi.applyOverride(s);
+    }
 }
 
 void requireWritable(const std::string& path, const std::string& option) {
