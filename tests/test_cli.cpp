@@ -75,6 +75,11 @@ TEST(Cli, BadOptionValuesExitTwo) {
         EXPECT_EQ(r.exitCode, 2) << r.output;
         EXPECT_NE(r.output.find("unknown setting"), std::string::npos) << r.output;
     }
+    // ... with a value its table accepts, even when the method is not the one rendered.
+    for (const char* set : {"lpv.apply_normal_offset=nan", "lpv.steps=inf", "ddgi.probes=nan", "lpv.reuse=maybe"}) {
+        auto r = runVoxgi("render cornell-box --method direct --frames 1 -o " + dir + "/a.exr --set " + set);
+        EXPECT_EQ(r.exitCode, 2) << set << ": " << r.output;
+    }
     EXPECT_FALSE(fileExists(dir + "/a.exr"));
 }
 

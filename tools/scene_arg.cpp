@@ -38,11 +38,22 @@ namespace {
 // setting nothing reads.
 void requireDeclaredSetting(const std::string& assignment) {
     const std::string key = assignment.substr(0, assignment.find('='));
+    const std::string value = assignment.substr(assignment.find('=') + 1);
     std::set<std::string> sections, keys;
     for (const MethodInfo& m : methods()) {
         if (m.section.empty()) continue;
         sections.insert(m.section);
-        for (const SettingInfo& info : m.settings) keys.insert(info.key);
+        for (const SettingInfo& info : m.settings) {
+            keys.insert(info.key);
+            // Checked whether or not the method runs: `nan` or an out-of-range value is never meant.
+            if (info.key == key) {
+                try {
+                    validateSetting(info, value);
+                } catch (const InputError& e) {
+                    throw InputError("--set " + assignment + ": " + e.what());
+                }
+            }
+        }
     }
     if (keys.count(key)) return;
     const std::string section = key.substr(0, key.find('.'));
