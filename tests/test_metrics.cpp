@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "gi/metrics/flip.h"
 #include "gi/metrics/image_metrics.h"
@@ -185,4 +186,14 @@ TEST(Metrics, CompareCommand) {
     auto layer = test::runVoxgi("compare " + dir + "/a.exr " + dir + "/b.exr --aov normal --json " + dir + "/x.json");
     EXPECT_EQ(layer.exitCode, 2) << layer.output;
     EXPECT_FALSE(test::fileExists(dir + "/x.json"));
+    // NaN or infinity in either image: refused, not NaN metrics with exit 0.
+    for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        Image c = uniform(16, 16, glm::vec3(0.5f));
+        c.layer("beauty").data[7] = bad;
+        writeExr(dir + "/c.exr", c);
+        auto r2 = test::runVoxgi("compare " + dir + "/c.exr " + dir + "/b.exr --json " + dir + "/y.json");
+        EXPECT_EQ(r2.exitCode, 2) << r2.output;
+        EXPECT_NE(r2.output.find("c.exr: layer beauty holds 1 NaN or infinite values"), std::string::npos) << r2.output;
+        EXPECT_FALSE(test::fileExists(dir + "/y.json"));
+    }
 }

@@ -182,6 +182,13 @@ TEST(VoxelizeCli, WritesTheGridSetAndInspectDescribesIt) {
     EXPECT_GT(fs::file_size(dir + "/slice.png"), 50u);
     EXPECT_EQ(test::runVoxgi("inspect " + dir + "/cb.vdb --slice w=1 -o " + dir + "/s2.png").exitCode, 2);
     EXPECT_EQ(test::runVoxgi("inspect " + dir + "/cb.vdb --slice z=0.2 -o " + dir + "/s3.png --grid nope").exitCode, 2);
+    // A plane outside the grid's active voxels (or beyond int once in index space) is refused.
+    for (const char* far : {"z=1e300", "z=-5"}) {
+        auto r = test::runVoxgi("inspect " + dir + "/cb.vdb --slice " + far + " -o " + dir + "/s4.png --grid albedo");
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find("outside grid 'albedo'"), std::string::npos) << r.output;
+        EXPECT_FALSE(test::fileExists(dir + "/s4.png"));
+    }
     EXPECT_FALSE(test::fileExists(dir + "/s3.png"));
 }
 

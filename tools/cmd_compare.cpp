@@ -56,6 +56,16 @@ int runCompare(const std::vector<std::string>& argv) {
     requireOutputs(args, {"--diff", "--json"});
     Image test = readExr(args.positional()[0]);
     Image reference = readExr(args.positional()[1]);
+    // Metrics of an image holding NaN or infinity are NaN: refuse instead of printing them.
+    for (std::size_t i = 0; i < 2; ++i) {
+        const Image& image = i == 0 ? test : reference;
+        const ImageLayer* l = image.find(layer);
+        if (!l) continue;  // computeMetrics names the missing layer
+        const auto bad = std::count_if(l->data.begin(), l->data.end(), [](float v) { return !std::isfinite(v); });
+        if (bad > 0)
+            throw InputError(args.positional()[i] + ": layer " + layer + " holds " + std::to_string(bad) +
+                             " NaN or infinite values");
+    }
     ImageMetrics m = computeMetrics(test, reference, layer);
 
     std::printf("%s against %s, layer %s (%dx%d, %d channel%s)\n", args.positional()[0].c_str(),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include <openvdb/openvdb.h>
@@ -131,7 +132,17 @@ VdbSlice sliceVdbFile(const std::string& path, const std::string& gridName, int 
     slice.grid = grid->getName();
     openvdb::Vec3d worldPoint(0.0);
     worldPoint[axis] = world;
-    slice.indexPlane = int(std::lround(grid->transform().worldToIndex(worldPoint)[axis]));
+    // Outside the active voxels the slice would be empty; far outside, lround overflows int.
+    const double plane = std::round(grid->transform().worldToIndex(worldPoint)[axis]);
+    if (!(plane >= double(box.min()[axis]) && plane <= double(box.max()[axis]))) {
+        const openvdb::Vec3d lo = grid->transform().indexToWorld(box.min().asVec3d()),
+                             hi = grid->transform().indexToWorld(box.max().asVec3d());
+        char why[160];
+        std::snprintf(why, sizeof why, "--slice %c=%g: outside grid '%s' (%g to %g)", 'x' + axis, world,
+                      grid->getName().c_str(), lo[axis], hi[axis]);
+        throw InputError(why);
+    }
+    slice.indexPlane = int(plane);
     const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
     slice.width = box.max()[u] - box.min()[u] + 1;
     slice.height = box.max()[v] - box.min()[v] + 1;
