@@ -57,7 +57,7 @@ const MethodInfo& findMethod(const std::string& name) {
         }
         known += (known.empty() ? "" : ", ") + m.name;
     }
-    throw InputError("--method " + name + ": unknown method (known: " + known + ")");
+    throw InputError(name + ": unknown method (known: " + known + ")");
 }
 
 std::vector<std::string> builtMethods() {

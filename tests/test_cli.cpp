@@ -2,6 +2,8 @@
 // partial output file), and a successful render.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "support/test_support.h"
 
 using voxgi::test::fileExists;
@@ -69,6 +71,20 @@ TEST(Cli, BadOptionValuesExitTwo) {
     EXPECT_EQ(runVoxgi("render cornell-box -o " + dir + "/a.exr --frames many").exitCode, 2);
     EXPECT_EQ(runVoxgi("render cornell-box -o /nonexistent-dir/a.exr").exitCode, 2);
     EXPECT_EQ(runVoxgi("render cornell-box").exitCode, 2);  // no -o
+    // An unknown method is named where it came from: the option or the scene file.
+    writeFile(dir + "/gm.json", R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0]},
+        "materials": {"m": {"albedo": 0.5}}, "meshes": [{"type": "box", "material": "m"}], "gi": {"method": "bogus"}})");
+    auto fromScene = runVoxgi("render " + dir + "/gm.json -o " + dir + "/a.exr");
+    EXPECT_EQ(fromScene.exitCode, 2) << fromScene.output;
+    EXPECT_NE(fromScene.output.find("gm.json: gi.method: bogus: unknown method"), std::string::npos) << fromScene.output;
+    auto fromOption = runVoxgi("render cornell-box --method bogus -o " + dir + "/a.exr");
+    EXPECT_NE(fromOption.output.find("--method bogus: unknown method"), std::string::npos) << fromOption.output;
+    // Usage errors are one line too.
+    for (const char* usage : {"render", "render cornell-box", "voxelize", "reference cornell-box --spp 1", "compare a.exr"}) {
+        auto r = runVoxgi(usage);
+        EXPECT_EQ(r.exitCode, 2) << usage;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << usage << ":\n" << r.output;
+    }
     // --set names a declared setting: a typo is not a setting nothing reads.
     for (const char* set : {"bogus.key=1", "lpv.bogus=1"}) {
         auto r = runVoxgi("render cornell-box --method direct --frames 1 -o " + dir + "/a.exr --set " + set);

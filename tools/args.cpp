@@ -92,9 +92,15 @@ double Args::number(const std::string& name, double fallback, double min, double
     return x;
 }
 
+std::string usageLine(const std::string& usage) {
+    const std::size_t end = usage.find('\n');
+    return (end == std::string::npos ? usage : usage.substr(0, end) + " ...") + " (see --help)";
+}
+
 void Args::requirePositional(std::size_t count, const std::string& usage) const {
     if (positional_.size() != count)
-        throw InputError(std::string(positional_.size() < count ? "missing" : "unexpected") + " argument; usage: " + usage);
+        throw InputError(std::string(positional_.size() < count ? "missing" : "unexpected") + " argument; usage: " +
+                         usageLine(usage));
 }
 
 }  // namespace voxgi::cli

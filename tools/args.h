@@ -12,6 +12,8 @@ namespace voxgi::cli {
 
 // "a,b,,c" -> {"a", "b", "c"}: the comma lists of options like --methods and --sizes.
 std::vector<std::string> splitList(const std::string& text);
+// The first line of a usage text with a pointer to --help: errors stay on one line.
+std::string usageLine(const std::string& usage);
 
 class Args {
 public:

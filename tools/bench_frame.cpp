@@ -140,7 +140,12 @@ const std::set<std::string> kValued = {"--method", "--sizes", "--variants", "--f
 int runBenchFrame(const std::vector<std::string>& argv) {
     Args args(argv, kValued, {}, {"--set"});
     auto method = args.value("--method");
-    if (!method) throw InputError("--method NAME is required; usage: " + std::string(kUsage));
+    if (!method) throw InputError("--method NAME is required; usage: " + usageLine(kUsage));
+    try {
+        findMethod(*method);
+    } catch (const InputError& e) {
+        throw InputError(std::string("--method ") + e.what());
+    }
     return runFrameBench(findMethod(*method), args);
 }
 

@@ -22,13 +22,14 @@ int runDump(const std::vector<std::string>& argv) {
     Args args(argv, {"--method", "-o", "--frame", "--width", "--height", "--set", "--backend"}, {}, {"--set"});
     args.requirePositional(1, kUsage);
     auto out = args.value("-o");
-    if (!out) throw InputError("-o OUT.vdb is required; usage: " + std::string(kUsage));
+    if (!out) throw InputError("-o OUT.vdb is required; usage: " + usageLine(kUsage));
     requireOutputs(args, {"-o"});
     const int frames = args.integer("--frame", 0, 0, 1 << 20) + 1;
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
-    const std::string method = args.value("--method", scene.gi.getString("method", ""));
-    if (method.empty()) throw InputError("--method NAME is required: " + args.positional()[0] + " names no gi.method");
+    if (!args.has("--method") && scene.gi.getString("method", "").empty())
+        throw InputError("--method NAME is required: " + args.positional()[0] + " names no gi.method");
+    const std::string method = methodArgument(args, scene, "");
     if (!validateMethod(method, scene).create) throw InputError("--method " + method + " has no volumes to dump");
     auto context = gl::Context::createHeadless();
     FrameRenderer renderer(scene, FrameOptions{}, method);

@@ -123,13 +123,19 @@ EvalRow measure(const std::string& method, const Preset& preset, MethodRun run, 
 }
 
 int runEvaluation(const Args& args, const std::string& dir, const std::vector<std::string>& argv) {
-    if (args.positional().empty()) throw InputError("give at least one SCENE; usage: " + std::string(kUsage));
+    if (args.positional().empty()) throw InputError("give at least one SCENE; usage: " + usageLine(kUsage));
     std::string allBuilt;
     for (const std::string& m : builtMethods()) allBuilt += (allBuilt.empty() ? "" : ",") + m;
     const std::vector<std::string> methodNames = splitList(args.value("--methods", allBuilt));
     const std::vector<std::string> presetNames = splitList(args.value("--presets", "low,medium,high"));
     if (methodNames.empty()) throw InputError("--methods: empty list");
-    for (const std::string& m : methodNames) findMethod(m);
+    for (const std::string& m : methodNames) {
+        try {
+            findMethod(m);
+        } catch (const InputError& e) {
+            throw InputError(std::string("--methods ") + e.what());
+        }
+    }
     requireKnownPresets(presetNames);
     const std::string refArg = args.value("--reference", "auto");
     if (refArg != "auto" && args.positional().size() != 1)
@@ -222,7 +228,7 @@ int runEval(const std::vector<std::string>& argv) {
                "--height", "--set", "--cases"},
               {"--stability"}, {"--set"});
     auto out = args.value("-o");
-    if (!out) throw InputError("-o DIR is required; usage: " + std::string(kUsage));
+    if (!out) throw InputError("-o DIR is required; usage: " + usageLine(kUsage));
     if (args.flag("--stability")) {
         makeOutputFolder(*out);
         if (!args.positional().empty()) throw InputError("--stability takes no SCENE (its scenes are built in)");

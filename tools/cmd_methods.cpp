@@ -93,7 +93,7 @@ void printText(const MethodInfo& m) {
 
 int runMethods(const std::vector<std::string>& argv) {
     Args args(argv, {}, {"--markdown"});
-    if (args.positional().size() > 1) throw InputError("usage: " + std::string(kUsage));
+    if (args.positional().size() > 1) throw InputError("usage: " + usageLine(kUsage));
     if (args.positional().empty()) {
         if (args.flag("--markdown")) printMarkdownDocument();
         else std::printf("%s", methodList().c_str());

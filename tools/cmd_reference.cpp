@@ -36,7 +36,7 @@ int runReference(const std::vector<std::string>& argv) {
     args.requirePositional(1, kUsage);
     if (args.has("--spp") == args.has("--time")) throw InputError("give exactly one of --spp N or --time SECONDS");
     auto out = args.value("-o");
-    if (!out) throw InputError("-o OUT.exr is required; usage: " + std::string(kUsage));
+    if (!out) throw InputError("-o OUT.exr is required; usage: " + usageLine(kUsage));
     requireOutputs(args, {"-o", "--png"});
     const int spp = args.integer("--spp", 0, 1, 1 << 24);
     const double seconds = args.number("--time", 0.0, 1e-3, 1e7);

@@ -28,14 +28,14 @@ int runRender(const std::vector<std::string>& argv) {
               {"--plan"}, {"--set"});
     args.requirePositional(1, kUsage);
     auto out = args.value("-o");
-    if (!out && !args.flag("--plan")) throw InputError("-o OUT.exr is required; usage: " + std::string(kUsage));
+    if (!out && !args.flag("--plan")) throw InputError("-o OUT.exr is required; usage: " + usageLine(kUsage));
     requireOutputs(args, {"-o", "--png", "--timings"});
     float exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
 
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
     // --method, else the scene's gi.method, else direct light only.
-    const std::string method = args.value("--method", scene.gi.getString("method", "direct"));
+    const std::string method = methodArgument(args, scene, "direct");
     const int frames = args.integer("--frames", defaultFrameCount(scene), 1, 1 << 20);
     // Printed and then run: the renderer runs exactly these passes.
     FramePlan plan = planFrame(scene, method, frames);

@@ -55,7 +55,7 @@ int runView(const std::vector<std::string>& argv) {
 
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
-    options.method = args.value("--method", scene.gi.getString("method", "direct"));
+    options.method = methodArgument(args, scene, "direct");
     validateMethod(options.method, scene);
     return view::runViewer(scene, options);
 }

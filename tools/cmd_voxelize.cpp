@@ -54,9 +54,9 @@ private:
 int runVoxelize(const std::vector<std::string>& argv) {
     Args args(argv, {"--voxel-size", "-o", "--levels", "--max-voxels", "--blocker-fit"}, {"--sdf"});
     args.requirePositional(1, kUsage);
-    if (!args.has("--voxel-size")) throw InputError("--voxel-size S is required; usage: " + std::string(kUsage));
+    if (!args.has("--voxel-size")) throw InputError("--voxel-size S is required; usage: " + usageLine(kUsage));
     auto out = args.value("-o");
-    if (!out) throw InputError("-o OUT.vdb is required; usage: " + std::string(kUsage));
+    if (!out) throw InputError("-o OUT.vdb is required; usage: " + usageLine(kUsage));
     requireOutputs(args, {"-o"});
 
     VoxelizeSettings settings;

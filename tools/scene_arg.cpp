@@ -85,6 +85,19 @@ void applySceneOverrides(const Args& args, Scene& scene) {
     }
 }
 
+std::string methodArgument(const Args& args, const Scene& scene, const std::string& fallback) {
+    const bool given = args.has("--method");
+    const std::string name = args.value("--method", scene.gi.getString("method", fallback));
+    if (name.empty()) throw InputError("--method NAME is required (the scene names no gi.method)");
+    try {
+        findMethod(name);
+    } catch (const InputError& e) {
+        const std::string source = scene.sourcePath.empty() ? "scene" : scene.sourcePath;
+        throw InputError((given ? std::string("--method ") : source + ": gi.method: ") + e.what());
+    }
+    return name;
+}
+
 void requireWritable(const std::string& path, const std::string& option) {
     std::string target;
     try {

@@ -15,6 +15,9 @@ Scene loadSceneArgument(const std::string& argument);
 // Applies --width/--height, --backend cpu|gl (the backend setting of every method that has one)
 // and --set section.key=value to a loaded scene.
 void applySceneOverrides(const Args& args, Scene& scene);
+// --method, else the scene's gi.method, else `fallback` (empty: InputError asking for one). An
+// unknown name is an error naming where it came from (--method, or the scene file's gi.method).
+std::string methodArgument(const Args& args, const Scene& scene, const std::string& fallback);
 // Refuses, before any work starts, an output path whose directory does not exist or is not
 // writable, or that names a directory, FIFO or device (a symlink names its target).
 void requireWritable(const std::string& path, const std::string& option);
