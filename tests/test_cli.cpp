@@ -91,6 +91,9 @@ TEST(Cli, BadOptionValuesExitTwo) {
         EXPECT_EQ(r.exitCode, 2) << r.output;
         EXPECT_NE(r.output.find("unknown setting"), std::string::npos) << r.output;
     }
+    // Methods sharing a section range a key differently: lpv.cascades=3 is clpv's.
+    EXPECT_EQ(runVoxgi("render cornell-box --method clpv --width 16 --height 16 --frames 1 -o " + dir +
+                       "/c.exr --set lpv.cascades=3 --set lpv.resolution=8").exitCode, 0);
     // ... with a value its table accepts, even when the method is not the one rendered.
     for (const char* set : {"lpv.apply_normal_offset=nan", "lpv.steps=inf", "ddgi.probes=nan", "lpv.reuse=maybe"}) {
         auto r = runVoxgi("render cornell-box --method direct --frames 1 -o " + dir + "/a.exr --set " + set);

@@ -40,21 +40,25 @@ void requireDeclaredSetting(const std::string& assignment) {
     const std::string key = assignment.substr(0, assignment.find('='));
     const std::string value = assignment.substr(assignment.find('=') + 1);
     std::set<std::string> sections, keys;
+    // Methods that share a section may range a key differently (lpv.cascades: 1 for lpv, 2..6
+    // for clpv): the value must suit at least one of them; the method that runs checks it again.
+    std::string refused;
+    bool accepted = false;
     for (const MethodInfo& m : methods()) {
         if (m.section.empty()) continue;
         sections.insert(m.section);
         for (const SettingInfo& info : m.settings) {
             keys.insert(info.key);
-            // Checked whether or not the method runs: `nan` or an out-of-range value is never meant.
-            if (info.key == key) {
-                try {
-                    validateSetting(info, value);
-                } catch (const InputError& e) {
-                    throw InputError("--set " + assignment + ": " + e.what());
-                }
+            if (info.key != key) continue;
+            try {
+                validateSetting(info, value);
+                accepted = true;
+            } catch (const InputError& e) {
+                if (refused.empty()) refused = e.what();
             }
         }
     }
+    if (!accepted && !refused.empty()) throw InputError("--set " + assignment + ": " + refused);
     if (keys.count(key)) return;
     const std::string section = key.substr(0, key.find('.'));
     std::string known;
