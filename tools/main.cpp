@@ -1,6 +1,7 @@
 // voxgi: the command-line front end. Each verb does one thing (like vdb_tool's actions);
 // errors print one line and exit 2 (bad input), 3 (not implemented yet) or 1 (failure).
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "gl/context.h"
 #include "scenes/atomic_file.h"
+#include "scenes/memory_limit.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
 
@@ -36,7 +38,8 @@ const std::vector<std::pair<std::string, std::string>> kVerbs = {
 void printHelp() {
     std::printf("usage: voxgi <command> [options]\n\ncommands:\n");
     for (const auto& [verb, summary] : kVerbs) std::printf("  %-10s %s\n", verb.c_str(), summary.c_str());
-    std::printf("\n`voxgi <command> --help` shows a command's options.\n");
+    std::printf("\n`voxgi <command> --help` shows a command's options.\n"
+                "`voxgi --max-memory GIB <command> ...` holds its memory estimates to GIB (default: 3/4 of RAM).\n");
 }
 }  // namespace
 
@@ -55,6 +58,17 @@ const Command* findCommand(const std::string& name) {
 int main(int argc, char** argv) {
     using namespace voxgi::cli;
     std::vector<std::string> args(argv + 1, argv + argc);
+    // --max-memory GIB before the command: the limit every memory estimate is held to.
+    if (args.size() >= 2 && args[0] == "--max-memory") {
+        char* end = nullptr;
+        const double gib = std::strtod(args[1].c_str(), &end);
+        if (end == args[1].c_str() || *end != '\0' || !(gib > 0.0) || gib > 1e6) {
+            std::fprintf(stderr, "voxgi: error: --max-memory %s: expected GiB in (0, 1e6]\n", args[1].c_str());
+            return kBadInput;
+        }
+        voxgi::setMemoryLimit(std::uint64_t(gib * 1024.0 * 1024.0 * 1024.0));
+        args.erase(args.begin(), args.begin() + 2);
+    }
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
         printHelp();
         return args.empty() ? kBadInput : kOk;

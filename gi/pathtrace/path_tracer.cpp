@@ -10,13 +10,13 @@
 
 #include "gi/pathtrace/integrator.h"
 #include "scenes/errors.h"
+#include "scenes/memory_limit.h"
 
 namespace voxgi {
 
 namespace {
 
 constexpr int kTile = 16;
-constexpr double kMaxImageBytes = 6.0 * double(1 << 30);
 
 // Whether every quad light already has its emitting mesh (Scene::addQuadLightGeometry).
 bool hasQuadGeometry(const Scene& scene) {
@@ -74,10 +74,8 @@ struct PathTracer::Impl {
         aspect = float(width) / float(height);
         if (width <= 0 || height <= 0) throw InputError("path tracer: image size must be positive");
         // Refuse before allocating: an absurd size would otherwise end in the OOM killer.
-        double bytes = double(width) * double(height) * double(sizeof(PixelSum) + 16 * sizeof(float));
-        if (bytes > kMaxImageBytes)
-            throw InputError("path tracer: " + std::to_string(width) + "x" + std::to_string(height) + " needs " +
-                             std::to_string(int(bytes / double(1 << 30))) + " GiB of accumulation and image buffers");
+        requireMemory(double(width) * double(height) * double(sizeof(PixelSum) + 16 * sizeof(float)),
+                      "path tracer: " + std::to_string(width) + "x" + std::to_string(height) + " accumulation and image buffers");
         sums.resize(std::size_t(width) * std::size_t(height));
     }
 

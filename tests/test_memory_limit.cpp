@@ -1,0 +1,42 @@
+// Memory estimated before it is allocated: settings or sizes whose estimate exceeds the limit
+// (3/4 of RAM, or --max-memory GIB) are exit 2 with the estimate and the limit, at once.
+#include <gtest/gtest.h>
+
+#include "scenes/errors.h"
+#include "scenes/memory_limit.h"
+#include "support/test_support.h"
+
+using namespace voxgi;
+using namespace voxgi::test;
+
+TEST(MemoryLimit, EstimatesOverTheLimitAreRefusedBeforeAnyWork) {
+    const std::string dir = makeTempDir("memory");
+    // 256^3 cells in 6 cascades: tens of GiB, more than this machine or the default limit.
+    RunResult lpv = runVoxgi("--max-memory 16 render cornell-box --method clpv --width 32 --height 32 -o " + dir +
+                             "/a.exr --set lpv.resolution=256 --set lpv.cascades=6");
+    EXPECT_EQ(lpv.exitCode, 2) << lpv.output;
+    EXPECT_NE(lpv.output.find("needs about"), std::string::npos) << lpv.output;
+    EXPECT_NE(lpv.output.find("the memory limit is 16.0 GiB"), std::string::npos) << lpv.output;
+    RunResult image = runVoxgi("--max-memory 0.05 reference cornell-box --spp 1 --width 2048 --height 2048 -o " + dir + "/b.exr");
+    EXPECT_EQ(image.exitCode, 2) << image.output;
+    EXPECT_NE(image.output.find("path tracer: 2048x2048"), std::string::npos) << image.output;
+    EXPECT_FALSE(fileExists(dir + "/a.exr") || fileExists(dir + "/b.exr"));
+    // Under the limit the same commands run.
+    EXPECT_EQ(runVoxgi("--max-memory 0.5 render cornell-box --method clpv --width 16 --height 16 --frames 1 -o " + dir +
+                       "/c.exr").exitCode,
+              0);
+    EXPECT_EQ(runVoxgi("--max-memory zero render cornell-box -o " + dir + "/d.exr").exitCode, 2);
+}
+
+TEST(MemoryLimit, RequireMemoryNamesTheWorkAndTheLimit) {
+    const std::uint64_t before = memoryLimit();
+    setMemoryLimit(std::uint64_t(1) << 30);
+    EXPECT_NO_THROW(requireMemory(0.5 * double(std::uint64_t(1) << 30), "small"));
+    try {
+        requireMemory(3.0 * double(std::uint64_t(1) << 30), "big thing");
+        ADD_FAILURE() << "not refused";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "big thing needs about 3.0 GiB; the memory limit is 1.0 GiB (--max-memory)");
+    }
+    setMemoryLimit(before);
+}
