@@ -71,6 +71,9 @@ struct MethodInfo {
     // Reads the settings as the technique will (every range and cross-setting rule): InputError
     // names the key. Needs no GL.
     std::function<void(const GiSettings&)> validate;
+    // Bytes the technique will allocate with these (valid) settings, held to the memory limit
+    // before anything is created (scenes/memory_limit.h); empty when small whatever the settings.
+    std::function<double(const GiSettings&)> memoryBytes;
     // Makes the technique (a current GL context needed); null for direct light only.
     std::function<std::unique_ptr<GiTechnique>(const Scene&)> create;
     // The technique's passes for a scene and its settings (timer stage names), without GL.

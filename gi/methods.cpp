@@ -3,6 +3,7 @@
 #include <set>
 
 #include "scenes/errors.h"
+#include "scenes/memory_limit.h"
 
 namespace voxgi {
 
@@ -77,6 +78,7 @@ std::vector<std::string> plannedMethods() {
 const MethodInfo& validateMethod(const std::string& name, const Scene& scene) {
     const MethodInfo& m = findMethod(name);
     m.validate(scene.gi);
+    if (m.memoryBytes) requireMemory(m.memoryBytes(scene.gi), "method " + name + " with its gi." + m.section + " settings");
     return m;
 }
 

@@ -7,7 +7,6 @@
 #include "gi/lpv/lpv_technique.h"
 #include "gi/lpv/rsm.h"
 #include "gi/method.h"
-#include "scenes/memory_limit.h"
 
 namespace voxgi {
 
@@ -84,14 +83,11 @@ MethodInfo lpvFamily(bool cascaded) {
     m.summary = cascaded ? "cascaded light propagation volumes centred on the camera (seed 000)"
                          : "one light propagation volume fitted to the scene (seed 000)";
     declareSettings(m, lpvSettings(cascaded), lpvDefaults(cascaded));
-    m.validate = [cascaded, read = m.validate](const GiSettings& gi) {
-        read(gi);
+    m.memoryBytes = [cascaded](const GiSettings& gi) {
         // Measured peak resident memory (CPU propagation, its sparse index and the GL textures,
         // on llvmpipe all in host memory): 370-650 bytes per cell at 64^3-128^3, 1-2 cascades.
         const LpvDesc d = readLpvDesc(gi, cascaded);
-        requireMemory(500.0 * double(d.resolution) * double(d.resolution) * double(d.resolution) * double(d.cascades),
-                      "gi.lpv.resolution=" + std::to_string(d.resolution) + " with " + std::to_string(d.cascades) +
-                          " cascade(s)");
+        return 500.0 * double(d.resolution) * double(d.resolution) * double(d.resolution) * double(d.cascades);
     };
     m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };
     m.plan = [cascaded](const Scene& s) { return lpvPlan(s, cascaded); };
