@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
@@ -114,9 +116,78 @@ Texture loadTexture(const std::string& path) {
     return textureFromPixels(path, px, w, h);
 }
 
+namespace {
+
+// A PLY header checked before assimp reads the file: assimp loops for seconds on some malformed
+// headers and allocates whatever element counts a header claims (2e9 vertices: 24 GB). Every
+// line must be a known keyword, and the elements must fit in the file at their smallest
+// encoding (binary: the bytes of their scalar properties and list counts; ASCII: two bytes per
+// value).
+void checkPlyHeader(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    auto fail = [&](int n, const std::string& why) {
+        throw InputError(path + ": PLY header line " + std::to_string(n) + ": " + why);
+    };
+    if (!std::getline(in, line) || (line != "ply" && line != "ply\r")) return;  // not a PLY: assimp decides
+    static const std::map<std::string, int> kSizes = {
+        {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1}, {"short", 2}, {"ushort", 2}, {"int16", 2}, {"uint16", 2},
+        {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4}, {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+    bool binary = false, ended = false;
+    double minimumBytes = 0.0, items = 0.0;
+    std::size_t headerBytes = line.size() + 1;
+    for (int n = 2; !ended && std::getline(in, line); ++n) {
+        headerBytes += line.size() + 1;
+        if (headerBytes > 65536) fail(n, "header longer than 64 KiB");
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (keyword == "format") {
+            std::string format;
+            words >> format;
+            if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+                fail(n, "unknown format '" + format + "'");
+            binary = format != "ascii";
+        } else if (keyword == "comment" || keyword == "obj_info") {
+        } else if (keyword == "element") {
+            std::string name;
+            long long count = -1;
+            if (!(words >> name >> count) || count < 0 || count > (1ll << 32)) fail(n, "expected 'element NAME COUNT'");
+            items = double(count);
+        } else if (keyword == "property") {
+            std::string type, counted, name;
+            words >> type;
+            if (type == "list") {
+                if (!(words >> counted >> type >> name) || !kSizes.count(counted) || !kSizes.count(type))
+                    fail(n, "expected 'property list COUNT_TYPE TYPE NAME'");
+                minimumBytes += items * (binary ? kSizes.at(counted) : 2);
+            } else {
+                if (!kSizes.count(type) || !(words >> name)) fail(n, "expected 'property TYPE NAME'");
+                minimumBytes += items * (binary ? kSizes.at(type) : 2);
+            }
+        } else if (keyword == "end_header") {
+            ended = true;
+        } else {
+            std::string shown = keyword.substr(0, 32);
+            for (char& c : shown)
+                if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+            fail(n, "unknown keyword '" + shown + "'");
+        }
+    }
+    if (!ended) throw InputError(path + ": PLY header has no end_header");
+    const double available = double(fs::file_size(path)) - double(headerBytes);
+    if (minimumBytes > available)
+        throw InputError(path + ": PLY header declares elements of at least " + std::to_string((long long)minimumBytes) +
+                         " bytes; the file holds " + std::to_string((long long)available));
+}
+
+}  // namespace
+
 MeshImportStats importMeshFile(const std::string& path, const glm::mat4& transform, Scene& scene,
                                int materialOverride) {
     if (!fs::exists(path)) throw InputError(path + ": mesh file not found");
+    checkPlyHeader(path);
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
