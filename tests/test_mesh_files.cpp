@@ -68,3 +68,16 @@ TEST(MeshFiles, SomeNanVerticesLeaveTheRestRenderable) {
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("dropped NaN/Inf samples: 0"), std::string::npos) << r.output;
 }
+
+TEST(SceneFiles, AReferenceThatOverflowsFloatIsRefused) {
+    // Every surface emitting 2.5e38: samples overflow float (and the image would be black with
+    // every sample dropped), or their sums do.
+    const std::string dir = makeTempDir("overflow");
+    writeFile(dir + "/bright.json", R"({"camera": {"eye": [0, 0, 0], "target": [0, 0, 1], "resolution": [8, 8]},
+        "materials": {"m": {"albedo": 0.8, "emission": 2.5e38}},
+        "meshes": [{"type": "box", "material": "m", "inward": true, "transform": {"scale": 4}}]})");
+    RunResult r = runVoxgi("reference " + dir + "/bright.json --spp 2 -o " + dir + "/r.exr");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("overflow float"), std::string::npos) << r.output;
+    EXPECT_FALSE(fileExists(dir + "/r.exr"));
+}

@@ -1,6 +1,7 @@
 // voxgi reference: the unbiased path-traced image every method is measured against. Writes one
 // EXR with the AOV layers (beauty, direct, indirect, albedo, normal, depth).
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 
@@ -76,6 +77,23 @@ int runReference(const std::vector<std::string>& argv) {
     if (!quiet) std::fprintf(stderr, "\n");
 
     Image image = tracer.image();
+    // Samples that came out NaN or infinite are dropped; more than one in a thousand is no
+    // longer a rare accident but a scene whose values overflow float, and the image would be
+    // biased (or black): refuse it.
+    const double samples = double(tracer.width()) * double(tracer.height()) * double(tracer.samplesPerPixel());
+    if (double(tracer.droppedSamples()) > 1e-3 * samples)
+        throw InputError(args.positional()[0] + ": " + std::to_string(tracer.droppedSamples()) + " of " +
+                         std::to_string((long long)samples) +
+                         " samples were NaN or infinite (values overflow float: lights or emission too bright?)");
+    // Samples are finite, but their mean in float can still overflow: refuse the image rather
+    // than write infinities.
+    for (const char* layer : {"beauty", "direct", "indirect"}) {
+        const std::vector<float>& data = image.layer(layer).data;
+        const auto bad = std::count_if(data.begin(), data.end(), [](float v) { return !std::isfinite(v); });
+        if (bad > 0)
+            throw InputError(args.positional()[0] + ": " + std::to_string(bad) + " values of the " + layer +
+                             " layer overflow float: lights or emission too bright");
+    }
     writeExr(*out, image);
     if (auto png = args.value("--png")) writePng(*png, image, "beauty", exposure);
     double raysPerSecond = renderTime > 0.0 ? double(tracer.raysTraced()) / renderTime : 0.0;
