@@ -1,6 +1,7 @@
 #include "scenes/mesh_import.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -129,7 +130,16 @@ void checkPlyHeader(const std::string& path) {
     auto fail = [&](int n, const std::string& why) {
         throw InputError(path + ": PLY header line " + std::to_string(n) + ": " + why);
     };
-    if (!std::getline(in, line) || (line != "ply" && line != "ply\r")) return;  // not a PLY: assimp decides
+    // assimp takes a file for PLY by its extension or by "ply" at its start, and then loops on
+    // headers that only start like one: both get the whole check.
+    std::string extension = fs::path(path).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    char magic[3] = {0, 0, 0};
+    in.read(magic, 3);
+    if (extension != ".ply" && std::string(magic, 3) != "ply") return;
+    in.seekg(0);
+    if (!std::getline(in, line) || (line != "ply" && line != "ply\r"))
+        throw InputError(path + ": PLY header line 1: expected 'ply'");
     static const std::map<std::string, int> kSizes = {
         {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1}, {"short", 2}, {"ushort", 2}, {"int16", 2}, {"uint16", 2},
         {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4}, {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};

@@ -37,6 +37,8 @@ TEST(MeshFiles, MalformedFilesAreErrorsNotCrashes) {
         {"keyword.ply", "ply\nformat ascii 1.0\nelement vertex 3\npro\x01\x00rty float x\nend_header\n0\n0\n0\n",
          "PLY header line 4: unknown keyword 'pro?"},
         {"empty-face.ply", plyHeader + "0\n", "face 0 has 0 indices"},
+        // Starts like a PLY but its first line is not "ply" (assimp loops; tests/fuzz/fuzz_mesh).
+        {"magic.obj", "plyoat x\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n", "PLY header line 1"},
     };
     // The first 2000 bytes of a binary PLY: its faces end in the middle.
     const std::string bunny = sharedScenesDir().empty() ? "" : sharedScenesDir() + "/stanford-bunny/bun_zipper.ply";
