@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -146,7 +147,21 @@ TEST(VolumeIo, BadFilesAreInputErrorsNamingTheFile) {
     fs::resize_file(dir + "/truncated.vdb", size / 2);
     test::writeFile(dir + "/garbage.vdb", std::string(4096, 'x'));
     test::writeFile(dir + "/empty.vdb", "");
-    for (const char* name : {"/absent.vdb", "/truncated.vdb", "/garbage.vdb", "/empty.vdb"}) {
+    // The first 100 bytes (OpenVDB alone asked for 4 GB and took 8 s on it), a flipped bit in
+    // the file's UUID (read as "0 grids" before), and a descriptor whose grid ends past the file.
+    fs::copy_file(dir + "/good.vdb", dir + "/head100.vdb");
+    fs::resize_file(dir + "/head100.vdb", 100);
+    std::string bytes;
+    {
+        std::ifstream in(dir + "/good.vdb", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    std::string uuid = bytes;
+    uuid[40] ^= 0x10;
+    test::writeFile(dir + "/uuid.vdb", uuid);
+    test::writeFile(dir + "/cut-grid.vdb", bytes.substr(0, 2000) + std::string(5000, '\0'));
+    for (const char* name : {"/absent.vdb", "/truncated.vdb", "/garbage.vdb", "/empty.vdb", "/head100.vdb", "/uuid.vdb",
+                             "/cut-grid.vdb"}) {
         try {
             readGeometryVolume(dir + name);
             ADD_FAILURE() << name << " was accepted";
@@ -154,6 +169,10 @@ TEST(VolumeIo, BadFilesAreInputErrorsNamingTheFile) {
             EXPECT_NE(std::string(e.what()).find(dir + name), std::string::npos) << e.what();
         }
     }
+    // inspect read the flipped-UUID file as "0 grid(s)" and exited 0.
+    auto r = test::runVoxgi("inspect " + dir + "/uuid.vdb");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("corrupt file UUID"), std::string::npos) << r.output;
 }
 
 TEST(VoxelizeCli, WritesTheGridSetAndInspectDescribesIt) {

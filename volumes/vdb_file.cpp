@@ -9,21 +9,14 @@
 #include "scenes/errors.h"
 #include "volumes/openvdb_file.h"
 #include "volumes/openvdb_setup.h"
+#include "volumes/vdb_structure.h"
 
 namespace voxgi::detail {
 
 VdbFileContents readVdbFile(const std::string& path) {
     initializeOpenVdb();
     if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": not found");
-    {
-        // Every .vdb starts with the 64-bit magic number 0x56444220 ("VDB " little-endian).
-        std::ifstream in(path, std::ios::binary);
-        unsigned char magic[8] = {};
-        in.read(reinterpret_cast<char*>(magic), sizeof magic);
-        const unsigned char expected[8] = {0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0};
-        if (!in || !std::equal(magic, magic + 8, expected))
-            throw InputError(path + ": not a .vdb file (no OpenVDB header)");
-    }
+    checkVdbStructure(path);
     VdbFileContents contents;
     try {
         openvdb::io::File file(path);
