@@ -86,8 +86,12 @@ MethodInfo lpvFamily(bool cascaded) {
     m.memoryBytes = [cascaded](const GiSettings& gi) {
         // Measured peak resident memory (CPU propagation, its sparse index and the GL textures,
         // on llvmpipe all in host memory): 370-650 bytes per cell at 64^3-128^3, 1-2 cascades.
+        // The reflective shadow maps: 450 bytes per texel of a face (render targets, read-back
+        // and injection copies), measured at 1024^2 and 2048^2; faces are rendered in batches
+        // of at most 256 MiB of targets (RsmRenderer::facesPerBatch), so one face bounds it.
         const LpvDesc d = readLpvDesc(gi, cascaded);
-        return 500.0 * double(d.resolution) * double(d.resolution) * double(d.resolution) * double(d.cascades);
+        return 500.0 * double(d.resolution) * double(d.resolution) * double(d.resolution) * double(d.cascades) +
+               450.0 * double(d.rsmSize) * double(d.rsmSize);
     };
     m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };
     m.plan = [cascaded](const Scene& s) { return lpvPlan(s, cascaded); };
