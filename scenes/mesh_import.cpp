@@ -8,12 +8,15 @@
 #include <map>
 #include <sstream>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include "scenes/errors.h"
+#include "scenes/ply_check.h"
 
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_FAILURE_USERMSG
@@ -119,77 +122,30 @@ Texture loadTexture(const std::string& path) {
 
 namespace {
 
-// A PLY header checked before assimp reads the file: assimp loops for seconds on some malformed
-// headers and allocates whatever element counts a header claims (2e9 vertices: 24 GB). Every
-// line must be a known keyword, and the elements must fit in the file at their smallest
-// encoding (binary: the bytes of their scalar properties and list counts; ASCII: two bytes per
-// value).
-void checkPlyHeader(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string line;
-    auto fail = [&](int n, const std::string& why) {
-        throw InputError(path + ": PLY header line " + std::to_string(n) + ": " + why);
-    };
-    // assimp takes a file for PLY by its extension or by "ply" at its start, and then loops on
-    // headers that only start like one: both get the whole check.
+// The importer assimp 5.2 will read the file with, decided the way ReadFile decides: the one
+// importer that lists the file's extension, or the first of several that accepts the content.
+// Where none does, ReadFile would fall back to guessing from the content among all ~50 importers
+// (a .gltf that is not JSON reaches the PLY or OpenGEX reader, which loop or overrun their
+// buffers on it): that file is refused here instead.
+bool listsExtension(const Assimp::BaseImporter* reader, const std::string& extension) {
+    std::istringstream extensions(reader->GetInfo()->mFileExtensions);
+    for (std::string e; extensions >> e;)
+        if (e == extension) return true;
+    return false;
+}
+
+const Assimp::BaseImporter* importerFor(Assimp::Importer& importer, const std::string& path) {
     std::string extension = fs::path(path).extension().string();
     for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-    char magic[3] = {0, 0, 0};
-    in.read(magic, 3);
-    if (extension != ".ply" && std::string(magic, 3) != "ply") return;
-    in.seekg(0);
-    if (!std::getline(in, line) || (line != "ply" && line != "ply\r"))
-        throw InputError(path + ": PLY header line 1: expected 'ply'");
-    static const std::map<std::string, int> kSizes = {
-        {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1}, {"short", 2}, {"ushort", 2}, {"int16", 2}, {"uint16", 2},
-        {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4}, {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-    bool binary = false, ended = false;
-    double minimumBytes = 0.0, items = 0.0;
-    std::size_t headerBytes = line.size() + 1;
-    for (int n = 2; !ended && std::getline(in, line); ++n) {
-        headerBytes += line.size() + 1;
-        if (headerBytes > 65536) fail(n, "header longer than 64 KiB");
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        std::istringstream words(line);
-        std::string keyword;
-        words >> keyword;
-        if (keyword == "format") {
-            std::string format;
-            words >> format;
-            if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-                fail(n, "unknown format '" + format + "'");
-            binary = format != "ascii";
-        } else if (keyword == "comment" || keyword == "obj_info") {
-        } else if (keyword == "element") {
-            std::string name;
-            long long count = -1;
-            if (!(words >> name >> count) || count < 0 || count > (1ll << 32)) fail(n, "expected 'element NAME COUNT'");
-            items = double(count);
-        } else if (keyword == "property") {
-            std::string type, counted, name;
-            words >> type;
-            if (type == "list") {
-                if (!(words >> counted >> type >> name) || !kSizes.count(counted) || !kSizes.count(type))
-                    fail(n, "expected 'property list COUNT_TYPE TYPE NAME'");
-                minimumBytes += items * (binary ? kSizes.at(counted) : 2);
-            } else {
-                if (!kSizes.count(type) || !(words >> name)) fail(n, "expected 'property TYPE NAME'");
-                minimumBytes += items * (binary ? kSizes.at(type) : 2);
-            }
-        } else if (keyword == "end_header") {
-            ended = true;
-        } else {
-            std::string shown = keyword.substr(0, 32);
-            for (char& c : shown)
-                if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-            fail(n, "unknown keyword '" + shown + "'");
-        }
-    }
-    if (!ended) throw InputError(path + ": PLY header has no end_header");
-    const double available = double(fs::file_size(path)) - double(headerBytes);
-    if (minimumBytes > available)
-        throw InputError(path + ": PLY header declares elements of at least " + std::to_string((long long)minimumBytes) +
-                         " bytes; the file holds " + std::to_string((long long)available));
+    if (extension.size() > 1) extension = extension.substr(1);
+    std::vector<const Assimp::BaseImporter*> listing;
+    for (std::size_t i = 0; i < importer.GetImporterCount(); ++i)
+        if (listsExtension(importer.GetImporter(i), extension)) listing.push_back(importer.GetImporter(i));
+    if (listing.empty()) throw InputError(path + ": unknown mesh format '." + extension + "'");
+    if (listing.size() == 1) return listing[0];
+    for (const Assimp::BaseImporter* candidate : listing)
+        if (candidate->CanRead(path, importer.GetIOHandler(), false)) return candidate;
+    throw InputError(path + ": cannot load mesh (not a ." + extension + " file that assimp recognises)");
 }
 
 }  // namespace
@@ -197,8 +153,9 @@ void checkPlyHeader(const std::string& path) {
 MeshImportStats importMeshFile(const std::string& path, const glm::mat4& transform, Scene& scene,
                                int materialOverride) {
     if (!fs::exists(path)) throw InputError(path + ": mesh file not found");
-    checkPlyHeader(path);
     Assimp::Importer importer;
+    const Assimp::BaseImporter* reader = importerFor(importer, path);
+    if (listsExtension(reader, "ply")) checkPlyFile(path);
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
     // Read and validate first (indices in range, counts consistent), check what assimp's

@@ -4,6 +4,7 @@
 // with only some NaN vertices renders from the rest.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -35,10 +36,25 @@ TEST(MeshFiles, MalformedFilesAreErrorsNotCrashes) {
                        "property float y\nproperty float z\nend_header\n" + std::string(4096, '\0'),
          "PLY header declares elements of at least 24000000000 bytes"},
         {"keyword.ply", "ply\nformat ascii 1.0\nelement vertex 3\npro\x01\x00rty float x\nend_header\n0\n0\n0\n",
-         "PLY header line 4: unknown keyword 'pro?"},
+         "PLY header line 4: control or non-ASCII byte 1"},
         {"empty-face.ply", plyHeader + "0\n", "face 0 has 0 indices"},
-        // Starts like a PLY but its first line is not "ply" (assimp loops; tests/fuzz/fuzz_mesh).
-        {"magic.obj", "plyoat x\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n", "PLY header line 1"},
+        // Found by tests/fuzz/fuzz_mesh. A .gltf that is not glTF: assimp would guess another reader
+        // from its content (PLY, OpenGEX), which loops or reads past its buffer.
+        {"magic.gltf", "plyoat x\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n",
+         "not a .gltf file that assimp recognises"},
+        {"mesh.xyz", "v 0 0 0\n", "unknown mesh format '.xyz'"},
+        // List counts assimp would reserve as they stand: an ASCII count beyond its uchar, and a
+        // binary count of 2e9 in a 60-byte file.
+        {"count.ply", plyHeader + "3333333333333333333 0 1 2\n",
+         "PLY element 'face' item 0: list count '3333333333333333333' is not an integer its type holds"},
+        {"binary-count.ply", "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list int int v\nend_header\n" +
+                                 std::string("\x00\x94\x35\x77", 4) + std::string(12, '\0'),
+         "PLY element 'face' item 0: list count 2000000000 runs past the end of the file"},
+        // Header lines assimp misreads: a count glued to the next word, text after end_header.
+        {"glued.ply", "ply\nformat ascii 1.0\nelement vertex 3property float x\nend_header\n0\n0\n0\n",
+         "PLY header line 3: expected 'element NAME COUNT'"},
+        {"after-end.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header 0 0\n0\n",
+         "PLY header line 5: expected 'end_header' alone"},
     };
     // The first 2000 bytes of a binary PLY: its faces end in the middle.
     const std::string bunny = sharedScenesDir().empty() ? "" : sharedScenesDir() + "/stanford-bunny/bun_zipper.ply";
@@ -60,6 +76,34 @@ TEST(MeshFiles, MalformedFilesAreErrorsNotCrashes) {
             EXPECT_NE(r.output.find(c.expected), std::string::npos) << r.output;
             EXPECT_FALSE(fileExists(dir + "/out.vdb") || fileExists(dir + "/out.exr")) << verb;
         }
+    }
+}
+
+// The checks that refuse the files above accept well-formed ones in each encoding.
+TEST(MeshFiles, WellFormedPlyAndGltfLoad) {
+    const std::string dir = makeTempDir("mesh-good");
+    const std::string header = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::int32_t face[3] = {0, 1, 2};
+    std::string binary = "ply\nformat binary_little_endian 1.0\ncomment one triangle\n" + header;
+    binary.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+    binary.push_back('\3');
+    binary.append(reinterpret_cast<const char*>(face), sizeof face);
+    writeFile(dir + "/binary.ply", binary);
+    writeFile(dir + "/ascii.ply", "ply\r\nformat ascii 1.0\r\n" + header + "0 0 0\r\n1 0 0\n\n0 1 0\n3 0 1 2 \n");
+    // One triangle in glTF 2.0, its buffer inline: 9 floats of positions, 3 uint16 indices.
+    writeFile(dir + "/triangle.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,)"
+                                           R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})");
+    for (const char* name : {"binary.ply", "ascii.ply", "triangle.gltf"}) {
+        RunResult r = runVoxgi(std::string("voxelize ") + dir + "/" + name + " --voxel-size 0.1 -o " + dir + "/out.vdb");
+        EXPECT_EQ(r.exitCode, 0) << name << "\n" << r.output;
+        EXPECT_NE(r.output.find("1 triangles"), std::string::npos) << name << "\n" << r.output;
     }
 }
 
