@@ -2,6 +2,7 @@
 // files, the cache, and the voxelize / inspect verbs including their bad-input paths.
 #include <cstdio>
 #include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -173,6 +174,49 @@ TEST(VolumeIo, BadFilesAreInputErrorsNamingTheFile) {
     auto r = test::runVoxgi("inspect " + dir + "/uuid.vdb");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("corrupt file UUID"), std::string::npos) << r.output;
+}
+
+// Corruptions inside a grid's head that made OpenVDB read for seconds and gigabytes (found by
+// tests/fuzz/fuzz_vdb): a metadata value whose size disagrees with its type (OpenVDB reads
+// the type's size and every later length comes from the middle of a value: 10 GB), a root node
+// claiming 2e9 tiles (a 14 s loop reading nothing), and a pre-2013 file version.
+TEST(VolumeIo, CorruptGridHeadsAreRefusedBeforeOpenVdbReadsThem) {
+    std::string dir = test::makeTempDir("vol-grid-head");
+    writeGeometryVolume(dir + "/good.vdb", voxelizeScene(test::cornellBox(), cornellSettings()));
+    std::string bytes;
+    {
+        std::ifstream in(dir + "/good.vdb", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string copy = bytes;
+        const std::size_t at = copy.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        if (at != std::string::npos) copy.replace(at, from.size(), to);
+        return copy;
+    };
+    // The first grid's "file_bbox_max" is a vec3i of 12 bytes; as a mat4d OpenVDB reads 128.
+    test::writeFile(dir + "/metadata.vdb", replaced("vec3i", "mat4d"));
+    // After the first transform's type name and its 144 bytes: the tree's buffer count, its
+    // background value (the first grid is a bool occupancy tree: 1 byte), then the tile count.
+    const std::string map = "UniformScaleTranslateMap";
+    std::string tiles = bytes;
+    const std::size_t tileCount = tiles.find(map) + map.size() + 144 + 4 + 1;
+    ASSERT_LT(tileCount + 4, tiles.size());
+    const std::uint32_t many = 2000000000u;
+    std::memcpy(&tiles[tileCount], &many, 4);
+    test::writeFile(dir + "/tiles.vdb", tiles);
+    std::string old = bytes;
+    old[8] = char(200);
+    test::writeFile(dir + "/version.vdb", old);
+    for (const auto& [name, expected] : {std::pair<std::string, std::string>{"metadata.vdb", "of type mat4d has 12 bytes, not 128"},
+                                         {"tiles.vdb", "root node of 2000000000 tiles"},
+                                         {"version.vdb", "file format version 200 predates"}}) {
+        auto r = test::runVoxgi("inspect " + dir + "/" + name);
+        EXPECT_EQ(r.exitCode, 2) << name << "\n" << r.output;
+        EXPECT_NE(r.output.find(dir + "/" + name), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+    }
 }
 
 TEST(VoxelizeCli, WritesTheGridSetAndInspectDescribesIt) {
