@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 
@@ -14,6 +15,7 @@
 
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
+#include "scenes/memory_limit.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
@@ -85,7 +87,16 @@ Image readExr(const std::string& path) {
     try {
         Imf::InputFile file(path.c_str());
         Imath::Box2i dw = file.header().dataWindow();
-        int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+        const std::int64_t width = std::int64_t(dw.max.x) - dw.min.x + 1, height = std::int64_t(dw.max.y) - dw.min.y + 1;
+        if (width <= 0 || height <= 0 || width > INT32_MAX || height > INT32_MAX)
+            throw InputError(path + ": dataWindow is " + std::to_string(width) + "x" + std::to_string(height) + " pixels");
+        // Every channel becomes at most one float per pixel, zeroed first: estimated before
+        // allocating (a 1 KB file may claim 2^40 pixels).
+        double channels = 0.0;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) channels += 1.0;
+        requireMemory(double(width) * double(height) * sizeof(float) * std::max(channels, 1.0),
+                      path + ": a " + std::to_string(width) + "x" + std::to_string(height) + " image");
+        const int w = int(width), h = int(height);
         Image image(w, h);
         // Group channels into layers: "R","G","B" -> beauty, "a.R" -> a, "Z" -> depth.
         std::map<std::string, std::vector<std::string>> groups;

@@ -28,6 +28,23 @@ TEST(MemoryLimit, EstimatesOverTheLimitAreRefusedBeforeAnyWork) {
     EXPECT_EQ(runVoxgi("--max-memory zero render cornell-box -o " + dir + "/d.exr").exitCode, 2);
 }
 
+// Readers estimate from what a file claims: an EXR's dataWindow (a 1 KB file claimed 3147521x1793
+// pixels and the zero-filled layers took 24 GB; found by tests/fuzz/fuzz_exr), and inspect's
+// --pixels image of a slice.
+TEST(MemoryLimit, ImagesAreEstimatedFromTheirClaimedSize) {
+    const std::string dir = makeTempDir("memory-images");
+    ASSERT_EQ(runVoxgi("render cornell-box --width 64 --height 64 -o " + dir + "/a.exr").exitCode, 0);
+    RunResult exr = runVoxgi("--max-memory 0.00001 compare " + dir + "/a.exr " + dir + "/a.exr");
+    EXPECT_EQ(exr.exitCode, 2) << exr.output;
+    EXPECT_NE(exr.output.find("a.exr: a 64x64 image needs about"), std::string::npos) << exr.output;
+    EXPECT_EQ(runVoxgi("compare " + dir + "/a.exr " + dir + "/a.exr").exitCode, 0);
+    ASSERT_EQ(runVoxgi("voxelize cornell-box --voxel-size 0.1 -o " + dir + "/v.vdb").exitCode, 0);
+    RunResult png = runVoxgi("--max-memory 0.01 inspect " + dir + "/v.vdb --slice y=0.3 --pixels 4096 -o " + dir + "/s.png");
+    EXPECT_EQ(png.exitCode, 2) << png.output;
+    EXPECT_NE(png.output.find("image needs about"), std::string::npos) << png.output;
+    EXPECT_FALSE(fileExists(dir + "/s.png"));
+}
+
 TEST(MemoryLimit, RequireMemoryNamesTheWorkAndTheLimit) {
     const std::uint64_t before = memoryLimit();
     setMemoryLimit(std::uint64_t(1) << 30);

@@ -8,6 +8,7 @@
 
 #include "scenes/errors.h"
 #include "scenes/image.h"
+#include "scenes/memory_limit.h"
 #include "tools/commands.h"
 #include "tools/scene_arg.h"
 #include "volumes/geometry_volume.h"
@@ -119,7 +120,11 @@ int runInspect(const std::vector<std::string>& argv) {
         VdbSlice slice = sliceVdbFile(path, args.value("--grid", ""), axis, world);
         // Whole pixels per voxel, so that small grids stay readable.
         const int scale = std::max(1, args.integer("--pixels", 512, 1, 16384) / std::max(slice.width, slice.height));
-        std::vector<std::uint8_t> rgb(std::size_t(slice.width) * scale * std::size_t(slice.height) * scale * 3);
+        const std::size_t bytes = std::size_t(slice.width) * scale * std::size_t(slice.height) * scale * 3;
+        // The image, stb's filtered copy of it and its deflate output: three times the pixels.
+        requireMemory(3.0 * double(bytes), "--pixels " + std::to_string(slice.width * scale) + "x" +
+                                               std::to_string(slice.height * scale) + " image");
+        std::vector<std::uint8_t> rgb(bytes);
         for (int y = 0; y < slice.height * scale; ++y)
             for (int x = 0; x < slice.width * scale; ++x)
                 for (int c = 0; c < 3; ++c)

@@ -11,8 +11,13 @@
 #include <string>
 
 #include "scenes/errors.h"
+#include "scenes/memory_limit.h"
 
 namespace voxgi::fuzz {
+
+// Readers refuse what their memory estimate puts over the limit; 1 GiB keeps that under
+// libFuzzer's 2 GiB -rss_limit_mb, so only an allocation nobody estimated is a finding.
+inline const bool kMemoryLimitSet = (setMemoryLimit(std::uint64_t(1) << 30), true);
 
 // A per-process scratch file with the given extension holding the input.
 inline std::string asFile(const std::uint8_t* data, std::size_t size, const std::string& extension) {
