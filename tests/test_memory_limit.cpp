@@ -20,7 +20,12 @@ TEST(MemoryLimit, EstimatesOverTheLimitAreRefusedBeforeAnyWork) {
     RunResult image = runVoxgi("--max-memory 0.05 reference cornell-box --spp 1 --width 2048 --height 2048 -o " + dir + "/b.exr");
     EXPECT_EQ(image.exitCode, 2) << image.output;
     EXPECT_NE(image.output.find("path tracer: 2048x2048"), std::string::npos) << image.output;
-    EXPECT_FALSE(fileExists(dir + "/a.exr") || fileExists(dir + "/b.exr"));
+    // 32^3 probes with 64x64-texel tiles: about 11 GiB of atlases.
+    RunResult ddgi = runVoxgi("--max-memory 4 render cornell-box --method ddgi --width 16 --height 16 -o " + dir +
+                              "/e.exr --set ddgi.probes=32,32,32 --set ddgi.irradiance_texels=64 --set ddgi.distance_texels=64");
+    EXPECT_EQ(ddgi.exitCode, 2) << ddgi.output;
+    EXPECT_NE(ddgi.output.find("method ddgi with its gi.ddgi settings needs about"), std::string::npos) << ddgi.output;
+    EXPECT_FALSE(fileExists(dir + "/a.exr") || fileExists(dir + "/b.exr") || fileExists(dir + "/e.exr"));
     // Under the limit the same commands run.
     EXPECT_EQ(runVoxgi("--max-memory 0.5 render cornell-box --method clpv --width 16 --height 16 --frames 1 -o " + dir +
                        "/c.exr").exitCode,

@@ -1,4 +1,5 @@
 // The `ddgi` method as the tools see it: settings, plan, presets, views, stiff cases, benchmark.
+#include <cmath>
 #include <sstream>
 
 #include "gi/ddgi/ddgi_bench.h"
@@ -66,6 +67,18 @@ MethodInfo ddgiMethod() {
     m.name = "ddgi";
     m.summary = "dynamic diffuse GI: probe fields traced with Embree, blended on the GPU (seed 004, RTXGI)";
     declareSettings(m, ddgiSettings());
+    m.memoryBytes = [](const GiSettings& gi) {
+        // Peak resident memory measured on the Cornell box (CPU tracing, GL atlases in host
+        // memory on llvmpipe), 4^3 to 16^3 probes: about 40 bytes per atlas texel (the CPU
+        // atlases, their upload rows and the GL textures, 16 bytes each) and 110 bytes per ray
+        // (its direction, hit record and shaded surfel). Fitted grids have at most 9 probes
+        // per axis per cascade.
+        const DdgiDesc d = readDdgiDesc(gi);
+        const glm::dvec3 counts = d.probeCounts.x > 0 ? glm::dvec3(d.probeCounts) : glm::dvec3(9.0);
+        const double probes = counts.x * counts.y * counts.z * double(d.cascades);
+        const double texels = std::pow(d.irradianceTexels + 2.0, 2.0) + std::pow(d.distanceTexels + 2.0, 2.0);
+        return probes * (40.0 * texels + 110.0 * double(d.raysPerProbe()));
+    };
     m.create = [](const Scene& s) { return std::make_unique<DdgiTechnique>(s); };
     m.plan = ddgiPlan;
     m.presets = {{"low", {{"ddgi.rays", "64"}, {"ddgi.probes", "4,4,4"}}},
