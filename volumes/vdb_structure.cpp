@@ -8,62 +8,12 @@
 #include <map>
 
 #include "scenes/errors.h"
+#include "volumes/detail/vdb_fields.h"
+#include "volumes/detail/vdb_tree_walk.h"
 
 namespace voxgi {
 
 namespace {
-
-// A little-endian reader over the file that refuses to go past its end.
-class Fields {
-public:
-    Fields(const std::string& path) : path_(path), in_(path, std::ios::binary) {
-        std::error_code ec;
-        size_ = std::uint64_t(std::filesystem::file_size(path, ec));
-        if (ec || !in_) fail("cannot read the file");
-    }
-    [[noreturn]] void fail(const std::string& why) const {
-        throw InputError(path_ + ": not a readable .vdb file (" + why + " at byte " + std::to_string(position_) + ")");
-    }
-    std::uint64_t left() const { return size_ - position_; }
-    std::uint64_t position() const { return position_; }
-    void bytes(void* out, std::uint64_t n, const char* what) {
-        if (n > left()) fail(std::string(what) + " runs past the end of the file");
-        in_.read(static_cast<char*>(out), std::streamsize(n));
-        if (!in_) fail(std::string("cannot read ") + what);
-        position_ += n;
-    }
-    template <typename T>
-    T value(const char* what) {
-        T v{};
-        bytes(&v, sizeof v, what);
-        return v;
-    }
-    // A length-prefixed string (OpenVDB's readString), its length bounded by the file.
-    std::string text(const char* what) {
-        const std::uint32_t n = value<std::uint32_t>(what);
-        if (n > left()) fail(std::string(what) + " of " + std::to_string(n) + " bytes runs past the end of the file");
-        std::string s(n, '\0');
-        bytes(s.data(), n, what);
-        return s;
-    }
-    void skip(std::uint64_t n, const char* what) {
-        if (n > left()) fail(std::string(what) + " of " + std::to_string(n) + " bytes runs past the end of the file");
-        in_.seekg(std::streamoff(n), std::ios::cur);
-        position_ += n;
-    }
-    void seek(std::uint64_t to, const char* what) {
-        if (to > size_) fail(std::string(what) + " points past the end of the file");
-        in_.clear();
-        in_.seekg(std::streamoff(to));
-        position_ = to;
-    }
-    std::uint64_t size() const { return size_; }
-
-private:
-    std::string path_;
-    std::ifstream in_;
-    std::uint64_t size_ = 0, position_ = 0;
-};
 
 // File format versions (OpenVDB's version.h) where the layout this check reads changed.
 constexpr std::uint32_t kTextUuidVersion = 218;           // oldest layout read: a text UUID (2013)
@@ -81,7 +31,7 @@ const std::map<std::string, std::uint32_t> kFixedMetadataSizes = {
 // A metadata table (OpenVDB's MetaMap): a count, then per item a name, a type name and the
 // value's byte count and bytes. OpenVDB allocates each string at the length the file states
 // and loops over the count, so both are bounded by the bytes left. Names may not be empty.
-void checkMetadata(Fields& f, const std::string& what) {
+void checkMetadata(detail::VdbFields& f, const std::string& what) {
     const std::int32_t count = f.value<std::int32_t>((what + " count").c_str());
     if (count < 0 || std::uint64_t(count) * 12 > f.left()) f.fail(what + " count " + std::to_string(count));
     for (std::int32_t i = 0; i < count; ++i) {
@@ -104,42 +54,68 @@ const std::map<std::string, std::uint64_t> kMapBytes = {
     {"AffineMap", 128},           {"UnitaryMap", 128},        {"ScaleMap", 120}, {"UniformScaleMap", 120},
     {"TranslationMap", 24},       {"ScaleTranslateMap", 144}, {"UniformScaleTranslateMap", 144}};
 
-// Bytes of a tree's value type, from a grid type such as "Tree_float_5_4_3" (with
-// "_HalfFloat" when floats are stored as halves); 0 for a type not listed.
-std::uint64_t valueBytes(const std::string& gridType) {
-    static const std::map<std::string, std::uint64_t> kBytes = {
-        {"bool", 1},   {"mask", 1},   {"float", 4},  {"double", 8},  {"int32", 4},
-        {"int64", 8},  {"vec3s", 12}, {"vec3d", 24}, {"vec3i", 12},  {"ptidx32", 4}, {"ptdataidx32", 4}};
-    if (gridType.rfind("Tree_", 0) != 0) return 0;
+// A grid type such as "Tree_float_5_4_3" (with "_HalfFloat" when floats are saved as halves)
+// as the walk sees it; valueBytes 0 for a value type not listed. Only trees of 5-4-3 nodes of
+// plain value types are walked below the root (point and string grids store other buffers).
+struct TreeType {
+    std::uint64_t valueBytes = 0;
+    bool walkable = false;
+    detail::VdbTreeLayout layout;
+};
+
+TreeType treeType(const std::string& gridType) {
+    struct Known {
+        std::uint64_t bytes, halfBytes;
+        detail::VdbTreeLayout::Leaves leaves;
+        bool walkable;
+    };
+    using L = detail::VdbTreeLayout::Leaves;
+    static const std::map<std::string, Known> kTypes = {
+        {"bool", {1, 1, L::Bool, true}},        {"mask", {1, 1, L::Mask, true}},
+        {"float", {4, 2, L::Values, true}},     {"double", {8, 2, L::Values, true}},
+        {"int32", {4, 4, L::Values, true}},     {"int64", {8, 8, L::Values, true}},
+        {"vec3s", {12, 6, L::Values, true}},    {"vec3d", {24, 6, L::Values, true}},
+        {"vec3i", {12, 12, L::Values, true}},   {"ptidx32", {4, 4, L::Values, false}},
+        {"ptdataidx32", {4, 4, L::Values, false}}};
+    TreeType t;
+    if (gridType.rfind("Tree_", 0) != 0) return t;
     const std::size_t end = gridType.find('_', 5);
-    const auto it = kBytes.find(gridType.substr(5, end == std::string::npos ? std::string::npos : end - 5));
-    if (it == kBytes.end()) return 0;
-    const bool half = gridType.size() > 10 && gridType.compare(gridType.size() - 10, 10, "_HalfFloat") == 0;
-    return half && (it->first == "float" || it->first == "vec3s") ? it->second / 2 : it->second;
+    if (end == std::string::npos) return t;
+    const auto it = kTypes.find(gridType.substr(5, end - 5));
+    if (it == kTypes.end()) return t;
+    const std::string nodes = gridType.substr(end);
+    const bool half = nodes == "_5_4_3_HalfFloat";
+    t.valueBytes = it->second.bytes;
+    t.walkable = it->second.walkable && (nodes == "_5_4_3" || half);
+    t.layout.valueBytes = it->second.bytes;
+    t.layout.chunkValueBytes = half ? it->second.halfBytes : it->second.bytes;
+    t.layout.leaves = it->second.leaves;
+    return t;
 }
 
-// A grid's head, from its position to its leaf buffers: compression flags, metadata, transform,
-// then the root node's tile and child counts, which OpenVDB loops over (reading nothing once the
-// file ends: 2e9 tiles took 14 s). Both counts are bounded by the bytes before the buffers.
-// Below the root (internal-node masks and compressed values) is left to OpenVDB; see
-// docs/reliability.md.
-void checkGridHead(Fields& f, std::uint32_t version, const std::string& type, bool instance, std::uint64_t block) {
-    if (version >= kGridCompressionVersion) f.value<std::uint32_t>("grid compression flags");
+// A grid from its position to the end of its leaf buffers: compression flags, metadata,
+// transform, then the root node's tile and child counts, which OpenVDB loops over (reading
+// nothing once the file ends: 2e9 tiles took 14 s) and which must fit before the buffers. Below
+// the root, detail::walkVdbTree checks every node's masks and chunk sizes.
+void checkGrid(detail::VdbFields& f, std::uint32_t version, const std::string& type, bool instance, std::uint64_t block,
+               std::uint64_t end) {
+    TreeType tree = treeType(type);
+    if (version >= kGridCompressionVersion) tree.layout.compression = f.value<std::uint32_t>("grid compression flags");
     checkMetadata(f, "grid metadata");
     if (version < kNewTransformVersion) return;
     const std::string map = f.text("grid transform type");
     const auto mapBytes = kMapBytes.find(map);
-    const std::uint64_t value = valueBytes(type);
-    if (instance || mapBytes == kMapBytes.end() || value == 0) return;
+    if (instance || mapBytes == kMapBytes.end() || tree.valueBytes == 0) return;
     f.skip(mapBytes->second, "grid transform");
     f.value<std::int32_t>("tree buffer count");
-    f.skip(value, "tree background value");
+    f.skip(tree.valueBytes, "tree background value");
     const std::uint32_t tiles = f.value<std::uint32_t>("root tile count"),
                         children = f.value<std::uint32_t>("root child count");
-    const std::uint64_t needed = std::uint64_t(tiles) * (12 + value + 1) + std::uint64_t(children) * 12;
+    const std::uint64_t needed = std::uint64_t(tiles) * (12 + tree.valueBytes + 1) + std::uint64_t(children) * 12;
     if (f.position() > block || needed > block - f.position())
         f.fail("root node of " + std::to_string(tiles) + " tiles and " + std::to_string(children) +
                " children does not fit before the grid's buffers");
+    if (tree.walkable && version >= kGridCompressionVersion) detail::walkVdbTree(f, tree.layout, tiles, children, block, end);
 }
 
 bool isUuid(const char* s) {
@@ -153,7 +129,7 @@ bool isUuid(const char* s) {
 }  // namespace
 
 void checkVdbStructure(const std::string& path) {
-    Fields f(path);
+    detail::VdbFields f(path);
     unsigned char magic[8] = {};
     const unsigned char expected[8] = {0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0};  // 0x56444220, "VDB "
     if (f.left() < 8) throw InputError(path + ": not a .vdb file (no OpenVDB header)");
@@ -183,7 +159,7 @@ void checkVdbStructure(const std::string& path) {
         if (!(std::uint64_t(grid) == f.position() && grid <= block && block <= end && std::uint64_t(end) <= f.size()))
             f.fail("grid " + std::to_string(i) + " offsets " + std::to_string(grid) + ", " + std::to_string(block) + ", " +
                    std::to_string(end) + " do not fit the file");
-        checkGridHead(f, version, type, instance, std::uint64_t(block));
+        checkGrid(f, version, type, instance, std::uint64_t(block), std::uint64_t(end));
         f.seek(std::uint64_t(end), "grid end position");
     }
 }
