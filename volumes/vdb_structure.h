@@ -1,8 +1,9 @@
-// The layout of a .vdb file checked before OpenVDB reads it: OpenVDB allocates whatever sizes a
-// file claims (a 100-byte truncated file asked for 4 GB; a corrupt compressed-size field for
-// 8e18 bytes), so every length, count and offset in the header, the file metadata and the grid
-// descriptors must fit in the file. Files of other format versions than voxgi writes (220..)
-// are checked for the magic number only.
+// The layout of a .vdb file checked before OpenVDB reads it: OpenVDB allocates and reads
+// whatever sizes a file claims (a 100-byte truncated file asked for 4 GB; a corrupt chunk size
+// for 8e18 bytes, or a heap overflow), so every length, count and offset in the header, the
+// metadata, the grid descriptors and (detail/vdb_tree_walk.h) the trees must fit the file and
+// agree with each other. Files older than format version 218 are refused; trees of other node
+// sizes or value types than voxgi's are checked down to their root node only.
 #pragma once
 
 #include <string>
