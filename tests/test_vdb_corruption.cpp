@@ -1,10 +1,11 @@
 // Small .vdb files of every value kind and codec voxgi may meet (float, vec3s, bool; none, zip,
-// blosc, active-mask; floats saved as half), each corrupted one byte at a time: every copy is
+// blosc, active-mask; floats saved as half; written as a file or as a stream), each corrupted one byte at a time: every copy is
 // read or refused with an InputError, never a crash or another exception. Run under
 // scripts/sanitize-tests.sh, an overflow inside OpenVDB's reads (it copies through the
 // sanitizer's memcpy) fails the test too: OpenVDB 10.0 read a chunk marked "uncompressed"
 // into its node's buffer before comparing sizes.
 #include <gtest/gtest.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 
 #include <algorithm>
@@ -48,7 +49,8 @@ TEST(VdbCorruption, EveryCorruptedByteIsReadOrRefused) {
     };
     const Codec codecs[] = {{"none", openvdb::io::COMPRESS_NONE},
                             {"zip", openvdb::io::COMPRESS_ZIP | openvdb::io::COMPRESS_ACTIVE_MASK},
-                            {"blosc", openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK}};
+                            {"blosc", openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK},
+                            {"stream", openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK}};
     for (const Codec& codec : codecs) {
         for (int kind = 0; kind < 4; ++kind) {
             openvdb::GridBase::Ptr grid;
@@ -61,7 +63,13 @@ TEST(VdbCorruption, EveryCorruptedByteIsReadOrRefused) {
             }
             const std::string name = std::string(codec.name) + "-" + std::to_string(kind);
             const std::string path = dir + "/" + name + ".vdb";
-            {
+            if (std::string(codec.name) == "stream") {
+                // io::Stream's layout: no grid offsets, each grid right after its descriptor.
+                std::ofstream out(path, std::ios::binary);
+                openvdb::io::Stream stream(out);
+                stream.setCompression(codec.flags);
+                stream.write(openvdb::GridCPtrVec{grid});
+            } else {
                 openvdb::io::File file(path);
                 file.setCompression(codec.flags);
                 file.write(openvdb::GridCPtrVec{grid});

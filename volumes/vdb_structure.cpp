@@ -96,26 +96,35 @@ TreeType treeType(const std::string& gridType) {
 // A grid from its position to the end of its leaf buffers: compression flags, metadata,
 // transform, then the root node's tile and child counts, which OpenVDB loops over (reading
 // nothing once the file ends: 2e9 tiles took 14 s) and which must fit before the buffers. Below
-// the root, detail::walkVdbTree checks every node's masks and chunk sizes.
-void checkGrid(detail::VdbFields& f, std::uint32_t version, const std::string& type, bool instance, std::uint64_t block,
+// the root, detail::walkVdbTree checks every node's masks and chunk sizes. In a streamed file
+// (no grid offsets) `block` is kBuffersFollow: the buffers follow the topology. True when the
+// walk reached the grid's end, so that a streamed file's next grid starts there.
+constexpr std::uint64_t kBuffersFollow = ~std::uint64_t(0);
+
+bool checkGrid(detail::VdbFields& f, std::uint32_t version, const std::string& type, bool instance, std::uint64_t block,
                std::uint64_t end) {
     TreeType tree = treeType(type);
     if (version >= kGridCompressionVersion) tree.layout.compression = f.value<std::uint32_t>("grid compression flags");
     checkMetadata(f, "grid metadata");
-    if (version < kNewTransformVersion) return;
+    if (version < kNewTransformVersion) return false;
     const std::string map = f.text("grid transform type");
     const auto mapBytes = kMapBytes.find(map);
-    if (instance || mapBytes == kMapBytes.end() || tree.valueBytes == 0) return;
+    if (mapBytes == kMapBytes.end()) return false;
     f.skip(mapBytes->second, "grid transform");
+    if (instance) return true;  // an instance shares its parent's tree
+    if (tree.valueBytes == 0) return false;
     f.value<std::int32_t>("tree buffer count");
     f.skip(tree.valueBytes, "tree background value");
     const std::uint32_t tiles = f.value<std::uint32_t>("root tile count"),
                         children = f.value<std::uint32_t>("root child count");
     const std::uint64_t needed = std::uint64_t(tiles) * (12 + tree.valueBytes + 1) + std::uint64_t(children) * 12;
-    if (f.position() > block || needed > block - f.position())
+    const std::uint64_t limit = block == kBuffersFollow ? f.size() : block;
+    if (f.position() > limit || needed > limit - f.position())
         f.fail("root node of " + std::to_string(tiles) + " tiles and " + std::to_string(children) +
                " children does not fit before the grid's buffers");
-    if (tree.walkable && version >= kGridCompressionVersion) detail::walkVdbTree(f, tree.layout, tiles, children, block, end);
+    if (!tree.walkable || version < kGridCompressionVersion) return false;
+    detail::walkVdbTree(f, tree.layout, tiles, children, block == kBuffersFollow ? f.size() + 1 : block, end);
+    return true;
 }
 
 bool isUuid(const char* s) {
@@ -147,7 +156,6 @@ void checkVdbStructure(const std::string& path) {
     f.bytes(uuid, 36, "file UUID");
     if (!isUuid(uuid)) f.fail("corrupt file UUID");
     checkMetadata(f, "file metadata");
-    if (!hasOffsets) return;  // streamed files: grids follow without descriptors
     const std::int32_t grids = f.value<std::int32_t>("grid count");
     if (grids < 0 || std::uint64_t(grids) * 36 > f.left()) f.fail("grid count " + std::to_string(grids));
     for (std::int32_t i = 0; i < grids; ++i) {
@@ -156,6 +164,12 @@ void checkVdbStructure(const std::string& path) {
         const bool instance = version >= kGridInstancingVersion && !f.text("grid instance parent").empty();
         const std::int64_t grid = f.value<std::int64_t>("grid position"), block = f.value<std::int64_t>("block position"),
                            end = f.value<std::int64_t>("grid end position");
+        if (!hasOffsets) {
+            // A streamed file: each grid follows its descriptor, and OpenVDB reads them all when
+            // it opens the file. A grid the check cannot walk ends the check.
+            if (!checkGrid(f, version, type, instance, kBuffersFollow, f.size())) return;
+            continue;
+        }
         if (!(std::uint64_t(grid) == f.position() && grid <= block && block <= end && std::uint64_t(end) <= f.size()))
             f.fail("grid " + std::to_string(i) + " offsets " + std::to_string(grid) + ", " + std::to_string(block) + ", " +
                    std::to_string(end) + " do not fit the file");

@@ -50,7 +50,7 @@ public:
     }
 
     void buffers(std::uint64_t block, std::uint64_t end) {
-        f_.seek(block, "grid buffers");
+        if (block <= f_.size()) f_.seek(block, "grid buffers");  // else they follow the topology
         for (std::size_t leaf = 0; leaf < leafMasks_.size(); leaf += 8) {
             if (tree_.leaves == VdbTreeLayout::Leaves::Bool) {
                 f_.skip(64 + 12 + 64, "bool leaf buffer");  // value mask, origin, value bits
