@@ -47,6 +47,30 @@ float irradiance(const LightVolume& lv, glm::ivec3 cell, glm::vec3 n) {
     return sh::convolveCosine(sh4(lv.r[lv.grid.index(cell)]), -n) / (h * h);
 }
 
+// A closed box of inward-facing, fully blocking walls of the given albedo one cell inside the grid.
+BlockerVolume closedBox(const CascadeGrid& grid, float albedo) {
+    const int n = grid.resolution;
+    BlockerVolume box;
+    box.reset(grid);
+    for (int z = 0; z <= n; ++z)
+        for (int y = 0; y <= n; ++y)
+            for (int x = 0; x <= n; ++x) {
+                glm::vec3 normal(0.0f);
+                if (x == 1) normal.x += 1;
+                if (x == n - 1) normal.x -= 1;
+                if (y == 1) normal.y += 1;
+                if (y == n - 1) normal.y -= 1;
+                if (z == 1) normal.z += 1;
+                if (z == n - 1) normal.z -= 1;
+                if (normal == glm::vec3(0.0f)) continue;
+                sh::Sh4 lobe = sh::cosineLobe(glm::normalize(normal));
+                std::size_t i = box.cornerIndex({x, y, z});
+                box.blocker[i] = v4(lobe) * (1.0f / sh::evaluate(lobe, glm::normalize(normal)));
+                box.albedo[i] = glm::vec3(albedo);
+            }
+    return box;
+}
+
 }  // namespace
 
 TEST(LpvPropagation, FaceSolidAnglesAreDerivedExactly) {
@@ -152,24 +176,7 @@ TEST(LpvPropagation, EachBounceCarriesAtMostAlbedoTimesIncoming) {
     LightVolume in;
     in.reset(unitGrid(n));
     addIsotropic(in, {4, 4, 4}, 1.0f);
-    BlockerVolume box;
-    box.reset(in.grid);
-    for (int z = 0; z <= n; ++z)
-        for (int y = 0; y <= n; ++y)
-            for (int x = 0; x <= n; ++x) {
-                glm::vec3 normal(0.0f);
-                if (x == 1) normal.x += 1;
-                if (x == n - 1) normal.x -= 1;
-                if (y == 1) normal.y += 1;
-                if (y == n - 1) normal.y -= 1;
-                if (z == 1) normal.z += 1;
-                if (z == n - 1) normal.z -= 1;
-                if (normal == glm::vec3(0.0f)) continue;
-                sh::Sh4 lobe = sh::cosineLobe(glm::normalize(normal));
-                std::size_t i = box.cornerIndex({x, y, z});
-                box.blocker[i] = v4(lobe) * (1.0f / sh::evaluate(lobe, glm::normalize(normal)));
-                box.albedo[i] = glm::vec3(0.9f);
-            }
+    const BlockerVolume box = closedBox(in.grid, 0.9f);
     LightVolume a = in, b;
     double previous = totalFlux(a, 0);
     for (int s = 0; s < 60; ++s) {
@@ -206,6 +213,54 @@ TEST(LpvPropagation, ThousandStepsStayBoundedAndFinite) {
     // The accumulated light is a Neumann series of a contraction: bounded by a few times the
     // injected flux times the number of cells light can cross.
     EXPECT_LT(std::abs(totalFlux(acc, 0)), injected * 1000.0);
+}
+
+TEST(LpvPropagation, ConvergenceTestBoundsTheGeometricTail) {
+    // Each step sends q times the light of the one before: the light still to come after step
+    // k is exactly q^(k+1) / (1 - q), and propagation stops at the first step where that falls
+    // below kConvergenceTolerance of the light so far.
+    const double q = 0.99;
+    std::vector<double> steps;
+    double soFar = 1.0;
+    int stopped = -1;
+    for (int k = 0; k < 5000 && stopped < 0; ++k) {
+        steps.push_back(std::pow(q, k + 1));
+        soFar += steps.back();
+        if (propagationConverged(steps, soFar)) stopped = k;
+    }
+    ASSERT_GT(stopped, 0);
+    auto tail = [&](int k) { return std::pow(q, k + 2) / (1.0 - q); };
+    auto total = [&](int k) { return 1.0 + q * (1.0 - std::pow(q, k + 1)) / (1.0 - q); };
+    EXPECT_LT(tail(stopped), kConvergenceTolerance * total(stopped) * 1.0001);
+    EXPECT_GE(tail(stopped - 1), kConvergenceTolerance * total(stopped - 1) * 0.9999);
+    // Light that is not decaying never counts as converged; no light left always does.
+    EXPECT_FALSE(propagationConverged(std::vector<double>(100, 1e-12), 1.0));
+    EXPECT_TRUE(propagationConverged({1.0, 0.0}, 2.0));
+}
+
+TEST(LpvPropagation, ManyStepsStopOnceConvergedWithTheLightOfEveryStep) {
+    // A closed box with albedo 0.9: light bounces for thousands of steps. Asking for 100000
+    // stops early, and the result matches summing single steps until the light is gone.
+    const int n = 8;
+    LightVolume in, acc;
+    in.reset(unitGrid(n));
+    addIsotropic(in, {4, 4, 4}, 1.0f);
+    const BlockerVolume box = closedBox(in.grid, 0.9f);
+    CpuPropagator p;
+    p.propagate(in, box, 100000, {}, acc);
+    EXPECT_LT(p.stats().stepsRun, 20000);
+    EXPECT_GT(p.stats().stepsRun, 16);
+
+    LightVolume a = in, b;
+    double all = totalFlux(in, 0);
+    for (int s = 0; s < 100000; ++s) {
+        CpuPropagator::step(a, box, {}, b);
+        const double sent = totalFlux(b, 0);
+        all += sent;
+        if (std::abs(sent) < 1e-9 * std::abs(all)) break;
+        std::swap(a, b);
+    }
+    EXPECT_NEAR(totalFlux(acc, 0), all, 1e-4 * std::abs(all));
 }
 
 TEST(LpvPropagation, SparseMatchesDense) {

@@ -3,6 +3,9 @@
 #include <chrono>
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
+
+#include "gi/technique.h"
 #include "gl/context.h"
 #include "render/frame/frame_plan.h"
 #include "render/frame/frame_renderer.h"
@@ -53,7 +56,17 @@ int runRender(const std::vector<std::string>& argv) {
 
     writeExr(*out, image);
     if (auto png = args.value("--png")) writePng(*png, image, "beauty", exposure);
-    if (auto t = args.value("--timings")) writeTextAtomically(*t, renderer.timers().toJson());
+    if (auto t = args.value("--timings")) {
+        // Per-stage times, and what the technique reports about its last frame (steps taken,
+        // rays traced...) under "technique".
+        auto json = nlohmann::ordered_json::parse(renderer.timers().toJson());
+        if (const GiTechnique* technique = renderer.technique()) {
+            nlohmann::ordered_json stats = nlohmann::ordered_json::object();
+            for (const TechniqueStat& st : technique->stats()) stats[st.name] = {{"value", st.value}, {"unit", st.unit}};
+            json["technique"] = stats;
+        }
+        writeTextAtomically(*t, json.dump(2) + "\n");
+    }
     std::printf("rendered %s with %s: %dx%d, %d frame(s) in %.2f s on %s\n", args.positional()[0].c_str(),
                 method.c_str(), renderer.width(), renderer.height(), frames, seconds, context->description().c_str());
     std::printf("wrote %s%s%s\n", out->c_str(), args.has("--png") ? (" and " + *args.value("--png")).c_str() : "",

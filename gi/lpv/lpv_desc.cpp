@@ -17,7 +17,7 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
     t.number("cell_size", &D::cellSize, 0.0, 1e6,
              cascaded ? "finest cell (m); 0 = fit: the coarsest cascade reaches the farthest scene corner from the camera"
                       : "cell (m); 0 = fit: the scene plus one cell of margin");
-    t.integer("steps", &D::steps, 0, 100000, "propagation iterations per cascade").main();
+    t.integer("steps", &D::steps, 0, 100000, "most propagation iterations per cascade (cpu stops once converged)").main();
     t.flag("occlusion", &D::occlusion, "attenuate by the blockers at the shared face");
     t.flag("bounces", &D::bounces, "extra bounces off blockers with their albedo");
     t.flag("static_blockers", &D::staticBlockers, "blockers from the voxelized scene (cached .vdb), merged with the RSM and G-buffer ones");

@@ -1,5 +1,6 @@
 // The `lpv` and `clpv` methods as the tools see them: settings, plan, presets, views, stiff
 // cases and benchmark variants.
+#include <algorithm>
 #include <string>
 
 #include "gi/lpv/lpv_debug_views.h"
@@ -86,12 +87,15 @@ MethodInfo lpvFamily(bool cascaded) {
     m.memoryBytes = [cascaded](const GiSettings& gi) {
         // Measured peak resident memory (CPU propagation, its sparse index and the GL textures,
         // on llvmpipe all in host memory): 370-650 bytes per cell at 64^3-128^3, 1-2 cascades.
-        // The reflective shadow maps: 450 bytes per texel of a face (render targets, read-back
-        // and injection copies), measured at 1024^2 and 2048^2; faces are rendered in batches
-        // of at most 256 MiB of targets (RsmRenderer::facesPerBatch), so one face bounds it.
+        // The reflective shadow maps: a batch of faces' render targets (68 bytes per texel, at
+        // most 256 MiB unless one face is larger: RsmRenderer::facesPerBatch), and in the cpu
+        // back end one face read back and its surfels (64 + 64 bytes per texel) at a time.
+        // Measured on the Cornell box's 5 faces: 319, 194 and 195 bytes per face texel at
+        // 1024^2 (3 faces a batch), 2048^2 and 4096^2 (one).
         const LpvDesc d = readLpvDesc(gi, cascaded);
+        const double texels = double(d.rsmSize) * double(d.rsmSize);
         return 500.0 * double(d.resolution) * double(d.resolution) * double(d.resolution) * double(d.cascades) +
-               450.0 * double(d.rsmSize) * double(d.rsmSize);
+               std::max(256.0 * 1024.0 * 1024.0, 68.0 * texels) + 132.0 * texels;
     };
     m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };
     m.plan = [cascaded](const Scene& s) { return lpvPlan(s, cascaded); };

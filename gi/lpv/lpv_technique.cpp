@@ -1,5 +1,6 @@
 #include "gi/lpv/lpv_technique.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -140,42 +141,53 @@ public:
             return;
         }
 
-        auto t0 = std::chrono::steady_clock::now();
-        std::vector<SurfelSource> sources;
-        for (std::size_t light = 0; light < scene.lights.size(); ++light) {
-            auto faces = rsm.render(scene, input.sceneGpu, light);
-            for (auto& f : faces) sources.push_back(std::move(f));
+        // Each RSM face's surfels are injected and dropped before the next face is read back (a
+        // 4096^2 face holds 1 GiB of them); faces render in batches (RsmRenderer::facesPerBatch).
+        // Sources merge in order: RSM faces, the camera, static blockers.
+        double rsmMs = 0.0, injectMs = 0.0, blockersMs = 0.0;
+        const InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
+        std::vector<BlockerVolume> scratch(placements.size());
+        for (std::size_t c = 0; c < placements.size(); ++c) {
+            injected[c].reset(placements[c].grid);
+            geometry[c].reset(placements[c].grid);
+            scratch[c].reset(placements[c].grid);
         }
-        input.timers.addCpu("lpv.rsm", millisecondsSince(t0));
+        const std::size_t faceCount = rsmFaceCount(scene), batch = rsm.facesPerBatch();
+        for (std::size_t first = 0; first < faceCount; first += batch) {
+            auto t0 = std::chrono::steady_clock::now();
+            const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu, first, batch);
+            rsmMs += millisecondsSince(t0);
+            for (const RsmFace& face : faces) {
+                t0 = std::chrono::steady_clock::now();
+                const SurfelSource surfels = readSurfels(face);
+                rsmMs += millisecondsSince(t0);
+                t0 = std::chrono::steady_clock::now();
+                for (std::size_t c = 0; c < placements.size(); ++c) injectLight(surfels, offsets, injected[c]);
+                injectMs += millisecondsSince(t0);
+                t0 = std::chrono::steady_clock::now();
+                for (std::size_t c = 0; c < placements.size(); ++c) injectBlockers(surfels, scratch[c], geometry[c]);
+                blockersMs += millisecondsSince(t0);
+            }
+        }
+        input.timers.addCpu("lpv.rsm", rsmMs);
 
         SurfelSource camera;
         if (input.plan.runs("lpv.gbuffer_readback")) {
-            t0 = std::chrono::steady_clock::now();
+            const auto t0 = std::chrono::steady_clock::now();
             camera = gbufferSurfels(g, scene.camera, desc.gbufferBlockerSize);
             input.timers.addCpu("lpv.gbuffer_readback", millisecondsSince(t0));
         }
+        input.timers.addCpu("lpv.inject", injectMs);
 
-        t0 = std::chrono::steady_clock::now();
-        InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
+        auto t0 = std::chrono::steady_clock::now();
         for (std::size_t c = 0; c < placements.size(); ++c) {
-            injected[c].reset(placements[c].grid);
-            for (const SurfelSource& s : sources) injectLight(s, offsets, injected[c]);
-        }
-        input.timers.addCpu("lpv.inject", millisecondsSince(t0));
-
-        t0 = std::chrono::steady_clock::now();
-        for (std::size_t c = 0; c < placements.size(); ++c) {
-            BlockerVolume scratch;
-            scratch.reset(placements[c].grid);
-            geometry[c].reset(placements[c].grid);
-            for (const SurfelSource& s : sources) injectBlockers(s, scratch, geometry[c]);
-            injectBlockers(camera, scratch, geometry[c]);
+            injectBlockers(camera, scratch[c], geometry[c]);
             if (voxels) {
-                staticBlockers(*voxels, int(c), scratch);
-                geometry[c].mergeMax(scratch);
+                staticBlockers(*voxels, int(c), scratch[c]);
+                geometry[c].mergeMax(scratch[c]);
             }
         }
-        input.timers.addCpu("lpv.blockers", millisecondsSince(t0));
+        input.timers.addCpu("lpv.blockers", blockersMs + millisecondsSince(t0));
 
         PropagationOptions options{desc.occlusion, desc.bounces};
         t0 = std::chrono::steady_clock::now();
@@ -187,6 +199,7 @@ public:
             last.stepsMs += st.stepsMs;
             last.activeBricks += st.activeBricks;
             last.totalBricks += st.totalBricks;
+            last.stepsRun = std::max(last.stepsRun, st.stepsRun);
         }
         input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
 
@@ -342,6 +355,7 @@ public:
         if (desc.backend != Backend::Cpu) return {};
         return {{"propagate_operator", last.operatorMs, "ms"},
                 {"propagate_steps", last.stepsMs, "ms"},
+                {"steps_run", double(last.stepsRun), "steps"},
                 {"active_bricks", double(last.activeBricks), "bricks"},
                 {"total_bricks", double(last.totalBricks), "bricks"}};
     }
@@ -351,6 +365,7 @@ private:
     struct {
         double operatorMs = 0.0, stepsMs = 0.0;
         std::size_t activeBricks = 0, totalBricks = 0;
+        int stepsRun = 0;  // the most any cascade took (propagation stops when no light is left)
     } last;
 
     // The propagated light of a cascade and the geometry of every cascade, read back from the

@@ -64,12 +64,22 @@ struct PropagationOptions {
 struct PropagationStats {
     std::size_t activeBricks = 0;  // bricks processed in the last step (sparse mode)
     std::size_t totalBricks = 0;
+    int stepsRun = 0;              // steps taken: fewer than asked once propagation converged
     double operatorMs = 0.0;       // building the transfer matrices from the geometry volume
     double stepsMs = 0.0;          // the iterations
 };
 
-// Runs `steps` iterations: accumulated = injected + sum of every iteration's output.
-// `sparse` processes only bricks holding light (dilated one brick per step).
+// Propagation stops before `steps` once the light that further steps could add (bounded by the
+// geometric decay of the last kConvergenceWindow steps' output) is below kConvergenceTolerance
+// of the light sent so far, or once no light is left. stepLight holds each step's output (sum
+// of coefficient magnitudes); lightSoFar the injected light plus all of them.
+constexpr double kConvergenceTolerance = 1e-5;
+constexpr int kConvergenceWindow = 8;
+bool propagationConverged(const std::vector<double>& stepLight, double lightSoFar);
+
+// Runs up to `steps` iterations (see propagationConverged): accumulated = injected + sum of
+// every iteration's output. `sparse` processes only bricks holding light (dilated one brick
+// per step).
 
 class CpuPropagator {
 public:

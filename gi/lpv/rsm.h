@@ -40,15 +40,12 @@ public:
     RsmRenderer(const RsmRenderer&) = delete;
     RsmRenderer& operator=(const RsmRenderer&) = delete;
 
-    // One source per rendered face of scene.lights[lightIndex], read back to the CPU. Needs a
-    // current GL context.
-    std::vector<SurfelSource> render(const Scene& scene, const SceneGpu& gpu, std::size_t lightIndex);
     // How many of the faces (rsmFaceCount, in light order) renderToTextures keeps at once:
     // textures of at most about 256 MB, at least one face (a 256^2 face takes 4.25 MB, a 4096^2
     // one 1.1 GB).
     std::size_t facesPerBatch() const;
     // Faces [first, first + count) of the scene's lights, kept on the GPU: the textures stay
-    // valid until the next call of either render function.
+    // valid until the next call. Needs a current GL context.
     const std::vector<RsmFace>& renderToTextures(const Scene& scene, const SceneGpu& gpu, std::size_t first,
                                                  std::size_t count);
 

@@ -80,14 +80,15 @@ private:
 };
 
 // One step for the cells of the 8^3 brick `brick` (in bricks): out = transfer(in), acc += out.
-// Returns whether any output is non-zero. Runs the widest instruction set the CPU has; the
+// Returns the sum of the magnitudes of its output coefficients (0: the brick sent out no light,
+// as light below FLT_MIN is flushed to zero). Runs the widest instruction set the CPU has; the
 // overload with a level is for tests that compare them.
 enum class SimdLevel { Baseline, Avx2, Avx512 };
 bool simdLevelSupported(SimdLevel level);
 SimdLevel bestSimdLevel();
-bool propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+float propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
                     glm::ivec3 brick);
-bool propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+float propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
                     glm::ivec3 brick, SimdLevel level);
 
 }  // namespace lpv_detail
