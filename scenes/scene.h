@@ -115,6 +115,15 @@ struct Bounds {
     glm::vec3 extent() const { return max - min; }
 };
 
+// A named part of a scene for per-region error against the reference (docs/eval.md): the
+// surface points inside `box` whose normal is within 45 degrees of `facing` (any normal when
+// facing is zero).
+struct Region {
+    std::string name;
+    Bounds box;
+    glm::vec3 facing{0.0f};
+};
+
 struct Scene {
     std::string sourcePath;   // the file it was loaded from, or "" when built in code
     Camera camera;
@@ -124,6 +133,7 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Mesh> meshes;
     GiSettings gi;
+    std::vector<Region> regions;
 
     Bounds bounds() const;
     std::size_t triangleCount() const;

@@ -339,6 +339,24 @@ std::string lineAndColumn(const std::string& text, std::size_t byte) {
     return "line " + std::to_string(line) + ", column " + std::to_string(col);
 }
 
+Region readRegion(const Reader& r, const std::vector<Region>& earlier) {
+    r.requireObject({"name", "min", "max", "facing"});
+    Region region;
+    region.name = r.string("name", "");
+    if (region.name.empty()) r.child("name").fail("a region needs a name");
+    for (const Region& e : earlier)
+        if (e.name == region.name) r.child("name").fail("a region named '" + region.name + "' already exists");
+    region.box.min = r.requiredVec3("min");
+    region.box.max = r.requiredVec3("max");
+    if (!region.box.valid()) r.child("max").fail("must not be below min on any axis");
+    const glm::vec3 facing = r.vec3("facing", glm::vec3(0.0f));
+    if (facing != glm::vec3(0.0f)) {
+        if (!(glm::length(facing) > 1e-6f)) r.child("facing").fail("expected a direction, or [0, 0, 0] for any");
+        region.facing = glm::normalize(facing);
+    }
+    return region;
+}
+
 }  // namespace
 
 Scene parseSceneJson(const std::string& text, const std::string& path) {
@@ -357,7 +375,7 @@ Scene parseSceneJson(const std::string& text, const std::string& path) {
         throw InputError(path + ": malformed JSON (" + (pos == std::string::npos ? what : what.substr(pos + 2)) + ")");
     }
     Reader root(path, doc, "");
-    root.requireObject({"camera", "lights", "sky", "materials", "meshes", "gi", "description"});
+    root.requireObject({"camera", "lights", "sky", "materials", "meshes", "gi", "regions", "description"});
     Scene scene;
     scene.sourcePath = path;
     fs::path dir = fs::path(path).parent_path();
@@ -390,6 +408,10 @@ Scene parseSceneJson(const std::string& text, const std::string& path) {
         for (std::size_t i = 0; i < meshes.size(); ++i) readMesh(meshes.at(i), dir, scene, materialIds);
     }
     if (root.has("gi")) readGi(root.child("gi"), scene.gi);
+    if (root.has("regions")) {
+        Reader regions = root.child("regions");
+        for (std::size_t i = 0; i < regions.size(); ++i) scene.regions.push_back(readRegion(regions.at(i), scene.regions));
+    }
     scene.addQuadLightGeometry();
     return scene;
 }

@@ -46,6 +46,7 @@ TEST(OutputPaths, AnOutputThatIsAnInputIsRefusedAndTheInputKept) {
     for (const std::string& args : {"render " + scene + " --method direct -o " + scene,
                                     "render " + scene + " --method direct -o " + dir + "/x.exr --png " + scene,
                                     "voxelize " + scene + " --voxel-size 0.1 -o " + scene,
+                                    "compare " + dir + "/a.exr " + dir + "/b.exr --regions " + scene + " --json " + scene,
                                     "reference " + scene + " --spp 1 -o " + dir + "/../" + fs::path(dir).filename().string() + "/scene.json"}) {
         RunResult r = runVoxgi(args);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;

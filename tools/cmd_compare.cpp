@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "gi/metrics/flip.h"
 #include "gi/metrics/image_metrics.h"
+#include "gi/metrics/regions.h"
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/image.h"
@@ -18,9 +21,10 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi compare TEST.exr REFERENCE.exr [--aov NAME] [--diff DIFF.png] [--json OUT.json]\n"
+    "voxgi compare TEST.exr REFERENCE.exr [--aov NAME] [--diff DIFF.png] [--json OUT.json] [--regions SCENE]\n"
     "  --aov: the layer to compare (default beauty); --diff: HDR-FLIP error map (colour layers)\n"
-    "  or |difference| scaled to its maximum (1-channel layers)";
+    "  or |difference| scaled to its maximum (1-channel layers); --regions: the layer's mean in each\n"
+    "  of the scene's regions, test against reference (the reference must be voxgi reference's)";
 
 // Black -> red -> yellow -> white: error 0 stays black, 1 is white.
 glm::vec3 heat(float e) {
@@ -50,10 +54,10 @@ void writeDiff(const std::string& path, const Image& test, const Image& referenc
 }
 
 int runCompare(const std::vector<std::string>& argv) {
-    Args args(argv, {"--aov", "--diff", "--json"}, {});
+    Args args(argv, {"--aov", "--diff", "--json", "--regions"}, {});
     args.requirePositional(2, kUsage);
     const std::string layer = args.value("--aov", "beauty");
-    requireOutputs(args, {"--diff", "--json"});
+    requireOutputs(args, {"--diff", "--json"}, {"--regions"});
     Image test = readExr(args.positional()[0]);
     Image reference = readExr(args.positional()[1]);
     // Metrics of an image holding NaN or infinity are NaN: refuse instead of printing them.
@@ -67,6 +71,12 @@ int runCompare(const std::vector<std::string>& argv) {
                              " NaN or infinite values");
     }
     ImageMetrics m = computeMetrics(test, reference, layer);
+    std::vector<RegionMean> regions;
+    if (auto sceneArg = args.value("--regions")) {
+        const Scene scene = loadSceneArgument(*sceneArg);
+        if (scene.regions.empty()) throw InputError(*sceneArg + ": regions: the scene declares none");
+        regions = regionMeans(test, reference, scene, layer);
+    }
 
     std::printf("%s against %s, layer %s (%dx%d, %d channel%s)\n", args.positional()[0].c_str(),
                 args.positional()[1].c_str(), layer.c_str(), reference.width(), reference.height(), m.channels,
@@ -76,12 +86,29 @@ int runCompare(const std::vector<std::string>& argv) {
     std::printf("  PSNR       %.3f dB\n  SSIM       %.5f\n  mean error %.4f   (seed 003 Eq. 19)\n", m.psnr, m.ssim,
                 m.meanError);
     std::printf("  Pearson    %.5f   (seed 003 Eq. 20)\n  HDR-FLIP   %.5f\n", m.pearson, m.flip);
+    if (!regions.empty()) {
+        std::printf("  region            pixels    test mean (rgb)            reference mean (rgb)       test/ref\n");
+        for (const RegionMean& r : regions)
+            std::printf("  %-16s %7zu    %8.4g %8.4g %8.4g   %8.4g %8.4g %8.4g   %.3f\n", r.name.c_str(), r.pixels,
+                        r.test.x, r.test.y, r.test.z, r.reference.x, r.reference.y, r.reference.z, r.ratio);
+    }
     if (auto d = args.value("--diff")) {
         writeDiff(*d, test, reference, layer);
         std::printf("wrote %s\n", d->c_str());
     }
     if (auto j = args.value("--json")) {
-        writeTextAtomically(*j, toJson(m) + "\n");
+        nlohmann::ordered_json json = nlohmann::ordered_json::parse(toJson(m));
+        if (!regions.empty()) {
+            nlohmann::ordered_json list = nlohmann::ordered_json::array();
+            for (const RegionMean& r : regions)
+                list.push_back({{"name", r.name},
+                                {"pixels", r.pixels},
+                                {"test", {r.test.x, r.test.y, r.test.z}},
+                                {"reference", {r.reference.x, r.reference.y, r.reference.z}},
+                                {"ratio", std::isfinite(r.ratio) ? nlohmann::ordered_json(r.ratio) : nlohmann::ordered_json()}});
+            json["regions"] = list;
+        }
+        writeTextAtomically(*j, json.dump(2) + "\n");
         std::printf("wrote %s\n", j->c_str());
     }
     return kOk;

@@ -125,7 +125,11 @@ bool sameFile(const std::string& a, const std::string& b) {
 }
 }  // namespace
 
-void requireOutputs(const Args& args, std::initializer_list<const char*> options) {
+void requireOutputs(const Args& args, std::initializer_list<const char*> options,
+                    std::initializer_list<const char*> inputOptions) {
+    std::vector<std::string> inputs = args.positional();
+    for (const char* option : inputOptions)
+        if (auto path = args.value(option)) inputs.push_back(*path);
     std::vector<std::pair<std::string, std::string>> outputs;  // option, path
     for (const char* option : options)
         if (auto path = args.value(option)) {
@@ -134,7 +138,7 @@ void requireOutputs(const Args& args, std::initializer_list<const char*> options
         }
     for (std::size_t i = 0; i < outputs.size(); ++i) {
         const auto& [option, path] = outputs[i];
-        for (const std::string& input : args.positional())
+        for (const std::string& input : inputs)
             if (fs::exists(input) && sameFile(outputTarget(path), input))
                 throw InputError(option + " " + path + ": is an input of this command (" + input + "); it would be overwritten");
         for (std::size_t j = 0; j < i; ++j)

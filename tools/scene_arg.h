@@ -22,7 +22,8 @@ std::string methodArgument(const Args& args, const Scene& scene, const std::stri
 // writable, or that names a directory, FIFO or device (a symlink names its target).
 void requireWritable(const std::string& path, const std::string& option);
 // requireWritable for each of `options` given, and none of them may name the same file as an
-// input (a positional argument) or as another of them.
-void requireOutputs(const Args& args, std::initializer_list<const char*> options);
+// input (a positional argument, or the value of one of `inputOptions`) or as another of them.
+void requireOutputs(const Args& args, std::initializer_list<const char*> options,
+                    std::initializer_list<const char*> inputOptions = {});
 
 }  // namespace voxgi::cli

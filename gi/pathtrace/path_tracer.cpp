@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/pathtrace/integrator.h"
+#include "scenes/camera_rays.h"
 #include "scenes/errors.h"
 #include "scenes/memory_limit.h"
 
@@ -47,9 +48,8 @@ struct PathTracer::Impl {
     int width, height;
     RayTracer tracer;
     pt::Integrator integrator;
-    // Camera frame: a pinhole with glm::lookAt / glm::perspective's conventions.
-    glm::vec3 eye, forward, right, up;
-    float tanHalfY, aspect;
+    // A pinhole with glm::lookAt / glm::perspective's conventions.
+    CameraRays camera;
     std::vector<PixelSum> sums;
     int samples = 0;
     std::atomic<std::uint64_t> rays{0}, dropped{0};
@@ -64,14 +64,7 @@ struct PathTracer::Impl {
     Impl(const Scene& s, const PathTracerOptions& o)
         : scene(pick(s, owned)), options(o), width(o.width > 0 ? o.width : s.camera.width),
           height(o.height > 0 ? o.height : s.camera.height), tracer(scene),
-          integrator(scene, tracer, o.maxBounces) {
-        const Camera& c = scene.camera;
-        eye = c.eye;
-        forward = glm::normalize(c.target - c.eye);
-        right = glm::normalize(glm::cross(forward, c.up));
-        up = glm::cross(right, forward);
-        tanHalfY = std::tan(glm::radians(c.fovYDegrees) * 0.5f);
-        aspect = float(width) / float(height);
+          integrator(scene, tracer, o.maxBounces), camera(scene.camera, std::max(width, 1), std::max(height, 1)) {
         if (width <= 0 || height <= 0) throw InputError("path tracer: image size must be positive");
         // Refuse before allocating: an absurd size would otherwise end in the OOM killer.
         requireMemory(double(width) * double(height) * double(sizeof(PixelSum) + 16 * sizeof(float)),
@@ -86,8 +79,7 @@ struct PathTracer::Impl {
         const glm::vec2 jitter = sampler.get2D(0);
         float sx = (float(x) + jitter.x) / float(width);
         float sy = (float(y) + jitter.y) / float(height);
-        glm::vec3 d = forward + (2.0f * sx - 1.0f) * tanHalfY * aspect * right + (1.0f - 2.0f * sy) * tanHalfY * up;
-        return integrator.trace(eye, glm::normalize(d), sampler);
+        return integrator.trace(camera.eye, glm::normalize(camera.direction(sx, sy)), sampler);
     }
 
     void renderTile(int tile, int count) {
