@@ -70,7 +70,8 @@ std::string SettingInfo::rangeText() const {
     std::string range = "[" + formatNumber(min) + ", " + formatNumber(max) + "]";
     switch (kind) {
         case SettingKind::Integer:
-            return step > 1 ? "multiple of " + std::to_string(step) + " in " + range : range;
+            return (step > 1 ? "multiple of " + std::to_string(step) + " in " + range : range) +
+                   (fitWord.empty() ? "" : " or " + fitWord);
         case SettingKind::Number:
             return range;
         case SettingKind::Flag:
@@ -87,6 +88,7 @@ std::string SettingInfo::rangeText() const {
 }
 
 int parseInteger(const SettingInfo& info, const std::string& text) {
+    if (!info.fitWord.empty() && text == info.fitWord) return kFittedInteger;
     long v = 0;
     if (!readLong(text, &v)) refuse(info, "expected an integer, got " + quoted(text));
     if (!inRange(double(v), info) || (long(v) - long(info.min)) % info.step != 0)

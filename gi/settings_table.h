@@ -25,7 +25,7 @@ struct SettingInfo {
     double min = 0.0, max = 0.0;       // Integer, Number, Triple (each component); inclusive
     int step = 1;                      // Integer: the values are min + k * step
     bool whole = false;                // Triple: whole numbers only
-    std::string fitWord;               // Triple: this word (or no value) leaves it to be fitted
+    std::string fitWord;               // Triple, Integer: this word leaves it to be fitted
     std::vector<std::string> choices;  // Choice
     std::string defaultText;
     std::string doc;
@@ -36,6 +36,8 @@ struct SettingInfo {
 
 // Parsers for one value of `info` (InputError "gi.KEY: ..." when the text does not parse or is
 // out of range). A Triple is "x,y,z", "x y z" or one value for all three; its fit word gives 0.
+// An Integer's fit word gives kFittedInteger (its range starts at 0 or above).
+constexpr int kFittedInteger = -1;
 int parseInteger(const SettingInfo& info, const std::string& text);
 float parseNumber(const SettingInfo& info, const std::string& text);
 bool parseFlag(const SettingInfo& info, const std::string& text);
@@ -58,12 +60,22 @@ public:
 
     SettingsTable& integer(const std::string& key, int Desc::*member, int min, int max, std::string doc,
                            int step = 1) {
+        return integerOrFit(key, member, min, max, std::move(doc), "", step);
+    }
+
+    // A whole number in [min, max] (min >= 0), or `fitWord` for one the technique fits (stored
+    // as kFittedInteger).
+    SettingsTable& integerOrFit(const std::string& key, int Desc::*member, int min, int max, std::string doc,
+                                std::string fitWord, int step = 1) {
         SettingInfo info = make(key, SettingKind::Integer, std::move(doc));
         info.min = min;
         info.max = max;
         info.step = step;
+        info.fitWord = std::move(fitWord);
         return add(info, [member](Desc& d, const SettingInfo& i, const std::string& t) { d.*member = parseInteger(i, t); },
-                   [member](const Desc& d) { return std::to_string(d.*member); });
+                   [member, fit = info.fitWord](const Desc& d) {
+                       return !fit.empty() && d.*member == kFittedInteger ? fit : std::to_string(d.*member);
+                   });
     }
 
     SettingsTable& number(const std::string& key, float Desc::*member, double min, double max, std::string doc) {

@@ -7,6 +7,7 @@
 
 #include "gi/lpv/detail/propagation_soa.h"
 #include "gi/lpv/injection.h"
+#include "gi/lpv/lpv_desc.h"
 #include "gi/lpv/propagation.h"
 #include "gi/sh/sh.h"
 #include "shaders/shared/constants.h"
@@ -261,6 +262,33 @@ TEST(LpvPropagation, ManyStepsStopOnceConvergedWithTheLightOfEveryStep) {
         std::swap(a, b);
     }
     EXPECT_NEAR(totalFlux(acc, 0), all, 1e-4 * std::abs(all));
+}
+
+TEST(LpvPropagation, FittedStepsCarryLightAcrossTheCascade) {
+    // Light moves one cell per step: "fit" (the default) runs as many steps as the cascade has
+    // cells per side, so light injected at one face reaches the opposite one.
+    GiSettings gi;
+    gi.set("lpv.resolution", "24");
+    const LpvDesc fitted = readLpvDesc(gi, true);
+    EXPECT_EQ(fitted.steps, kFittedInteger);
+    EXPECT_EQ(propagationSteps(fitted), 24);
+    gi.set("lpv.steps", "7");
+    EXPECT_EQ(propagationSteps(readLpvDesc(gi, true)), 7);
+    gi.set("lpv.steps", "fit");
+    EXPECT_EQ(propagationSteps(readLpvDesc(gi, false)), 24);
+
+    const int n = 24;
+    LightVolume in, acc;
+    in.reset(unitGrid(n));
+    addIsotropic(in, {0, n / 2, n / 2}, 1.0f);
+    BlockerVolume empty;
+    empty.reset(in.grid);
+    CpuPropagator p;
+    const glm::ivec3 far(n - 1, n / 2, n / 2);
+    p.propagate(in, empty, n - 2, {}, acc);
+    EXPECT_EQ(irradiance(acc, far, {-1, 0, 0}), 0.0f) << "light travels at most one cell per step";
+    p.propagate(in, empty, propagationSteps(fitted), {}, acc);
+    EXPECT_GT(irradiance(acc, far, {-1, 0, 0}), 0.0f);
 }
 
 TEST(LpvPropagation, SparseMatchesDense) {

@@ -61,6 +61,7 @@ void walk(const MethodInfo& m, const SettingInfo& s) {
             if (s.step > 1 && s.min + 1 < s.max) c.refuses(formatNumber(s.min + 1));
             c.refuses("1.5");
             c.refuses("many");
+            if (!s.fitWord.empty()) c.accepts(s.fitWord);
             break;
         case SettingKind::Number:
             c.accepts(formatNumber(s.min));

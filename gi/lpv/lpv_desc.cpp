@@ -17,7 +17,11 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
     t.number("cell_size", &D::cellSize, 0.0, 1e6,
              cascaded ? "finest cell (m); 0 = fit: the coarsest cascade reaches the farthest scene corner from the camera"
                       : "cell (m); 0 = fit: the scene plus one cell of margin");
-    t.integer("steps", &D::steps, 0, 100000, "most propagation iterations per cascade (cpu stops once converged)").main();
+    t.integerOrFit("steps", &D::steps, 0, 100000,
+                   "most propagation iterations per cascade (cpu stops once converged); fit: the resolution, "
+                   "so light crosses a cascade",
+                   "fit")
+        .main();
     t.flag("occlusion", &D::occlusion, "attenuate by the blockers at the shared face");
     t.flag("bounces", &D::bounces, "extra bounces off blockers with their albedo");
     t.flag("static_blockers", &D::staticBlockers, "blockers from the voxelized scene (cached .vdb), merged with the RSM and G-buffer ones");
@@ -52,5 +56,7 @@ LpvDesc lpvDefaults(bool cascaded) {
 }
 
 LpvDesc readLpvDesc(const GiSettings& gi, bool cascaded) { return lpvSettings(cascaded).read(gi, lpvDefaults(cascaded)); }
+
+int propagationSteps(const LpvDesc& desc) { return desc.steps == kFittedInteger ? desc.resolution : desc.steps; }
 
 }  // namespace voxgi

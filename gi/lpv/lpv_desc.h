@@ -12,7 +12,10 @@ struct LpvDesc {
     int resolution = 32;        // cells per side of every cascade (32^3, as CryEngine and seed 000)
     int cascades = 1;           // 1 for lpv, 3 for clpv
     float cellSize = 0.0f;      // finest cell edge in metres; 0 = fit
-    int steps = 16;             // propagation iterations per cascade (seed 000: 12-16)
+    // Propagation iterations per cascade; fit (kFittedInteger): the resolution, so light crosses
+    // a cascade once. Seed 000 used 12-16 at 32^3, which carries light half way: the Cornell
+    // box's walls got 0.55-0.79 of the reference's indirect at 16 steps, 0.67-0.92 at 32.
+    int steps = kFittedInteger;
     bool occlusion = true;      // attenuate by (1 - blocker) at the shared face
     bool bounces = true;        // extra bounces off blockers with their albedo (seed 000 eq. 3.7)
     int rsmSize = 256;          // reflective shadow map resolution per light (face)
@@ -36,5 +39,7 @@ const SettingsTable<LpvDesc>& lpvSettings(bool cascaded);
 LpvDesc lpvDefaults(bool cascaded);
 // Reads `lpv.*` over the defaults; InputError names the key of an unknown or refused value.
 LpvDesc readLpvDesc(const GiSettings& gi, bool cascaded);
+// The steps to run: desc.steps, or the resolution when fitted.
+int propagationSteps(const LpvDesc& desc);
 
 }  // namespace voxgi

@@ -42,7 +42,7 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
     if (d.gbufferBlockerSize > 0) sources += ", the G-buffer";
     if (voxels) sources += ", the voxelized scene";
     p.update.push_back({"lpv.blockers", "blockers from " + sources});
-    p.update.push_back({"lpv.propagate", std::to_string(d.steps) + " steps in " + volumes + " on " +
+    p.update.push_back({"lpv.propagate", std::to_string(propagationSteps(d)) + " steps in " + volumes + " on " +
                                              (gl ? "gl" : d.sparse ? "cpu (sparse)" : "cpu (dense)")});
     if (!gl) p.update.push_back({"lpv.upload", "light volumes to 3D textures"});
     p.apply.push_back({"lpv.apply", std::string("irradiance from the light volumes") +
@@ -107,7 +107,8 @@ MethodInfo lpvFamily(bool cascaded) {
         p.settings.insert(p.settings.end(), timed.begin(), timed.end());
         return p;
     };
-    m.presets = {preset("low", "16", "8", "2"), preset("medium", "32", "16", "3"), preset("high", "32", "32", "4")};
+    // Steps fitted to the resolution (light crosses each cascade once) in every preset.
+    m.presets = {preset("low", "16", "fit", "2"), preset("medium", "32", "fit", "3"), preset("high", "32", "fit", "4")};
     m.debugViews = lpvDebugViews();
     if (!cascaded) m.stressCases = lpvStressCases();
     m.benchVariants = {{"cpu-sparse", {{"lpv.backend", "cpu"}, {"lpv.sparse", "true"}, {"lpv.reuse", "false"}}},

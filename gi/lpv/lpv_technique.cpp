@@ -193,7 +193,7 @@ public:
         t0 = std::chrono::steady_clock::now();
         last = {};
         for (std::size_t c = 0; c < placements.size(); ++c) {
-            propagators[c].propagate(injected[c], geometry[c], desc.steps, options, accumulated[c], desc.sparse);
+            propagators[c].propagate(injected[c], geometry[c], propagationSteps(desc), options, accumulated[c], desc.sparse);
             const PropagationStats& st = propagators[c].stats();
             last.operatorMs += st.operatorMs;
             last.stepsMs += st.stepsMs;
@@ -283,7 +283,7 @@ public:
         input.timers.begin("lpv.propagate");
         PropagationOptions options{desc.occlusion, desc.bounces};
         for (std::size_t c = 0; c < placements.size(); ++c) {
-            glPropagators[c]->propagateInjected(desc.steps, options);
+            glPropagators[c]->propagateInjected(propagationSteps(desc), options);
             accumulated[c].grid = placements[c].grid;
             geometry[c].grid = placements[c].grid;
         }

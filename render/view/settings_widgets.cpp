@@ -44,6 +44,18 @@ bool settingWidget(const SettingInfo& info, GiSettings& values) {
     switch (info.kind) {
         case SettingKind::Integer: {
             int v = current<int>(info, values, parseInteger);
+            if (!info.fitWord.empty()) {
+                // Fitted by the technique, or a number (starting from the range's low end).
+                bool fitted = v == kFittedInteger;
+                const bool toggled = ImGui::Checkbox((info.fitWord + "##fit" + info.key).c_str(), &fitted);
+                tooltip(info);
+                if (toggled) {
+                    values.set(info.key, fitted ? info.fitWord : std::to_string(int(info.min)));
+                    return true;
+                }
+                if (fitted) return false;
+                ImGui::SameLine();
+            }
             if (info.min == info.max) {
                 ImGui::TextDisabled("%s = %d", name.c_str(), v);
                 tooltip(info);
