@@ -107,8 +107,11 @@ MethodInfo lpvFamily(bool cascaded) {
         p.settings.insert(p.settings.end(), timed.begin(), timed.end());
         return p;
     };
-    // Steps fitted to the resolution (light crosses each cascade once) in every preset.
-    m.presets = {preset("low", "16", "fit", "2"), preset("medium", "32", "fit", "3"), preset("high", "32", "fit", "4")};
+    // Steps fitted to the resolution (light crosses each cascade once) in every preset; lpv's
+    // high preset has finer cells (with fitted steps, 32^3 and 32 steps would equal medium),
+    // clpv's one more cascade.
+    m.presets = {preset("low", "16", "fit", "2"), preset("medium", "32", "fit", "3"),
+                 preset("high", cascaded ? "32" : "48", "fit", "4")};
     m.debugViews = lpvDebugViews();
     if (!cascaded) m.stressCases = lpvStressCases();
     m.benchVariants = {{"cpu-sparse", {{"lpv.backend", "cpu"}, {"lpv.sparse", "true"}, {"lpv.reuse", "false"}}},
