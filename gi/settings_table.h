@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,6 +68,9 @@ public:
     // as kFittedInteger).
     SettingsTable& integerOrFit(const std::string& key, int Desc::*member, int min, int max, std::string doc,
                                 std::string fitWord, int step = 1) {
+        // kFittedInteger must lie outside the range.
+        if (!fitWord.empty() && min <= kFittedInteger)
+            throw std::logic_error(key + ": a fitted integer's range must start at 0 or above");
         SettingInfo info = make(key, SettingKind::Integer, std::move(doc));
         info.min = min;
         info.max = max;

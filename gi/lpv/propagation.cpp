@@ -188,13 +188,19 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
     w.acc.data = w.ping.data;  // accumulated starts as the injected light
 
     const BrickGrid bricks(layout);
-    // Which bricks of the input hold light.
+    // Which bricks of the input hold light, and how much light there is (the start of the
+    // light sent so far, for the convergence test below).
     std::vector<std::uint8_t> lit(bricks.size(), 0), pongLit(bricks.size(), 0);
+    double lightSoFar = 0.0;
     for (int z = 0; z < grid.resolution; ++z)
         for (int y = 0; y < grid.resolution; ++y)
-            for (int x = 0; x < grid.resolution; ++x)
-                if (!injected.isZero(grid.index({x, y, z})))
-                    lit[bricks.index({x / kLanes, y / kLanes, z / kLanes})] = 1;
+            for (int x = 0; x < grid.resolution; ++x) {
+                const std::size_t i = grid.index({x, y, z});
+                if (injected.isZero(i)) continue;
+                lit[bricks.index({x / kLanes, y / kLanes, z / kLanes})] = 1;
+                for (const glm::vec4& c : {injected.r[i], injected.g[i], injected.b[i]})
+                    lightSoFar += double(std::abs(c.x) + std::abs(c.y) + std::abs(c.z) + std::abs(c.w));
+            }
     stats_.totalBricks = bricks.size();
 
     auto t0 = std::chrono::steady_clock::now();
@@ -214,11 +220,7 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
 
     std::vector<glm::ivec3> active;
     std::vector<float> sent(bricks.size(), 0.0f);  // each brick's output magnitude this step
-    // The light sent so far (injected and every step's output) and each step's output, for
-    // the convergence test below.
-    double lightSoFar = 0.0;
-    for (float v : w.ping.data) lightSoFar += std::abs(v);
-    std::vector<double> stepLight;
+    std::vector<double> stepLight;                 // each step's output, summed over bricks
     stats_.stepsRun = 0;
     for (int iteration = 0; iteration < steps; ++iteration) {
         active.clear();
