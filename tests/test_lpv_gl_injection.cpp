@@ -124,17 +124,18 @@ BlockerVolume syntheticStatic(const BlockerVolume& dynamic) {
     return v;
 }
 
-GlCascadeTargets targetsOf(const GlPropagator& p, const CascadeGrid& grid) {
+GlCascadeTargets targetsOf(const GlPropagator& p, const CascadeGrid& grid, int set = 0) {
     GlCascadeTargets t;
     t.grid = grid;
-    for (int k = 0; k < 3; ++k) t.light[k] = p.injected(k);
+    for (int k = 0; k < 3; ++k) t.light[k] = p.injected(k, set);
     t.blocker = p.blocker();
     t.albedo = p.albedo();
     return t;
 }
 
 // Injects every face of every light of `scene` and a synthetic G-buffer into 3 cascades both
-// ways; the GPU takes the faces `batch` at a time, as the technique does when the maps are large.
+// ways, the light split between each cascade's ring and inner volumes (gi/lpv/cascades.h); the
+// GPU takes the faces `batch` at a time, as the technique does when the maps are large.
 void expectGpuInjectionMatchesCpu(const Scene& scene, std::size_t expectedFaces, std::size_t batch) {
     SceneGpu gpu(scene);
     RsmRenderer rsm(96);
@@ -154,11 +155,12 @@ void expectGpuInjectionMatchesCpu(const Scene& scene, std::size_t expectedFaces,
 
     // CPU reference.
     InjectionOffsets offsets;
-    std::vector<LightVolume> light(placements.size());
+    std::vector<LightVolume> light(placements.size()), inner(placements.size());
     std::vector<BlockerVolume> geometry(placements.size()), statics(placements.size());
     for (std::size_t c = 0; c < placements.size(); ++c) {
         light[c].reset(placements[c].grid);
-        for (const SurfelSource& s : sources) injectLight(s, offsets, light[c]);
+        inner[c].reset(placements[c].grid);
+        for (const SurfelSource& s : sources) injectLight(s, offsets, placements, c, light[c], inner[c]);
         BlockerVolume scratch;
         scratch.reset(placements[c].grid);
         geometry[c].reset(placements[c].grid);
@@ -172,16 +174,19 @@ void expectGpuInjectionMatchesCpu(const Scene& scene, std::size_t expectedFaces,
     GlInjector injector(n);
     std::vector<std::unique_ptr<GlPropagator>> volumes;
     for (std::size_t c = 0; c < placements.size(); ++c) {
-        volumes.push_back(std::make_unique<GlPropagator>(n));
+        volumes.push_back(std::make_unique<GlPropagator>(n, 2));
         GlCascadeTargets t = targetsOf(*volumes[c], placements[c].grid);
         injector.clearLight(t);
+        injector.clearLight(targetsOf(*volumes[c], placements[c].grid, 1));
         injector.clearGeometry(t);
     }
     for (std::size_t first = 0; first < expectedFaces; first += batch) {
         const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, gpu, first, batch);
         for (std::size_t c = 0; c < placements.size(); ++c) {
             GlCascadeTargets t = targetsOf(*volumes[c], placements[c].grid);
-            for (const RsmFace& f : faces) injector.injectLight(f, offsets, t);
+            const GlCascadeTargets innerTargets = targetsOf(*volumes[c], placements[c].grid, 1);
+            for (const RsmFace& f : faces) injector.injectLight(f, offsets, t, placements, c, false);
+            for (const RsmFace& f : faces) injector.injectLight(f, offsets, innerTargets, placements, c, true);
             for (const RsmFace& f : faces) injector.injectBlockers(f, t);
         }
     }
@@ -192,14 +197,18 @@ void expectGpuInjectionMatchesCpu(const Scene& scene, std::size_t expectedFaces,
         staticGpu.upload(statics[c]);
         injector.injectBlockers(gbuffer.view, sampling, t);
         injector.mergeBlockers(staticGpu, t);
-        LightVolume gotLight;
-        volumes[c]->readBackInjected(gotLight);
+        LightVolume gotLight, gotInner;
+        volumes[c]->readBackInjected(gotLight, 0);
+        volumes[c]->readBackInjected(gotInner, 1);
         BlockerVolume gotGeometry;
         volumes[c]->readBackGeometry(gotGeometry);
 
         std::size_t lit = expectSameVolume(light[c].r, gotLight.r, "light r");
         expectSameVolume(light[c].g, gotLight.g, "light g");
         expectSameVolume(light[c].b, gotLight.b, "light b");
+        lit += expectSameVolume(inner[c].r, gotInner.r, "inner r");
+        expectSameVolume(inner[c].g, gotInner.g, "inner g");
+        expectSameVolume(inner[c].b, gotInner.b, "inner b");
         std::size_t blocked = expectSameVolume(geometry[c].blocker, gotGeometry.blocker, "blocker");
         EXPECT_GT(lit, 20u);
         EXPECT_GT(blocked, 200u);

@@ -11,9 +11,9 @@ using namespace voxgi::test;
 
 TEST(MemoryLimit, EstimatesOverTheLimitAreRefusedBeforeAnyWork) {
     const std::string dir = makeTempDir("memory");
-    // 256^3 cells in 6 cascades: tens of GiB, more than this machine or the default limit.
+    // 256^3 cells in 5 cascades: tens of GiB, more than this machine or the default limit.
     RunResult lpv = runVoxgi("--max-memory 16 render cornell-box --method clpv --width 32 --height 32 -o " + dir +
-                             "/a.exr --set lpv.resolution=256 --set lpv.cascades=6");
+                             "/a.exr --set lpv.resolution=256 --set lpv.cascades=5");
     EXPECT_EQ(lpv.exitCode, 2) << lpv.output;
     EXPECT_NE(lpv.output.find("needs about"), std::string::npos) << lpv.output;
     EXPECT_NE(lpv.output.find("the memory limit is 16.0 GiB"), std::string::npos) << lpv.output;

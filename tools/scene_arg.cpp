@@ -40,7 +40,7 @@ void requireDeclaredSetting(const std::string& assignment) {
     const std::string key = assignment.substr(0, assignment.find('='));
     const std::string value = assignment.substr(assignment.find('=') + 1);
     std::set<std::string> sections, keys;
-    // Methods that share a section may range a key differently (lpv.cascades: 1 for lpv, 2..6
+    // Methods that share a section may range a key differently (lpv.cascades: 1 for lpv, 1..5
     // for clpv): the value must suit at least one of them; the method that runs checks it again.
     std::string refused;
     bool accepted = false;
@@ -54,7 +54,8 @@ void requireDeclaredSetting(const std::string& assignment) {
                 validateSetting(info, value);
                 accepted = true;
             } catch (const InputError& e) {
-                if (refused.empty()) refused = e.what();
+                // Every method's refusal, so the range of the method meant is among them.
+                refused += (refused.empty() ? "" : "; ") + m.name + ": " + e.what();
             }
         }
     }

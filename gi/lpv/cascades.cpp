@@ -43,9 +43,28 @@ std::vector<CascadePlacement> placeCascades(const LpvDesc& desc, const Bounds& b
         // A single fitted volume does not fade: it covers the whole scene.
         p.fadeMin = desc.cascades == 1 ? glm::vec3(-1e30f) : center - half;
         p.fadeMax = desc.cascades == 1 ? glm::vec3(1e30f) : center + half;
+        p.fadeWidth = desc.fadeCells * h;
         out.push_back(p);
     }
     return out;
+}
+
+float cascadeInlier(const CascadePlacement& cascade, glm::vec3 x) {
+    const CascadeGrid& g = cascade.grid;
+    const glm::vec3 lo = g.worldMin(), hi = g.worldMax();
+    if (x.x < lo.x || x.y < lo.y || x.z < lo.z || x.x > hi.x || x.y > hi.y || x.z > hi.z) return 0.0f;
+    if (cascade.fadeWidth <= 0.0f) return 1.0f;
+    const glm::vec3 d = glm::min(x - cascade.fadeMin, cascade.fadeMax - x);
+    return std::clamp(std::min({d.x, d.y, d.z}) / cascade.fadeWidth, 0.0f, 1.0f);
+}
+
+SourceShares sourceShares(const std::vector<CascadePlacement>& cascades, std::size_t level, glm::vec3 x) {
+    // outside = prod_{J < L} (1 - f_J(x)): the share of x not yet held by finer cascades.
+    float outside = 1.0f;
+    for (std::size_t j = 0; j < level && j < cascades.size() && outside > 0.0f; ++j)
+        outside *= 1.0f - cascadeInlier(cascades[j], x);
+    const float f = level < cascades.size() ? cascadeInlier(cascades[level], x) : 0.0f;
+    return {outside * f, 1.0f - outside};
 }
 
 }  // namespace voxgi

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "gi/lpv/gl_cascade_uniforms.h"
 #include "gi/sh/sh.h"
 #include "gl/program.h"
 #include "shaders/shared/constants.h"
@@ -64,6 +65,7 @@ struct GlInjector::Impl {
             p->set("uShCosineLobe", glm::vec4(sh::kCosLobe0, a1, a1, a1));
         }
         light.set("uPi", pi);
+        merge.set("uShY", glm::vec2(sh::kY00, sh::kY1));
         for (const gl::Program* p : {&rsmBlockers, &gbufferBlockers}) {
             p->set("uFullBlocker", 4.0f / 3.0f);
             p->set("uVolumeSize", n + 1);
@@ -139,6 +141,20 @@ void GlInjector::clearGeometry(const GlCascadeTargets& t) {
 }
 
 void GlInjector::injectLight(const RsmFace& face, const InjectionOffsets& offsets, const GlCascadeTargets& t) {
+    impl_->light.set("uShare", 0);
+    drawVpls(face, offsets, t);
+}
+
+void GlInjector::injectLight(const RsmFace& face, const InjectionOffsets& offsets, const GlCascadeTargets& t,
+                             const std::vector<CascadePlacement>& cascades, std::size_t level, bool inner) {
+    const gl::Program& p = impl_->light;
+    setCascadeUniforms(p, cascades);
+    p.set("uShare", inner ? 2 : 1);
+    p.set("uLevel", int(level));
+    drawVpls(face, offsets, t);
+}
+
+void GlInjector::drawVpls(const RsmFace& face, const InjectionOffsets& offsets, const GlCascadeTargets& t) {
     Impl& m = *impl_;
     for (int c = 0; c < 3; ++c)
         glNamedFramebufferTexture(m.lightFbo.id(), GLenum(GL_COLOR_ATTACHMENT0 + c), t.light[c], 0);

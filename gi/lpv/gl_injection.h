@@ -11,10 +11,12 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
 
+#include "gi/lpv/cascades.h"
 #include "gi/lpv/injection.h"
 #include "gi/lpv/light_volume.h"
 #include "gi/lpv/rsm.h"
@@ -65,8 +67,11 @@ public:
 
     void clearLight(const GlCascadeTargets& t);
     void clearGeometry(const GlCascadeTargets& t);
-    // injectLight(): the face's lit texels as VPLs.
+    // injectLight(): the face's lit texels as VPLs; with cascades, the VPLs' shares of cascade
+    // `level`'s ring (inner = false) or inner volume (gi/lpv/cascades.h) go to t's light.
     void injectLight(const RsmFace& face, const InjectionOffsets& offsets, const GlCascadeTargets& t);
+    void injectLight(const RsmFace& face, const InjectionOffsets& offsets, const GlCascadeTargets& t,
+                     const std::vector<CascadePlacement>& cascades, std::size_t level, bool inner);
     // injectBlockers(): one source's blockers summed, then merged into the geometry volume.
     void injectBlockers(const RsmFace& face, const GlCascadeTargets& t);
     void injectBlockers(const GBufferView& g, const GBufferSampling& sampling, const GlCascadeTargets& t);
@@ -74,6 +79,7 @@ public:
     void mergeBlockers(const GlBlockerVolume& source, const GlCascadeTargets& t);
 
 private:
+    void drawVpls(const RsmFace& face, const InjectionOffsets& offsets, const GlCascadeTargets& t);
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -1,6 +1,8 @@
 #include "gi/lpv/gl_propagation.h"
 
+#include <algorithm>
 #include <array>
+#include <vector>
 #include <string>
 
 #include "gl/program.h"
@@ -9,18 +11,24 @@
 namespace voxgi {
 
 struct GlPropagator::Impl {
+    // One light volume's textures (r, g, b each).
+    struct LightSet {
+        std::array<gl::Handle, 3> injected, ping, pong, acc;
+    };
     int n;
     gl::Program program;
-    std::array<gl::Handle, 3> injected, ping, pong, acc;
+    std::vector<LightSet> sets;
     gl::Handle blocker, albedo;
 
-    explicit Impl(int resolution) : n(resolution), program(gl::Program::compute("lpv/propagate.comp")) {
-        for (int c = 0; c < 3; ++c) {
-            injected[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
-            ping[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
-            pong[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
-            acc[std::size_t(c)] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
-        }
+    Impl(int resolution, int lightSets)
+        : n(resolution), program(gl::Program::compute("lpv/propagate.comp")), sets(std::size_t(lightSets)) {
+        for (LightSet& s : sets)
+            for (std::size_t c = 0; c < 3; ++c) {
+                s.injected[c] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
+                s.ping[c] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
+                s.pong[c] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
+                s.acc[c] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
+            }
         blocker = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n + 1, n + 1, n + 1);
         albedo = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n + 1, n + 1, n + 1);
         // Constant tables, shared with the CPU path.
@@ -57,16 +65,18 @@ void readVolume(GLuint texture, int size, std::vector<glm::vec4>& out) {
 }
 }  // namespace
 
-GlPropagator::GlPropagator(int resolution) : impl_(std::make_unique<Impl>(resolution)) {}
+GlPropagator::GlPropagator(int resolution, int lightSets)
+    : impl_(std::make_unique<Impl>(resolution, std::max(lightSets, 1))) {}
 GlPropagator::~GlPropagator() = default;
 
 int GlPropagator::resolution() const { return impl_->n; }
+int GlPropagator::lightSets() const { return int(impl_->sets.size()); }
 
 void GlPropagator::propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                              const PropagationOptions& options) {
     Impl& m = *impl_;
     const std::vector<glm::vec4>* channels[3] = {&injected.r, &injected.g, &injected.b};
-    for (std::size_t c = 0; c < 3; ++c) m.upload(m.injected[c].id(), *channels[c], m.n);
+    for (std::size_t c = 0; c < 3; ++c) m.upload(m.sets[0].injected[c].id(), *channels[c], m.n);
     m.upload(m.blocker.id(), geometry.blocker, m.n + 1);
     std::vector<glm::vec4> albedo4(geometry.albedo.size());
     for (std::size_t i = 0; i < albedo4.size(); ++i) albedo4[i] = glm::vec4(geometry.albedo[i], 0.0f);
@@ -79,10 +89,6 @@ void GlPropagator::propagateInjected(int steps, const PropagationOptions& option
     // Writes through framebuffers or images (GlInjector) must land before the copies read them.
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
-    for (std::size_t c = 0; c < 3; ++c) {
-        m.copy(m.injected[c].id(), m.ping[c].id());
-        m.copy(m.injected[c].id(), m.acc[c].id());
-    }
     m.program.use();
     m.program.set("uOcclusion", options.occlusion ? 1 : 0);
     m.program.set("uBounces", options.bounces ? 1 : 0);
@@ -91,34 +97,45 @@ void GlPropagator::propagateInjected(int steps, const PropagationOptions& option
     glBindTextureUnit(3, m.blocker.id());
     glBindTextureUnit(4, m.albedo.id());
     const GLuint groups = GLuint((m.n + 3) / 4);
-    for (int s = 0; s < steps; ++s) {
+    for (Impl::LightSet& set : m.sets) {
         for (std::size_t c = 0; c < 3; ++c) {
-            glBindTextureUnit(GLuint(c), m.ping[c].id());
-            glBindImageTexture(GLuint(c), m.pong[c].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-            glBindImageTexture(GLuint(3 + c), m.acc[c].id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+            m.copy(set.injected[c].id(), set.ping[c].id());
+            m.copy(set.injected[c].id(), set.acc[c].id());
         }
-        glDispatchCompute(groups, groups, groups);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        std::swap(m.ping, m.pong);
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        for (int s = 0; s < steps; ++s) {
+            for (std::size_t c = 0; c < 3; ++c) {
+                glBindTextureUnit(GLuint(c), set.ping[c].id());
+                glBindImageTexture(GLuint(c), set.pong[c].id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+                glBindImageTexture(GLuint(3 + c), set.acc[c].id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA32F);
+            }
+            glDispatchCompute(groups, groups, groups);
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            std::swap(set.ping, set.pong);
+        }
     }
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-GLuint GlPropagator::injected(int channel) const { return impl_->injected[std::size_t(channel)].id(); }
+GLuint GlPropagator::injected(int channel, int set) const {
+    return impl_->sets[std::size_t(set)].injected[std::size_t(channel)].id();
+}
 GLuint GlPropagator::blocker() const { return impl_->blocker.id(); }
 GLuint GlPropagator::albedo() const { return impl_->albedo.id(); }
 
-GLuint GlPropagator::accumulated(int channel) const { return impl_->acc[std::size_t(channel)].id(); }
-
-void GlPropagator::readBack(LightVolume& out) const {
-    for (std::size_t c = 0; c < 3; ++c)
-        readVolume(impl_->acc[c].id(), impl_->n, c == 0 ? out.r : (c == 1 ? out.g : out.b));
+GLuint GlPropagator::accumulated(int channel, int set) const {
+    return impl_->sets[std::size_t(set)].acc[std::size_t(channel)].id();
 }
 
-void GlPropagator::readBackInjected(LightVolume& out) const {
+void GlPropagator::readBack(LightVolume& out, int set) const {
+    for (std::size_t c = 0; c < 3; ++c)
+        readVolume(accumulated(int(c), set), impl_->n, c == 0 ? out.r : (c == 1 ? out.g : out.b));
+}
+
+void GlPropagator::readBackInjected(LightVolume& out, int set) const {
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     for (std::size_t c = 0; c < 3; ++c)
-        readVolume(impl_->injected[c].id(), impl_->n, c == 0 ? out.r : (c == 1 ? out.g : out.b));
+        readVolume(injected(int(c), set), impl_->n, c == 0 ? out.r : (c == 1 ? out.g : out.b));
 }
 
 void GlPropagator::readBackGeometry(BlockerVolume& out) const {

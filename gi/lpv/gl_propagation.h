@@ -13,32 +13,36 @@
 
 namespace voxgi {
 
+// It propagates `lightSets` independent light volumes through the same geometry (a cascade's
+// ring and inner light, gi/lpv/cascades.h); `set` picks one.
 class GlPropagator {
 public:
-    explicit GlPropagator(int resolution);
+    explicit GlPropagator(int resolution, int lightSets = 1);
     ~GlPropagator();
     GlPropagator(const GlPropagator&) = delete;
     GlPropagator& operator=(const GlPropagator&) = delete;
 
     int resolution() const;
+    int lightSets() const;
 
-    // Uploads the injected light and the geometry, runs `steps` iterations on the GPU.
+    // Uploads the injected light (of set 0) and the geometry, runs `steps` iterations on the GPU.
     void propagate(const LightVolume& injected, const BlockerVolume& geometry, int steps,
                    const PropagationOptions& options);
-    // Runs `steps` iterations from what the injected-light and geometry textures hold now.
+    // Runs `steps` iterations of every set from what the injected-light and geometry textures
+    // hold now.
     void propagateInjected(int steps, const PropagationOptions& options);
 
     // The injected light (r, g, b RGBA32F N^3) and the geometry volume (blocker SH and albedo,
     // RGBA32F (N + 1)^3 corner samples), read by propagateInjected().
-    GLuint injected(int channel) const;
+    GLuint injected(int channel, int set = 0) const;
     GLuint blocker() const;
     GLuint albedo() const;
 
     // The accumulated light (r, g, b RGBA32F 3D textures).
-    GLuint accumulated(int channel) const;
+    GLuint accumulated(int channel, int set = 0) const;
     // Reads the accumulated light back (for parity tests and dumps); the grid is left as is.
-    void readBack(LightVolume& out) const;
-    void readBackInjected(LightVolume& out) const;
+    void readBack(LightVolume& out, int set = 0) const;
+    void readBackInjected(LightVolume& out, int set = 0) const;
     void readBackGeometry(BlockerVolume& out) const;
 
 private:

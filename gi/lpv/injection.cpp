@@ -1,6 +1,8 @@
 #include "gi/lpv/injection.h"
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 
 #include "gi/sh/sh.h"
@@ -14,8 +16,10 @@ glm::vec4 toVec4(const sh::Sh4& s) { return {s.c[0], s.c[1], s.c[2], s.c[3]}; }
 
 glm::vec4 fullBlocker(glm::vec3 n) { return toVec4(sh::cosineLobe(n)) * (4.0f / 3.0f); }
 
-double injectLight(const SurfelSource& source, const InjectionOffsets& offsets, LightVolume& volume) {
-    const CascadeGrid& grid = volume.grid;
+namespace {
+// Adds each surfel's VPL to the volumes `split` names for it: (volume, weight) pairs.
+template <typename Split>
+double addVpls(const SurfelSource& source, const InjectionOffsets& offsets, const CascadeGrid& grid, Split split) {
     const float h = grid.cellSize;
     double total = 0.0;
     for (const Surfel& s : source.surfels) {
@@ -25,12 +29,32 @@ double injectLight(const SurfelSource& source, const InjectionOffsets& offsets, 
         if (!grid.contains(cell)) continue;
         glm::vec4 lobe = toVec4(sh::cosineLobe(s.normal)) / shading::kPi;  // unit-flux cosine lobe
         std::size_t i = grid.index(cell);
-        volume.r[i] += lobe * s.flux.r;
-        volume.g[i] += lobe * s.flux.g;
-        volume.b[i] += lobe * s.flux.b;
-        total += double(s.flux.r) + double(s.flux.g) + double(s.flux.b);
+        float weights = 0.0f;
+        for (const auto& [volume, weight] : split(p)) {
+            if (weight <= 0.0f) continue;
+            volume->r[i] += lobe * (s.flux.r * weight);
+            volume->g[i] += lobe * (s.flux.g * weight);
+            volume->b[i] += lobe * (s.flux.b * weight);
+            weights += weight;
+        }
+        total += double(weights) * (double(s.flux.r) + double(s.flux.g) + double(s.flux.b));
     }
     return total;
+}
+using Part = std::pair<LightVolume*, float>;
+}  // namespace
+
+double injectLight(const SurfelSource& source, const InjectionOffsets& offsets, LightVolume& volume) {
+    return addVpls(source, offsets, volume.grid, [&](glm::vec3) { return std::array<Part, 1>{Part{&volume, 1.0f}}; });
+}
+
+double injectLight(const SurfelSource& source, const InjectionOffsets& offsets,
+                   const std::vector<CascadePlacement>& cascades, std::size_t level, LightVolume& ring,
+                   LightVolume& inner) {
+    return addVpls(source, offsets, ring.grid, [&](glm::vec3 p) {
+        const SourceShares share = sourceShares(cascades, level, p);
+        return std::array<Part, 2>{Part{&ring, share.ring}, Part{&inner, share.inner}};
+    });
 }
 
 void injectBlockers(const SurfelSource& source, BlockerVolume& scratch, BlockerVolume& volume) {

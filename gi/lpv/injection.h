@@ -12,6 +12,9 @@
 // the light that arrives on its front. Blockers of one source are summed; sources are merged by max.
 #pragma once
 
+#include <vector>
+
+#include "gi/lpv/cascades.h"
 #include "gi/lpv/light_volume.h"
 #include "gi/lpv/surfels.h"
 
@@ -24,6 +27,12 @@ struct InjectionOffsets {
 
 // Adds the surfels' light; returns the flux injected (W, summed over colours) for diagnostics.
 double injectLight(const SurfelSource& source, const InjectionOffsets& offsets, LightVolume& volume);
+// The same into cascade `level` of `cascades`, each VPL split by its shares (cascades.h) between
+// the cascade's ring and inner volumes (both placed like the cascade); returns the flux
+// injected into both.
+double injectLight(const SurfelSource& source, const InjectionOffsets& offsets,
+                   const std::vector<CascadePlacement>& cascades, std::size_t level, LightVolume& ring,
+                   LightVolume& inner);
 
 // Adds one source's blockers into `scratch` (zeroed on entry, same placement as `volume`) and
 // merges them into `volume` by max.

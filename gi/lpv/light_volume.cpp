@@ -1,6 +1,9 @@
 #include "gi/lpv/light_volume.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "gi/sh/sh.h"
 
 namespace voxgi {
 
@@ -28,13 +31,20 @@ void BlockerVolume::reset(const CascadeGrid& placement) {
     albedo.assign(n * n * n, glm::vec3(0.0f));
 }
 
+float blockerPeak(glm::vec4 b) {
+    return b.x * sh::kY00 + std::sqrt(b.y * b.y + b.z * b.z + b.w * b.w) * sh::kY1;
+}
+
 glm::vec4 mergeBlockers(glm::vec4 a, glm::vec4 b) {
     // Two sources facing the same way most likely saw the same surface: keep the stronger
     // (max, seed 000) so it is not counted twice. Facing opposite ways (band-1 vectors
-    // disagree) they saw the two sides of a wall: both block, so add them.
+    // disagree) they saw the two sides of a wall: both block, so add them. "Stronger" is the
+    // larger peak: a plane's blocker from the voxelizer has no constant term (it blocks
+    // exactly <n.w>_+, volumes/blocker_sh.h), so comparing Y00 alone dropped every planar
+    // static blocker merged into an empty sample.
     glm::vec3 da(a.y, a.z, a.w), db(b.y, b.z, b.w);
     if (glm::dot(da, db) < 0.0f) return a + b;
-    return b.x > a.x ? b : a;
+    return blockerPeak(b) > blockerPeak(a) ? b : a;
 }
 
 void BlockerVolume::mergeMax(const BlockerVolume& other) {

@@ -61,8 +61,11 @@ struct BlockerVolume {
     void mergeMax(const BlockerVolume& other);
 };
 
-// The merge of two sources' blockers at one sample: max when they face the same way, sum
-// when they face opposite ways (the two sides of one wall).
+// The merge of two sources' blockers at one sample: the one with the larger peak
+// (blockerPeak) when they face the same way, the sum when they face opposite ways (the two
+// sides of one wall).
 glm::vec4 mergeBlockers(glm::vec4 a, glm::vec4 b);
+// The largest value of the blocker's 2-band function over directions: Y00 c0 + Y1 |c1|.
+float blockerPeak(glm::vec4 b);
 
 }  // namespace voxgi

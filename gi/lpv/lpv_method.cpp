@@ -91,10 +91,13 @@ MethodInfo lpvFamily(bool cascaded) {
         // most 256 MiB unless one face is larger: RsmRenderer::facesPerBatch), and in the cpu
         // back end one face read back and its surfels (64 + 64 bytes per texel) at a time.
         // Measured on the Cornell box's 5 faces: 319, 194 and 195 bytes per face texel at
-        // 1024^2 (3 faces a batch), 2048^2 and 4096^2 (one).
+        // 1024^2 (3 faces a batch), 2048^2 and 4096^2 (one). Cascades after the first also hold
+        // their inner light (gi/lpv/cascades.h): injected, accumulated and their textures (cpu) or
+        // injected, ping, pong and accumulated (gl), 4 x 48 bytes per cell.
         const LpvDesc d = readLpvDesc(gi, cascaded);
         const double texels = double(d.rsmSize) * double(d.rsmSize);
-        return 500.0 * double(d.resolution) * double(d.resolution) * double(d.resolution) * double(d.cascades) +
+        const double cells = double(d.resolution) * double(d.resolution) * double(d.resolution);
+        return 500.0 * cells * double(d.cascades) + 192.0 * cells * double(d.cascades - 1) +
                std::max(256.0 * 1024.0 * 1024.0, 68.0 * texels) + 132.0 * texels;
     };
     m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };

@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "gi/lpv/cascades.h"
+#include "gi/lpv/gl_cascade_uniforms.h"
 #include "gi/lpv/gl_injection.h"
 #include "gi/lpv/lpv_debug_views.h"
 #include "gi/lpv/gl_propagation.h"
@@ -71,14 +74,16 @@ class LpvTechnique final : public GiTechnique {
     RsmRenderer rsm;
     gl::Program apply;
     std::vector<CascadePlacement> placements;
-    std::vector<LightVolume> injected, accumulated;
+    // Per cascade, the ring light (VPLs of its own border region and beyond) and the inner light
+    // (VPLs finer cascades hold), see gi/lpv/cascades.h; cascade 0's inner light stays empty.
+    std::vector<LightVolume> injected, accumulated, injectedInner, accumulatedInner;
     std::vector<BlockerVolume> geometry;
     std::vector<CpuPropagator> propagators;
     std::vector<std::unique_ptr<GlPropagator>> glPropagators;
     std::unique_ptr<GlInjector> glInjector;                 // gl back end: injection on the GPU
     std::vector<std::unique_ptr<GlBlockerVolume>> glStatic;  // static blockers per cascade
     std::vector<glm::ivec3> glStaticOrigins;                 // placement glStatic was made for
-    std::vector<gl::Handle> textures;  // 3 per cascade: r, g, b
+    std::vector<gl::Handle> textures;  // 6 per cascade: ring r, g, b, inner r, g, b
     std::vector<glm::ivec3> lastOrigins;
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
     bool valid = false;
@@ -101,15 +106,15 @@ public:
                 std::fprintf(stderr, "voxgi: lpv: static blockers off (%s)\n", e.what());
             }
         }
-        injected.resize(std::size_t(desc.cascades));
-        accumulated.resize(std::size_t(desc.cascades));
+        for (auto* v : {&injected, &accumulated, &injectedInner, &accumulatedInner}) v->resize(std::size_t(desc.cascades));
         geometry.resize(std::size_t(desc.cascades));
         propagators.resize(std::size_t(desc.cascades));
         if (desc.backend == Backend::Gl) {
-            for (int c = 0; c < desc.cascades; ++c) glPropagators.push_back(std::make_unique<GlPropagator>(desc.resolution));
+            for (int c = 0; c < desc.cascades; ++c)
+                glPropagators.push_back(std::make_unique<GlPropagator>(desc.resolution, c == 0 ? 1 : 2));
             glInjector = std::make_unique<GlInjector>(desc.resolution);
         }
-        for (int i = 0; i < 3 * desc.cascades; ++i)
+        for (int i = 0; i < 6 * desc.cascades; ++i)
             textures.push_back(gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, desc.resolution, desc.resolution,
                                                  desc.resolution));
     }
@@ -149,6 +154,7 @@ public:
         std::vector<BlockerVolume> scratch(placements.size());
         for (std::size_t c = 0; c < placements.size(); ++c) {
             injected[c].reset(placements[c].grid);
+            injectedInner[c].reset(placements[c].grid);
             geometry[c].reset(placements[c].grid);
             scratch[c].reset(placements[c].grid);
         }
@@ -162,7 +168,10 @@ public:
                 const SurfelSource surfels = readSurfels(face);
                 rsmMs += millisecondsSince(t0);
                 t0 = std::chrono::steady_clock::now();
-                for (std::size_t c = 0; c < placements.size(); ++c) injectLight(surfels, offsets, injected[c]);
+                // Cascades write their own volumes: one task each.
+                tbb::parallel_for(std::size_t(0), placements.size(), [&](std::size_t c) {
+                    injectLight(surfels, offsets, placements, c, injected[c], injectedInner[c]);
+                });
                 injectMs += millisecondsSince(t0);
                 t0 = std::chrono::steady_clock::now();
                 for (std::size_t c = 0; c < placements.size(); ++c) injectBlockers(surfels, scratch[c], geometry[c]);
@@ -193,32 +202,38 @@ public:
         t0 = std::chrono::steady_clock::now();
         last = {};
         for (std::size_t c = 0; c < placements.size(); ++c) {
-            propagators[c].propagate(injected[c], geometry[c], propagationSteps(desc), options, accumulated[c], desc.sparse);
-            const PropagationStats& st = propagators[c].stats();
-            last.operatorMs += st.operatorMs;
-            last.stepsMs += st.stepsMs;
-            last.activeBricks += st.activeBricks;
-            last.totalBricks += st.totalBricks;
-            last.stepsRun = std::max(last.stepsRun, st.stepsRun);
+            // The inner light goes through the same geometry: the operator is built once.
+            for (int set = 0; set < (c == 0 ? 1 : 2); ++set) {
+                propagators[c].propagate(set == 0 ? injected[c] : injectedInner[c], geometry[c], propagationSteps(desc),
+                                         options, set == 0 ? accumulated[c] : accumulatedInner[c], desc.sparse);
+                const PropagationStats& st = propagators[c].stats();
+                last.operatorMs += st.operatorMs;
+                last.stepsMs += st.stepsMs;
+                last.activeBricks += st.activeBricks;
+                last.totalBricks += st.totalBricks;
+                last.stepsRun = std::max(last.stepsRun, st.stepsRun);
+            }
         }
         input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
 
         t0 = std::chrono::steady_clock::now();
         const int n = desc.resolution;
         for (std::size_t c = 0; c < placements.size(); ++c) {
-            const std::vector<glm::vec4>* channels[3] = {&accumulated[c].r, &accumulated[c].g, &accumulated[c].b};
-            for (int k = 0; k < 3; ++k)
-                glTextureSubImage3D(textures[3 * c + std::size_t(k)].id(), 0, 0, 0, 0, n, n, n, GL_RGBA, GL_FLOAT,
+            const LightVolume& inner = accumulatedInner[c];
+            const std::vector<glm::vec4>* channels[6] = {&accumulated[c].r, &accumulated[c].g, &accumulated[c].b,
+                                                         &inner.r, &inner.g, &inner.b};
+            for (int k = 0; k < (c == 0 ? 3 : 6); ++k)
+                glTextureSubImage3D(textures[6 * c + std::size_t(k)].id(), 0, 0, 0, 0, n, n, n, GL_RGBA, GL_FLOAT,
                                     channels[k]->data());
         }
         input.timers.addCpu("lpv.upload", millisecondsSince(t0));
         valid = true;
     }
 
-    GlCascadeTargets glTargets(std::size_t c) const {
+    GlCascadeTargets glTargets(std::size_t c, int set = 0) const {
         GlCascadeTargets t;
         t.grid = placements[c].grid;
-        for (int k = 0; k < 3; ++k) t.light[k] = glPropagators[c]->injected(k);
+        for (int k = 0; k < 3; ++k) t.light[k] = glPropagators[c]->injected(k, set);
         t.blocker = glPropagators[c]->blocker();
         t.albedo = glPropagators[c]->albedo();
         return t;
@@ -259,11 +274,12 @@ public:
             input.timers.end();
 
             input.timers.begin("lpv.inject");
-            for (std::size_t c = 0; c < placements.size(); ++c) {
-                GlCascadeTargets t = glTargets(c);
-                if (firstBatch) glInjector->clearLight(t);
-                for (const RsmFace& face : faces) glInjector->injectLight(face, offsets, t);
-            }
+            for (std::size_t c = 0; c < placements.size(); ++c)
+                for (int set = 0; set < glPropagators[c]->lightSets(); ++set) {
+                    GlCascadeTargets t = glTargets(c, set);
+                    if (firstBatch) glInjector->clearLight(t);
+                    for (const RsmFace& face : faces) glInjector->injectLight(face, offsets, t, placements, c, set == 1);
+                }
             input.timers.end();
 
             // Sources merge in the CPU back end's order: RSM faces, the camera, static blockers.
@@ -285,6 +301,7 @@ public:
         for (std::size_t c = 0; c < placements.size(); ++c) {
             glPropagators[c]->propagateInjected(propagationSteps(desc), options);
             accumulated[c].grid = placements[c].grid;
+            accumulatedInner[c].grid = placements[c].grid;
             geometry[c].grid = placements[c].grid;
         }
         input.timers.end();
@@ -306,26 +323,25 @@ public:
         apply.set("uApplyNormalOffset", desc.applyNormalOffset);
         apply.set("uDampening", desc.dampening);
         apply.set("uGlossy", desc.glossy ? 1 : 0);
+        setCascadeUniforms(apply, placements);
         // Every sampler of the arrays needs a 3D texture unit, including unused cascades.
-        for (std::size_t c = placements.size(); c < std::size_t(kLpvMaxCascades); ++c) {
-            std::string idx = "[" + std::to_string(c) + "]";
-            for (const char* name : {"uLpvR", "uLpvG", "uLpvB"}) apply.set((std::string(name) + idx).c_str(), 4);
-        }
-        for (std::size_t c = 0; c < placements.size(); ++c) {
-            const CascadePlacement& p = placements[c];
-            std::string idx = "[" + std::to_string(c) + "]";
-            apply.set(("uLpvMin" + idx).c_str(), p.grid.worldMin());
-            apply.set(("uLpvExtent" + idx).c_str(), p.grid.worldMax() - p.grid.worldMin());
-            apply.set(("uCellSize" + idx).c_str(), p.grid.cellSize);
-            apply.set(("uFadeMin" + idx).c_str(), p.fadeMin);
-            apply.set(("uFadeMax" + idx).c_str(), p.fadeMax);
-            apply.set(("uFadeWidth" + idx).c_str(), desc.fadeCells * p.grid.cellSize);
-            const char* names[3] = {"uLpvR", "uLpvG", "uLpvB"};
+        const char* ringNames[3] = {"uLpvR", "uLpvG", "uLpvB"};
+        const char* innerNames[3] = {"uInnerR", "uInnerG", "uInnerB"};
+        for (std::size_t c = 0; c < std::size_t(kLpvMaxCascades); ++c) {
+            const std::string idx = "[" + std::to_string(c) + "]", innerIdx = "[" + std::to_string(int(c) - 1) + "]";
+            const bool used = c < placements.size();
+            if (used) apply.set(("uCellSize" + idx).c_str(), placements[c].grid.cellSize);
             for (int k = 0; k < 3; ++k) {
-                GLuint unit = GLuint(4 + 3 * c + std::size_t(k));
-                glBindTextureUnit(unit, glPropagators.empty() ? textures[3 * c + std::size_t(k)].id()
-                                                              : glPropagators[c]->accumulated(k));
-                apply.set((std::string(names[k]) + idx).c_str(), int(unit));
+                // Units: 4.. ring of every cascade, then the inner volumes of cascades 1...
+                const GLuint ringUnit = GLuint(4 + 3 * c + std::size_t(k));
+                if (used) glBindTextureUnit(ringUnit, glPropagators.empty() ? textures[6 * c + std::size_t(k)].id()
+                                                                            : glPropagators[c]->accumulated(k, 0));
+                apply.set((std::string(ringNames[k]) + idx).c_str(), int(used ? ringUnit : 4));
+                if (c == 0) continue;
+                const GLuint innerUnit = GLuint(4 + 3 * kLpvMaxCascades + 3 * (c - 1) + std::size_t(k));
+                if (used) glBindTextureUnit(innerUnit, glPropagators.empty() ? textures[6 * c + 3 + std::size_t(k)].id()
+                                                                             : glPropagators[c]->accumulated(k, 1));
+                apply.set((std::string(innerNames[k]) + innerIdx).c_str(), int(used ? innerUnit : 4));
             }
         }
         glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -370,9 +386,20 @@ private:
 
     // The propagated light of a cascade and the geometry of every cascade, read back from the
     // GPU with the gl back end.
+    // The cascade's light from every surface inside it: ring + inner.
     LightVolume lightVolume(std::size_t c) const {
-        LightVolume light = accumulated[c];
-        if (c < glPropagators.size()) glPropagators[c]->readBack(light);
+        LightVolume light = accumulated[c], inner = accumulatedInner[c];
+        if (c < glPropagators.size()) {
+            glPropagators[c]->readBack(light, 0);
+            if (glPropagators[c]->lightSets() > 1) glPropagators[c]->readBack(inner, 1);
+            else inner = {};
+        }
+        if (inner.r.size() != light.r.size()) return light;
+        for (std::size_t i = 0; i < light.r.size(); ++i) {
+            light.r[i] += inner.r[i];
+            light.g[i] += inner.g[i];
+            light.b[i] += inner.b[i];
+        }
         return light;
     }
     std::vector<LightVolume> lightVolumes() const {

@@ -16,9 +16,15 @@ void staticBlockers(const SparseGeometryVolume& voxels, int level, BlockerVolume
                 if (!voxels.occupied(voxel, level)) continue;
                 glm::vec4 b = voxels.blockerSH(voxel, level);
                 glm::vec3 a = voxels.albedo(voxel, level);
-                for (int dz = 0; dz < 2; ++dz)
-                    for (int dy = 0; dy < 2; ++dy)
-                        for (int dx = 0; dx < 2; ++dx) {
+                // The corner plane behind the surface along its normal's dominant axis takes
+                // it; the other axes keep both planes. 
+                const glm::vec3 m = voxels.normal(voxel, level);
+                glm::ivec3 lo(0), hi(1);
+                for (int k = 0; k < 3; ++k)
+                    if (m[k] != 0.0f) lo[k] = hi[k] = m[k] > 0.0f ? 0 : 1;
+                for (int dz = lo.z; dz <= hi.z; ++dz)
+                    for (int dy = lo.y; dy <= hi.y; ++dy)
+                        for (int dx = lo.x; dx <= hi.x; ++dx) {
                             glm::ivec3 c(x + dx, y + dy, z + dz);
                             if (glm::any(glm::lessThan(c, glm::ivec3(0))) || glm::any(glm::greaterThan(c, glm::ivec3(n))))
                                 continue;

@@ -6,9 +6,10 @@
 namespace voxgi {
 #endif
 
-// Cascades per light volume: the apply pass binds three 3D textures per cascade, and 6 x 3 + the
-// G-buffer's 4 stay under GL 4.5's guaranteed 32 fragment texture units.
-const int kLpvMaxCascades = 6;
+// Cascades per light volume: the apply pass binds three 3D textures per cascade for its ring
+// light and three for its inner light (none for cascade 0, gi/lpv/cascades.h): 5 x 3 + 4 x 3 +
+// the G-buffer's 4 = 31 stay under GL 4.5's guaranteed 32 fragment texture units.
+const int kLpvMaxCascades = 5;
 
 #ifdef __cplusplus
 }  // namespace voxgi
