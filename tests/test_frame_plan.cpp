@@ -1,8 +1,10 @@
 // The frame plan drives the frame: for scenes that need and do not need each pass, the stages
 // the renderer's timers recorded are exactly the passes planFrame listed, for every method.
+#include <algorithm>
 #include <set>
 
 #include <gtest/gtest.h>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gi/methods.h"
@@ -133,6 +135,25 @@ TEST_F(FramePlanTest, EveryMethodRunsItsPlan) {
     ambient.gi.set("ambient.irradiance", "0.5");
     EXPECT_TRUE(planFrame(ambient, "ambient", 1).runs("ambient.apply"));
     expectPlanRuns(ambient, "ambient", "an ambient irradiance");
+}
+
+// Static work persists: the voxelized-scene blockers of a cascade are made once while it stays
+// put, though every update (lpv.reuse off) redoes the dynamic blockers, on both back ends.
+TEST_F(FramePlanTest, StaticBlockersAreMadeOncePerPlacement) {
+    for (const char* backend : {"cpu", "gl"}) {
+        Scene lit = box({pointLight()}, false, false);
+        lit.gi.set("lpv.reuse", "false");
+        lit.gi.set("lpv.backend", backend);
+        FramePlan plan = planFrame(lit, "clpv", 1);
+        ASSERT_TRUE(plan.runs("lpv.static_blockers")) << backend;
+        FrameRenderer renderer(lit, FrameOptions{}, plan);
+        for (int frame = 0; frame < 3; ++frame) renderer.renderFrame();
+        const auto& samples = renderer.timers().samples();
+        ASSERT_TRUE(samples.count("lpv.static_blockers")) << backend;
+        EXPECT_EQ(samples.at("lpv.static_blockers").cpuMs.size(), 1u) << backend;
+        const auto& blockers = samples.at("lpv.blockers");
+        EXPECT_EQ(std::max(blockers.cpuMs.size(), blockers.gpuMs.size()), 3u) << backend;
+    }
 }
 
 }  // namespace

@@ -28,9 +28,10 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
     const bool gl = d.backend == Backend::Gl;
     const bool voxels = d.staticBlockers && scene.triangleCount() > 0;
     const std::string volumes = count(std::size_t(d.cascades), "cascade") + " of " + std::to_string(d.resolution) + "^3";
-    if (gl)
-        p.updateIf(voxels, "lpv.static_blockers", "voxelized-scene blockers uploaded when a cascade moves",
-                   d.staticBlockers ? "no triangles" : "lpv.static_blockers=false");
+    p.updateIf(voxels, "lpv.static_blockers",
+               std::string("voxelized-scene blockers made (") + (gl ? "and uploaded) " : "") +
+                   "when a cascade moves, kept while it stays",
+               d.staticBlockers ? "no triangles" : "lpv.static_blockers=false");
     p.update.push_back({"lpv.rsm", count(rsmFaceCount(scene), "reflective shadow map face") + " of " +
                                        std::to_string(d.rsmSize) + "^2 for " + count(scene.lights.size(), "light")});
     if (!gl)

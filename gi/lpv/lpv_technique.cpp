@@ -81,8 +81,8 @@ class LpvTechnique final : public GiTechnique {
     std::vector<CpuPropagator> propagators;
     std::vector<std::unique_ptr<GlPropagator>> glPropagators;
     std::unique_ptr<GlInjector> glInjector;                 // gl back end: injection on the GPU
-    std::vector<std::unique_ptr<GlBlockerVolume>> glStatic;  // static blockers per cascade
-    std::vector<glm::ivec3> glStaticOrigins;                 // placement glStatic was made for
+    std::vector<BlockerVolume> statics;                      // static blockers per cascade, kept
+    std::vector<std::unique_ptr<GlBlockerVolume>> glStatic;  // the same on the GPU (gl back end)
     std::vector<gl::Handle> textures;  // 6 per cascade: ring r, g, b, inner r, g, b
     std::vector<glm::ivec3> lastOrigins;
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
@@ -188,13 +188,11 @@ public:
         }
         input.timers.addCpu("lpv.inject", injectMs);
 
+        if (input.plan.runs("lpv.static_blockers")) refreshStatics(input);
         auto t0 = std::chrono::steady_clock::now();
         for (std::size_t c = 0; c < placements.size(); ++c) {
             injectBlockers(camera, scratch[c], geometry[c]);
-            if (voxels) {
-                staticBlockers(*voxels, int(c), scratch[c]);
-                geometry[c].mergeMax(scratch[c]);
-            }
+            if (c < statics.size()) geometry[c].mergeMax(statics[c]);
         }
         input.timers.addCpu("lpv.blockers", blockersMs + millisecondsSince(t0));
 
@@ -239,32 +237,41 @@ public:
         return t;
     }
 
-    // The voxelized static blockers of each cascade, made on the CPU and uploaded once per
-    // placement (for `lpv` once; for `clpv` when a cascade's snapped origin moves).
-    void refreshStaticBlockers(const FrameInput& input) {
-        if (!voxels) return;
-        auto t0 = std::chrono::steady_clock::now();
-        bool changed = false;
-        glStatic.resize(placements.size());
-        glStaticOrigins.resize(placements.size());
+    // The voxelized static blockers of each cascade: made once per placement (for `lpv` once;
+    // for `clpv` when a cascade's snapped origin moves) and kept, so an update only redoes the
+    // dynamic blockers (RSM and G-buffer). Returns which cascades changed.
+    std::vector<bool> refreshStatics(const FrameInput& input) {
+        std::vector<bool> changed(placements.size(), false);
+        if (!voxels) return changed;
+        const auto t0 = std::chrono::steady_clock::now();
+        statics.resize(placements.size());
+        bool any = false;
         for (std::size_t c = 0; c < placements.size(); ++c) {
-            if (glStatic[c] && glStaticOrigins[c] == placements[c].grid.origin) continue;
-            if (!glStatic[c]) glStatic[c] = std::make_unique<GlBlockerVolume>(desc.resolution);
-            BlockerVolume v;
-            v.reset(placements[c].grid);
-            staticBlockers(*voxels, int(c), v);
-            glStatic[c]->upload(v);
-            glStaticOrigins[c] = placements[c].grid.origin;
-            changed = true;
+            const CascadeGrid& grid = placements[c].grid;
+            if (!statics[c].blocker.empty() && statics[c].grid.origin == grid.origin &&
+                statics[c].grid.cellSize == grid.cellSize && statics[c].grid.resolution == grid.resolution)
+                continue;
+            statics[c].reset(grid);
+            staticBlockers(*voxels, int(c), statics[c]);
+            changed[c] = any = true;
         }
-        if (changed) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
+        if (any) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
+        return changed;
     }
 
     // The gl back end: RSM, injection and propagation without leaving the GPU. RSM faces are
     // rendered in batches that bound their texture memory (one batch unless the maps are large
     // or the lights many; each batch adds one sample to the rsm, inject and blockers timers).
     void updateOnGpu(const FrameInput& input, const GBufferView& g) {
-        if (input.plan.runs("lpv.static_blockers")) refreshStaticBlockers(input);
+        if (input.plan.runs("lpv.static_blockers")) {
+            const std::vector<bool> changed = refreshStatics(input);
+            glStatic.resize(statics.size());
+            for (std::size_t c = 0; c < statics.size(); ++c) {
+                if (!changed[c] && glStatic[c]) continue;
+                if (!glStatic[c]) glStatic[c] = std::make_unique<GlBlockerVolume>(desc.resolution);
+                glStatic[c]->upload(statics[c]);
+            }
+        }
         const InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
         const std::size_t faceCount = rsmFaceCount(scene), batch = rsm.facesPerBatch();
         for (std::size_t first = 0; first == 0 || first < faceCount; first += batch) {
