@@ -11,6 +11,7 @@ packages=(
   libgtest-dev xvfb xauth
   gnuplot-nox
   python3-skimage  # test_metrics_reference compares PSNR, SSIM and Pearson with scikit-image
+  python3-openvdb  # test_vdb_python reads every dump with pyopenvdb.readAll
   clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer with AddressSanitizer and UBSan
 )
 

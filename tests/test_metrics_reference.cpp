@@ -37,18 +37,6 @@ std::vector<FlipReference> readFlipTable(const std::string& readme) {
     return rows;
 }
 
-// A python3 that imports scikit-image and SciPy: $VOXGI_PYTHON, then python3 on the PATH, then
-// Debian's (a pyenv or venv python3 first on the PATH may lack the Debian packages).
-std::string pythonWithSkimage() {
-    std::vector<std::string> candidates;
-    if (const char* env = std::getenv("VOXGI_PYTHON"); env && *env) candidates.push_back(env);
-    candidates.insert(candidates.end(), {"python3", "/usr/bin/python3"});
-    for (const std::string& py : candidates)
-        if (std::system(("\"" + py + "\" -c \"import skimage.metrics, scipy.stats\" > /dev/null 2>&1").c_str()) == 0)
-            return py;
-    return {};
-}
-
 void writeFloats(const std::string& path, const std::vector<float>& values) {
     std::ofstream out(path, std::ios::binary);
     out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
@@ -101,7 +89,7 @@ TEST(MetricsReference, HdrFlipMatchesNvidiaFlip) {
 }
 
 TEST(MetricsReference, PsnrSsimPearsonMatchScikitImage) {
-    const std::string python = pythonWithSkimage();
+    const std::string python = test::pythonWith("skimage.metrics, scipy.stats");
     if (python.empty()) GTEST_SKIP() << "no python3 with scikit-image and SciPy (Debian python3-skimage)";
 
     struct Case {

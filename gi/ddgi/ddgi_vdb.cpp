@@ -21,7 +21,8 @@ void writeProbeVdb(const ProbeField& field, const std::string& path) {
         auto position = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
         auto offset = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
         auto irradiance = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-        auto state = openvdb::Int32Grid::create(-1);
+        // A float grid: pyopenvdb (python3-openvdb) reads only float, bool and vec3s grids.
+        auto state = openvdb::FloatGrid::create(-1.0f);
         auto pa = position->getAccessor();
         auto oa = offset->getAccessor();
         auto ia = irradiance->getAccessor();
@@ -36,7 +37,7 @@ void writeProbeVdb(const ProbeField& field, const std::string& path) {
             pa.setValue(c, openvdb::Vec3s(p.x, p.y, p.z));
             oa.setValue(c, openvdb::Vec3s(rec.offset.x, rec.offset.y, rec.offset.z));
             ia.setValue(c, openvdb::Vec3s(e.x, e.y, e.z));
-            sa.setValue(c, int(rec.state));
+            sa.setValue(c, float(int(rec.state)));
         }
         auto finish = [&](openvdb::GridBase::Ptr g, const std::string& name, openvdb::GridClass cls) {
             g->setName(name + suffix);

@@ -59,6 +59,15 @@ std::string sharedDataDir(const std::string& name) {
     return fs::is_directory(dir) ? dir.string() : std::string();
 }
 
+std::string pythonWith(const std::string& modules) {
+    std::vector<std::string> candidates;
+    if (const char* env = std::getenv("VOXGI_PYTHON"); env && *env) candidates.push_back(env);
+    candidates.insert(candidates.end(), {"python3", "/usr/bin/python3"});
+    for (const std::string& py : candidates)
+        if (std::system(("\"" + py + "\" -c \"import " + modules + "\" > /dev/null 2>&1").c_str()) == 0) return py;
+    return {};
+}
+
 Scene cornellBox() { return loadSceneFile(sourcePath("scenes/cornell-box.json")); }
 
 std::vector<glm::ivec3> occupiedVoxels(const SparseGeometryVolume& v, int level) {

@@ -30,6 +30,11 @@ std::string sharedScenesDir();
 // ../shared/<name> (or $VOXGI_SHARED/<name>), e.g. "metrics-reference"; empty when absent.
 std::string sharedDataDir(const std::string& name);
 
+// A python3 that runs `import <modules>` (e.g. "pyopenvdb"): $VOXGI_PYTHON, then python3 on
+// the PATH, then Debian's (a pyenv or venv python3 first on the PATH may lack the Debian
+// packages); empty when none does (tests then skip).
+std::string pythonWith(const std::string& modules);
+
 // The built-in Cornell box.
 Scene cornellBox();
 
