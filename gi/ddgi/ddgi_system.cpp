@@ -100,7 +100,7 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
     t0 = std::chrono::steady_clock::now();
     blender.border(field, jobs);
     stats.borderMs = msSince(t0);
-    for (int p : blendProbes) field.probes[std::size_t(p)].fresh = false;
+    for (int p : blendProbes) ++field.probes[std::size_t(p)].blends;
 
     t0 = std::chrono::steady_clock::now();
     if (desc.relocate) relocateProbes(field, rays_, trace_);

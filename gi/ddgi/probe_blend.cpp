@@ -116,6 +116,12 @@ BlendParams BlendParams::from(const DdgiDesc& d) {
     return p;
 }
 
+float probeHysteresis(float hysteresis, int blends) {
+    if (hysteresis >= 1.0f) return blends > 0 ? 1.0f : 0.0f;  // frozen after the first data
+    const float n = float(std::max(blends, 0));
+    return std::min(hysteresis, n / (n + 1.0f));
+}
+
 std::vector<BlendJob> makeBlendJobs(const ProbeField& field, const std::vector<int>& probes, int raysPerJob) {
     std::vector<BlendJob> jobs;
     jobs.reserve(probes.size());
@@ -129,7 +135,7 @@ std::vector<BlendJob> makeBlendJobs(const ProbeField& field, const std::vector<i
         job.distanceX = dt.x;
         job.distanceY = dt.y;
         job.rayBase = int(j) * raysPerJob;
-        job.hysteresis = field.probes[std::size_t(p)].fresh ? 0.0f : field.desc().hysteresis;
+        job.hysteresis = probeHysteresis(field.desc().hysteresis, field.probes[std::size_t(p)].blends);
         job.maxDistance = field.volumes()[std::size_t(field.volumeOf(p))].maxDistance();
         jobs.push_back(job);
     }

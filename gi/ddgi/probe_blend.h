@@ -26,6 +26,15 @@ static_assert(sizeof(BlendJob) == 32, "BlendJob must match the GLSL std430 layou
 
 std::vector<BlendJob> makeBlendJobs(const ProbeField& field, const std::vector<int>& probes, int raysPerJob);
 
+// A probe's hysteresis after `blends` earlier blends: min(hysteresis, blends / (blends + 1)).
+// With weight n / (n + 1) on the previous value the n + 1 first blends are their plain mean
+// (the probe converges as fast as its rays allow), and from n = h / (1 - h) (32 blends at 0.97)
+// on, the exponential mean of ddgi.hysteresis smooths the rotated rays' noise. Before, a new
+// probe took its first rays whole and then 3 % of each blend, so its irradiance rose for
+// hundreds of frames toward the answer; seed 004 and RTXGI leave that start to the user.
+// Hysteresis 1 still freezes a probe after its first data.
+float probeHysteresis(float hysteresis, int blends);
+
 // Blending constants shared by both back ends.
 struct BlendParams {
     int irradianceTexels = 8;

@@ -73,7 +73,12 @@ struct Atlas {
 struct ProbeRecord {
     glm::vec3 offset{0.0f};  // relocation, world units, at most 0.45 cells per axis
     ProbeState state = ProbeState::Active;
-    bool fresh = true;       // no data yet: the next blend uses hysteresis 0
+    // Blends since the probe's data was last reset (0: none yet). The blend's hysteresis is
+    // min(ddgi.hysteresis, n / (n + 1)): a running mean over the first blends, so a new or
+    // woken probe converges in about 1 / (1 - hysteresis) frames, then the usual exponential
+    // mean (probeHysteresis, probe_blend.h).
+    int blends = 0;
+    bool fresh() const { return blends == 0; }
 };
 
 // Volumes for a desc: a fixed grid fitted to the scene bounds, or camera-centred cascades.

@@ -14,7 +14,7 @@ std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t fra
     if (!desc.classify) return work;
     for (int p = 0; p < field.probeCount(); ++p) {
         const ProbeRecord& rec = field.probes[std::size_t(p)];
-        if (rec.fresh && rec.state != ProbeState::Off) continue;  // first data as soon as possible
+        if (rec.fresh() && rec.state != ProbeState::Off) continue;  // first data as soon as possible
         if (rec.state == ProbeState::Off) work[std::size_t(p)] = ProbeWork::FixedOnly;
         if (rec.state == ProbeState::Sleeping)
             work[std::size_t(p)] = (frame + std::uint32_t(p)) % std::uint32_t(desc.sleepInterval) == 0
@@ -83,7 +83,7 @@ void classifyProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& tra
             if (query.distanceToGeometry && query.distanceToGeometry(position) <= v.cellDiagonal()) near = true;
             ProbeRecord& rec = field.probes[std::size_t(p)];
             ProbeState next = inside ? ProbeState::Off : near ? ProbeState::Active : ProbeState::Sleeping;
-            if (rec.state == ProbeState::Off && next != ProbeState::Off) rec.fresh = true;
+            if (rec.state == ProbeState::Off && next != ProbeState::Off) rec.blends = 0;
             rec.state = next;
         }
     });
