@@ -34,6 +34,14 @@ struct GBufferView {
     glm::mat4 viewProjection{1.0f};
 };
 
+// The camera's forward direction (unit, world space) from a perspective view-projection: the
+// clip-space w row measures the distance along it.
+inline glm::vec3 viewForward(const glm::mat4& viewProjection) {
+    const glm::vec3 f(viewProjection[0][3], viewProjection[1][3], viewProjection[2][3]);
+    const float length = glm::length(f);
+    return length > 0.0f ? f / length : glm::vec3(0.0f);
+}
+
 struct FrameInput {
     const Scene& scene;
     const SceneGpu& sceneGpu;  // the scene's GL buffers (draw() rasterizes every triangle)

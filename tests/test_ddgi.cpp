@@ -363,3 +363,42 @@ TEST(Ddgi, VoxelOccupancyPutsProbesFarFromGeometryToSleep) {
     EXPECT_EQ(c.active, 56);
     EXPECT_EQ(c.off, 0);
 }
+
+TEST(Ddgi, ScrollingVolumesCentreAheadOfTheCameraInsideTheScene) {
+    Bounds box;
+    box.min = glm::vec3(0.0f);
+    box.max = glm::vec3(4.0f);
+    ProbeVolume v;
+    v.counts = glm::ivec3(4);
+    v.spacing = glm::vec3(0.5f);  // 1.5 m from the first probe to the last
+    // Inside: a quarter of the extent ahead along the view.
+    glm::vec3 c = scrollCentre(v, glm::vec3(2.0f), glm::vec3(1, 0, 0), 0.25f, box);
+    EXPECT_NEAR(c.x, 2.375f, 1e-6f);
+    EXPECT_NEAR(c.y, 2.0f, 1e-6f);
+    // A camera 3 m outside the box looking in: slid back inside, touching the near wall.
+    c = scrollCentre(v, glm::vec3(2.0f, 2.0f, -3.0f), glm::vec3(0, 0, 1), 0.25f, box);
+    EXPECT_NEAR(c.z, 0.75f, 1e-6f);
+    // A volume wider than the box sits on the box's centre along that axis.
+    v.spacing = glm::vec3(2.0f);
+    c = scrollCentre(v, glm::vec3(2.0f, 2.0f, -3.0f), glm::vec3(0, 0, 1), 0.25f, box);
+    EXPECT_NEAR(c.z, 2.0f, 1e-6f);
+
+    // End to end: two cascades seen from outside the box (the Cornell box's camera) light the
+    // walls instead of sitting in the empty space in front of it.
+    Scene scene = test::furnaceBox(0.5f, 1.0f, 4.0f);
+    scene.camera.eye = glm::vec3(0.0f, 0.0f, -5.0f);
+    scene.camera.target = glm::vec3(0.0f);
+    RayTracer tracer(scene);
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "4"}, {"spacing", "0.5"}, {"rays", "64"}, {"cascades", "2"}}));
+    for (int i = 0; i < 4; ++i) ddgi.update(scene.camera.eye, nullptr, glm::vec3(0, 0, 1));
+    const ProbeVolume& finest = ddgi.field().volumes().front();
+    const Bounds bounds = scene.bounds();
+    for (int z = 0; z < finest.counts.z; ++z) {
+        const glm::vec3 p = finest.basePosition(glm::ivec3(0, 0, z));
+        EXPECT_GE(p.z, bounds.min.z);
+        EXPECT_LE(p.z, bounds.max.z);
+    }
+    ProbeSampler sampler(ddgi.field());
+    const glm::vec3 floor(0.0f, bounds.min.y + 0.25f, bounds.min.z + 0.5f);
+    EXPECT_GT(sampler.irradiance(floor, glm::vec3(0, 1, 0), glm::vec3(0, 0, -1)).x, 0.1f);
+}

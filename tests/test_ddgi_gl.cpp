@@ -67,7 +67,7 @@ TEST_F(DdgiGl, AtlasesGoUpOnlyAfterCpuWrites) {
     // only when the CPU changed them since (here: probe planes reset by scrolling).
     Scene scene = test::openYard();
     RayTracer tracer(scene);
-    DdgiSystem ddgi(tracer, descFrom({{"probes", "4,3,4"}, {"rays", "64"}, {"scroll", "true"}}));
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "4,3,4"}, {"spacing", "0.5"}, {"rays", "64"}, {"scroll", "true"}}));
     DdgiGpu backend(ddgi.field());
     glm::vec3 eye(0.1f, 1.0f, 0.0f);
     ddgi.update(eye, &backend);

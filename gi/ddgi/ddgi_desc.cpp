@@ -51,6 +51,8 @@ SettingsTable<DdgiDesc> makeTable() {
     t.integer("cascades", &D::cascades, 1, kDdgiMaxVolumes, "camera-centred cascades, spacing doubling outward").main();
     t.choice("scroll", &D::scroll, {{"auto", DdgiScroll::Auto}, {"true", DdgiScroll::On}, {"false", DdgiScroll::Off}},
              "camera-centred volumes scrolling in whole cells; auto: when cascades > 1");
+    t.number("forward_offset", &D::forwardOffset, 0.0, 0.5,
+             "scrolling volumes centred this fraction of their extent ahead of the camera");
     t.choice("direct", &D::directLight, {{"rays", DdgiDirectLight::ShadowRays}, {"occlusion", DdgiDirectLight::OcclusionProbes}},
              "light visibility at probe-ray hits: shadow rays or occlusion probes (seed 004 ch. 5)");
     t.integer("occlusion_stride", &D::occlusionStride, 1, 4096, "occlusion probes: shadow rays from every n-th hit");

@@ -59,6 +59,9 @@ struct DdgiDesc {
     int sleepInterval = 10;       // a sleeping probe updates every this many frames
     int cascades = 1;             // > 1: camera-centred cascades, spacing doubling outward
     DdgiScroll scroll = DdgiScroll::Auto;  // camera-centred volume(s) scrolling in whole cells
+    // Scrolling volumes centre this fraction of their extent ahead of the camera (as clpv's
+    // lpv.forward_offset): most probes where the camera looks, some behind for light from there.
+    float forwardOffset = 0.25f;
     DdgiDirectLight directLight = DdgiDirectLight::ShadowRays;
     int occlusionStride = 4;      // occlusion probes: shadow rays from every n-th blend ray's hit
     DdgiHitCache hitCache = DdgiHitCache::All;

@@ -17,8 +17,11 @@ double msSince(std::chrono::steady_clock::time_point t) {
 DdgiSystem::DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQuery query)
     : tracer_(tracer), query_(std::move(query)) {
     const Scene& scene = tracer.scene();
-    field_ = std::make_unique<ProbeField>(desc, layoutVolumes(desc, scene.bounds(), scene.camera.eye));
-    Bounds b = scene.bounds();
+    const glm::vec3 view = scene.camera.target - scene.camera.eye;
+    const glm::vec3 forward = glm::length(view) > 0.0f ? glm::normalize(view) : glm::vec3(0.0f);
+    bounds_ = scene.bounds();
+    field_ = std::make_unique<ProbeField>(desc, layoutVolumes(desc, bounds_, scene.camera.eye, forward));
+    const Bounds& b = bounds_;
     float radius = b.valid() ? 0.5f * glm::length(b.extent()) : 1.0f;
     shadowRays_ = std::make_unique<ShadowRayVisibility>(tracer, 1e-4f * std::max(radius, 1e-3f));
 }
@@ -45,12 +48,14 @@ std::vector<TechniqueStat> statList(const DdgiFrameStats& s) {
             {"probes_off", double(s.states.off), "probes"}};
 }
 
-DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend) {
+DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec3 forward) {
     DdgiFrameStats stats;
     ProbeField& field = *field_;
     const DdgiDesc& desc = field.desc();
     if (desc.scrolls())
-        for (int v = 0; v < int(field.volumes().size()); ++v) field.scrollTo(v, eye);
+        for (int v = 0; v < int(field.volumes().size()); ++v)
+            field.scrollTo(v, scrollCentre(field.volumes()[std::size_t(v)], eye, forward, desc.forwardOffset,
+                                           bounds_));
 
     auto t0 = std::chrono::steady_clock::now();
     rays_ = makeRaySet(desc, std::uint32_t(desc.seed), frame_);

@@ -45,8 +45,9 @@ public:
     DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQuery query = {});
     ~DdgiSystem();
 
-    // One frame. `eye` centres scrolling volumes. The CPU reference blends when backend is null.
-    DdgiFrameStats update(glm::vec3 eye, BlendBackend* backend = nullptr);
+    // One frame. Scrolling volumes centre ahead of `eye` along the unit `forward`
+    // (scrollCentre). The CPU reference blends when backend is null.
+    DdgiFrameStats update(glm::vec3 eye, BlendBackend* backend = nullptr, glm::vec3 forward = glm::vec3(0.0f));
 
     ProbeField& field() { return *field_; }
     const ProbeField& field() const { return *field_; }
@@ -62,6 +63,7 @@ private:
     GeometryQuery query_;
     std::unique_ptr<ProbeField> field_;
     std::unique_ptr<LightVisibility> shadowRays_;
+    Bounds bounds_;  // the scene's, where scrolling volumes stay (scrollCentre)
     HitCache hitCache_;
     CpuBlend cpuBlend_;
     RaySet rays_;

@@ -12,7 +12,8 @@ DdgiTechnique::DdgiTechnique(const Scene& scene, GeometryQuery query) {
     tracer_ = std::make_unique<RayTracer>(scene);
     if (desc.occupancy && !query.distanceToGeometry && scene.triangleCount() > 0) {
         // The finest volume's cells decide the voxel size; coarser cascades see a finer grid.
-        ProbeVolume finest = layoutVolumes(desc, scene.bounds(), scene.camera.eye).front();
+        ProbeVolume finest = layoutVolumes(desc, scene.bounds(), scene.camera.eye,
+                                           glm::normalize(scene.camera.target - scene.camera.eye)).front();
         GeometryQuery occupancy = occupancyQuery(voxelizeForProbes(scene, finest), finest);
         query.distanceToGeometry = std::move(occupancy.distanceToGeometry);
     }
@@ -24,7 +25,7 @@ DdgiTechnique::~DdgiTechnique() = default;
 
 void DdgiTechnique::update(const FrameInput& input, const GBufferView& gbuffer) {
     BlendBackend* backend = system_->desc().gpuBlend() ? gpu_.get() : nullptr;
-    lastStats_ = system_->update(gbuffer.eye, backend);
+    lastStats_ = system_->update(gbuffer.eye, backend, viewForward(gbuffer.viewProjection));
     // The system runs every stage each frame; the plan lists each one (ddgi_method.cpp).
     const std::pair<const char*, double> stages[] = {{"ddgi.trace", lastStats_.traceMs},
                                                      {"ddgi.shade", lastStats_.shadeMs},

@@ -100,7 +100,21 @@ void Atlas::fromRows(const std::vector<glm::vec4>& rows) {
     });
 }
 
-std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye) {
+glm::vec3 scrollCentre(const ProbeVolume& v, glm::vec3 eye, glm::vec3 forward, float forwardOffset,
+                       const Bounds& bounds) {
+    const glm::vec3 extent = glm::vec3(v.counts - 1) * v.spacing;
+    glm::vec3 centre = eye + forward * (forwardOffset * extent);
+    if (!bounds.valid()) return centre;
+    for (int k = 0; k < 3; ++k) {
+        const float half = 0.5f * extent[k];
+        centre[k] = bounds.max[k] - bounds.min[k] <= 2.0f * half
+                        ? 0.5f * (bounds.min[k] + bounds.max[k])
+                        : std::clamp(centre[k], bounds.min[k] + half, bounds.max[k] - half);
+    }
+    return centre;
+}
+
+std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye, glm::vec3 forward) {
     glm::vec3 extent = bounds.valid() ? glm::max(bounds.extent(), glm::vec3(1e-4f)) : glm::vec3(1.0f);
     float longest = std::max(extent.x, std::max(extent.y, extent.z));
     glm::ivec3 counts = desc.probeCounts;
@@ -118,9 +132,9 @@ std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bound
         v.counts = counts;
         v.spacing = spacing * float(1 << c);
         if (desc.scrolls()) {
-            // Camera-centred, snapped to whole cells of this cascade.
+            // Camera-centred (pushed ahead), snapped to whole cells of this cascade.
             glm::vec3 half = 0.5f * glm::vec3(counts - 1) * v.spacing;
-            v.origin = glm::floor((eye - half) / v.spacing + 0.5f) * v.spacing;
+            v.origin = glm::floor((scrollCentre(v, eye, forward, desc.forwardOffset, bounds) - half) / v.spacing + 0.5f) * v.spacing;
         } else {
             // Centred on the bounds; with fitted spacing the probes sit at cell centres, so
             // none lies on the bounding walls.
@@ -200,10 +214,10 @@ glm::vec3 ProbeField::meanIrradiance(int probe) const {
     return sum / float(n * n);
 }
 
-glm::ivec3 ProbeField::scrollTo(int index, glm::vec3 eye) {
+glm::ivec3 ProbeField::scrollTo(int index, glm::vec3 target) {
     ProbeVolume& v = volumes_[std::size_t(index)];
     glm::vec3 centre = v.origin + 0.5f * glm::vec3(v.counts - 1) * v.spacing;
-    glm::ivec3 shift = glm::ivec3(glm::floor((eye - centre) / v.spacing + 0.5f));
+    glm::ivec3 shift = glm::ivec3(glm::floor((target - centre) / v.spacing + 0.5f));
     if (shift == glm::ivec3(0)) return shift;
     v.origin += glm::vec3(shift) * v.spacing;
     v.scroll += shift;

@@ -81,8 +81,17 @@ struct ProbeRecord {
     bool fresh() const { return blends == 0; }
 };
 
-// Volumes for a desc: a fixed grid fitted to the scene bounds, or camera-centred cascades.
-std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye);
+// Volumes for a desc: a fixed grid fitted to the scene bounds, or camera-centred cascades
+// (centred on scrollCentre).
+std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye,
+                                       glm::vec3 forward = glm::vec3(0.0f));
+// Where a scrolling volume centres: forwardOffset of its extent ahead of the eye along the unit
+// `forward` (per axis, so the eye stays inside for offsets up to 0.5), then slid inside the
+// scene's bounds (to their centre along an axis the volume spans): probes outside every surface
+// light nothing, and a camera outside the scene (the Cornell box seen through its open side)
+// would otherwise leave every volume in front of it.
+glm::vec3 scrollCentre(const ProbeVolume& volume, glm::vec3 eye, glm::vec3 forward, float forwardOffset,
+                       const Bounds& bounds);
 
 class ProbeField {
 public:
@@ -100,9 +109,9 @@ public:
     // Mean of the decoded irradiance over the probe's interior texels (W/m^2).
     glm::vec3 meanIrradiance(int probe) const;
 
-    // Moves a scrolling volume by whole cells so its centre follows `eye`; resets the probe
+    // Moves a scrolling volume by whole cells so its centre follows `centre`; resets the probe
     // planes that enter. Returns the shift in cells.
-    glm::ivec3 scrollTo(int volume, glm::vec3 eye);
+    glm::ivec3 scrollTo(int volume, glm::vec3 centre);
 
     // Every CPU write to `irradiance` or `distance` (probe resets, the CPU blend) bumps this, so
     // that a GPU copy of the atlases uploads them again only when they changed.
