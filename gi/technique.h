@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,12 @@ public:
     virtual DebugDrawing debugView(const std::string& view, const DebugViewContext& context) const;
     // What its last update did, for benchmarks and the viewer.
     virtual std::vector<TechniqueStat> stats() const { return {}; }
+    // Techniques whose light builds up over frames: after trackConvergence(), the relative change
+    // of their light state over a window of recent updates, negative until the window has filled
+    // (`voxgi eval` runs them until it falls below a threshold). None for techniques that start
+    // over each frame.
+    virtual void trackConvergence() {}
+    virtual std::optional<double> lightStateChange() const { return std::nullopt; }
 };
 
 }  // namespace voxgi

@@ -402,3 +402,41 @@ TEST(Ddgi, ScrollingVolumesCentreAheadOfTheCameraInsideTheScene) {
     const glm::vec3 floor(0.0f, bounds.min.y + 0.25f, bounds.min.z + 0.5f);
     EXPECT_GT(sampler.irradiance(floor, glm::vec3(0, 1, 0), glm::vec3(0, 0, -1)).x, 0.1f);
 }
+
+TEST(Ddgi, FieldChangeFallsAsTheFurnaceConverges) {
+    Scene scene = test::furnaceBox(0.5f, 1.0f);
+    RayTracer tracer(scene);
+    DdgiSystem untracked(tracer, descFrom({{"probes", "2"}, {"rays", "64"}}));
+    runFrames(untracked, DdgiSystem::kChangeWindow + 2);
+    EXPECT_LT(untracked.fieldChange(), 0.0);  // off unless asked
+
+    DdgiSystem ddgi(tracer, descFrom({{"probes", "2"}, {"rays", "64"}}));
+    ddgi.trackChange();
+    runFrames(ddgi, DdgiSystem::kChangeWindow);
+    EXPECT_LT(ddgi.fieldChange(), 0.0);  // the window has not filled
+    runFrames(ddgi, 1);
+    const double early = ddgi.fieldChange();
+    EXPECT_GT(early, 0.05);  // the bounces are still adding light
+    runFrames(ddgi, 150);
+    EXPECT_LT(ddgi.fieldChange(), 0.01);
+    EXPECT_LT(ddgi.fieldChange(), 0.2 * early);
+}
+
+TEST(Ddgi, FittedGridsHaveCubicCellsAlongTheScenesShape) {
+    Bounds b;
+    b.min = glm::vec3(-4.0f, 0.0f, -2.0f);
+    b.max = glm::vec3(4.0f, 2.0f, 2.0f);  // 8 x 2 x 4 m
+    for (int cells : {4, 8}) {
+        const ProbeVolume v = layoutVolumes(descFrom({{"fit_cells", std::to_string(cells)}}), b, glm::vec3(0.0f)).front();
+        const float cell = 8.0f / float(cells);
+        EXPECT_EQ(v.counts, glm::ivec3(cells, cells / 4, cells / 2)) << cells;
+        EXPECT_NEAR(v.spacing.x, cell, 1e-6f);
+        EXPECT_NEAR(v.spacing.y, cell, 1e-6f);
+        EXPECT_NEAR(v.spacing.z, cell, 1e-6f);
+        // Probes at cell centres: half a cell inside the bounds.
+        EXPECT_NEAR(v.origin.x, b.min.x + 0.5f * cell, 1e-5f);
+        EXPECT_NEAR(v.origin.y, b.min.y + 0.5f * cell, 1e-5f);
+    }
+    // The affordability check sees the fitted grid's worst case before anything is allocated.
+    EXPECT_THROW(descFrom({{"fit_cells", "32"}, {"rays", "4096"}}), InputError);
+}

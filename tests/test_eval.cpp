@@ -103,12 +103,39 @@ TEST(Eval, ReportOnTinyCornellBoxWithTwoMethods) {
     EXPECT_TRUE(readJson(dir + "/report.json")["scenes"][0]["reference"]["cached"].get<bool>());
 }
 
+TEST(Eval, TemporalMethodsWarmUpUntilTheirLightSettles) {
+    std::string dir = makeTempDir("eval-converge");
+    RunResult r = runVoxgi("eval cornell-box --methods direct,ddgi --presets low --width 16 --height 16 --spp 4 "
+                           "--frames 6 --warmup 2 --converge 0.05 --max-warmup 200 -o " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json runs = readJson(dir + "/report.json")["scenes"][0]["runs"];
+    ASSERT_EQ(runs.size(), 2u);
+    // Direct light starts over every frame: the fixed warm-up.
+    EXPECT_FALSE(runs[0]["temporal"].get<bool>());
+    EXPECT_EQ(runs[0]["warmup_frames"].get<int>(), 2);
+    // DDGI's field needs its window filled and then settles well before the cap.
+    EXPECT_TRUE(runs[1]["temporal"].get<bool>());
+    EXPECT_TRUE(runs[1]["converged"].get<bool>());
+    EXPECT_GT(runs[1]["warmup_frames"].get<int>(), 10);  // DdgiSystem::kChangeWindow
+    EXPECT_LT(runs[1]["warmup_frames"].get<int>(), 200);
+    EXPECT_EQ(runs[1]["timed_frames"].get<int>(), 4);
+    EXPECT_GT(runs[1]["converge_ms"].get<double>(), 0.0);
+    // A cap below the window stops the warm-up there, and the row says it did not converge.
+    r = runVoxgi("eval cornell-box --methods ddgi --presets low --width 16 --height 16 --spp 4 --frames 6 "
+                 "--warmup 2 --max-warmup 5 -o " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json capped = readJson(dir + "/report.json")["scenes"][0]["runs"][0];
+    EXPECT_FALSE(capped["converged"].get<bool>());
+    EXPECT_EQ(capped["warmup_frames"].get<int>(), 5);
+}
+
 TEST(Eval, BadOptionsAreOneLineErrors) {
     std::string dir = makeTempDir("eval-bad");
     EXPECT_EQ(runVoxgi("eval cornell-box --methods direct --presets ultra -o " + dir).exitCode, 2);
     EXPECT_EQ(runVoxgi("eval cornell-box --methods magic -o " + dir).exitCode, 2);
     EXPECT_EQ(runVoxgi("eval cornell-box --methods isr -o " + dir).exitCode, 3);
     EXPECT_EQ(runVoxgi("eval cornell-box --methods direct").exitCode, 2);
+    EXPECT_EQ(runVoxgi("eval cornell-box --methods ddgi --converge 2 -o " + dir).exitCode, 2);
     EXPECT_EQ(runVoxgi("eval --stability --cases no-such-case -o " + dir).exitCode, 2);
     EXPECT_FALSE(fileExists(dir + "/report.json"));
     // Bad input leaves no output folder.

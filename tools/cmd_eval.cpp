@@ -25,12 +25,14 @@ namespace {
 
 const char* kUsage =
     "voxgi eval SCENE... -o DIR [--methods NAME,...] [--presets low,medium,high]\n"
-    "       [--reference REF.exr | auto] [--spp N] [--cache DIR] [--frames N] [--warmup N] [--width W --height H]\n"
-    "       [--set section.key=value]...\n"
+    "       [--reference REF.exr | auto] [--spp N] [--cache DIR] [--frames N] [--warmup N] [--converge EPS]\n"
+    "       [--max-warmup N] [--width W --height H] [--set section.key=value]...\n"
     "  voxgi eval --stability -o DIR [--cases NAME,...]\n"
     "  --methods: default every built method; --presets: each method's (voxgi methods NAME), one run for a method with none\n"
     "  --spp: reference samples per pixel (default 256); --cache: reference cache (default DIR/cache)\n"
-    "  --frames: frames accumulated per run (default the scene's, at least warm-up + 5); --warmup: untimed frames (4)";
+    "  --frames: frames accumulated per run (default the scene's, at least warm-up + 5); --warmup: untimed frames (4)\n"
+    "  --converge: methods whose light builds up over frames (ddgi) warm up until it changes less than this\n"
+    "    relative amount over their window (0.01), or for --max-warmup frames (300)";
 
 std::string sceneName(const std::string& argument) {
     std::string stem = std::filesystem::path(argument).stem().string();
@@ -107,8 +109,11 @@ EvalRow measure(const std::string& method, const Preset& preset, MethodRun run, 
     row.preset = preset.name;
     row.settings = settingsText(preset.settings);
     row.frameMs = run.frameMs;
-    row.frames = rs.frames;
     row.warmupFrames = run.warmupFrames;
+    row.frames = run.warmupFrames + run.timedFrames;
+    row.temporal = run.temporal;
+    row.converged = run.converged;
+    row.convergeMs = run.convergeMs;
     row.timedFrames = run.timedFrames;
     row.stages = run.stages;
     row.full = computeMetrics(run.image, ref.image, "beauty");
@@ -142,6 +147,8 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
         throw InputError("--reference " + refArg + ": a reference file fits one scene; use auto for several");
     const int spp = args.integer("--spp", 256, 1, 1 << 20);
     const int warmup = args.integer("--warmup", 4, 0, 1 << 16);
+    const double convergeBelow = args.number("--converge", 0.01, 0.0, 1.0);
+    const int maxWarmup = args.integer("--max-warmup", 300, 0, 1 << 20);
     const std::string cacheDir = args.value("--cache", dir + "/cache");
 
     std::vector<Scene> scenes;
@@ -187,6 +194,8 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
         rs.height = scene.camera.height;
         rs.warmup = warmup;
         rs.frames = args.integer("--frames", std::max(defaultFrameCount(scene), warmup + 5), 1, 1 << 20);
+        rs.convergeBelow = convergeBelow;
+        rs.maxWarmup = maxWarmup;
         std::vector<Image> images;
         for (const std::string& method : methodNames)
             for (const Preset& preset : presetsFor(findMethod(method), presetNames)) {
@@ -224,8 +233,8 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
 
 int runEval(const std::vector<std::string>& argv) {
     Args args(argv,
-              {"-o", "--methods", "--presets", "--reference", "--spp", "--cache", "--frames", "--warmup", "--width",
-               "--height", "--set", "--cases"},
+              {"-o", "--methods", "--presets", "--reference", "--spp", "--cache", "--frames", "--warmup", "--converge",
+               "--max-warmup", "--width", "--height", "--set", "--cases"},
               {"--stability"}, {"--set"});
     auto out = args.value("-o");
     if (!out) throw InputError("-o DIR is required; usage: " + usageLine(kUsage));

@@ -62,6 +62,12 @@ nlohmann::json metricsJson(const ImageMetrics& m) { return nlohmann::json::parse
 
 std::string label(const EvalRow& r) { return r.preset == "default" ? r.method : r.method + "-" + r.preset; }
 
+// Temporal rows: frames and seconds until the light settled, or the cap they hit.
+std::string convergedColumn(const EvalRow& r) {
+    if (!r.temporal) return "-";
+    return (r.converged ? "" : "no, ") + std::to_string(r.warmupFrames) + " fr, " + fmt(r.convergeMs / 1000.0, "%.1f") + " s";
+}
+
 // An oracle's row says so: it saw the answer.
 std::string methodColumn(const EvalRow& r) { return r.oracle ? r.method + " (oracle)" : r.method; }
 
@@ -71,7 +77,9 @@ std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& inf
     md << "# voxgi eval report\n\n";
     md << "Command: `" << info.command << "`  \nDevice: " << info.device << "\n\n";
     md << "Time is the median wall clock of one frame after the warm-up frames (`renderFrame`, which waits for "
-          "the GPU); the image is the average of the frames after the warm-up. Errors are against the path-traced reference on the "
+          "the GPU); the image is the average of the frames after the warm-up. Methods whose light builds up over "
+          "frames warm up until it settles (`converged`: frames and wall-clock seconds until their light state "
+          "changed less than the threshold over their window; `no` when the frame cap came first). Errors are against the path-traced reference on the "
           "full image (beauty) and on the indirect-only layer. FLIP is the mean HDR-FLIP.\n\n";
     if (!info.gnuplot) md << "**Plots skipped: gnuplot was not found** (install `gnuplot-nox`).\n\n";
     for (const SceneEval& s : scenes) {
@@ -80,10 +88,11 @@ std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& inf
            << fmt(s.referenceSeconds, "%.1f") << " s" << (s.referenceCached ? " (reused from cache)" : "")
            << ". Reference against itself: RMSE " << fmt(s.selfFull.rmse) << ", FLIP " << fmt(s.selfFull.flip)
            << " (full), RMSE " << fmt(s.selfIndirect.rmse) << " (indirect).\n\n";
-        md << "| method | preset | frame ms | RMSE full | relMSE full | FLIP full | RMSE indirect | relMSE indirect | "
-              "FLIP indirect | settings |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+        md << "| method | preset | frame ms | converged | RMSE full | relMSE full | FLIP full | RMSE indirect | relMSE indirect | "
+              "FLIP indirect | settings |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
         for (const EvalRow& r : s.rows)
             md << "| " << methodColumn(r) << " | " << r.preset << " | " << fmt(r.frameMs, "%.1f") << " | "
+               << convergedColumn(r) << " | "
                << fmt(r.full.rmse) << " | " << fmt(r.full.relMse) << " | " << fmt(r.full.flip) << " | "
                << fmt(r.indirect.rmse) << " | " << fmt(r.indirect.relMse) << " | " << fmt(r.indirect.flip) << " | "
                << (r.oracle ? "fitted to the reference: " + r.fitted : (r.settings.empty() ? "-" : r.settings))
@@ -131,6 +140,8 @@ std::string json(const std::vector<SceneEval>& scenes, const ReportInfo& info) {
                               {"settings", r.settings},     {"frame_ms", r.frameMs},
                               {"frames", r.frames},         {"warmup_frames", r.warmupFrames},
                               {"timed_frames", r.timedFrames}, {"stages", stages},
+                              {"temporal", r.temporal},     {"converged", r.converged},
+                              {"converge_ms", r.convergeMs},
                               {"full", metricsJson(r.full)}, {"indirect", metricsJson(r.indirect)},
                               {"image", r.imagePng},        {"flip_map", r.flipPng}};
             jr["mean_indirect"] = {r.meanIndirect.x, r.meanIndirect.y, r.meanIndirect.z};
@@ -146,14 +157,15 @@ std::string json(const std::vector<SceneEval>& scenes, const ReportInfo& info) {
 std::string csv(const std::vector<SceneEval>& scenes) {
     std::ostringstream c;
     c << "scene,method,preset,frame_ms,rmse_full,relmse_full,flip_full,ssim_full,rmse_indirect,relmse_indirect,"
-         "flip_indirect,reference_spp,reference_seconds\n";
+         "flip_indirect,reference_spp,reference_seconds,warmup_frames,converged,converge_ms\n";
     for (const SceneEval& s : scenes)
         for (const EvalRow& r : s.rows)
             c << s.name << "," << r.method << "," << r.preset << "," << fmt(r.frameMs, "%.4f") << ","
               << fmt(r.full.rmse, "%.6g") << "," << fmt(r.full.relMse, "%.6g") << "," << fmt(r.full.flip, "%.6g")
               << "," << fmt(r.full.ssim, "%.6g") << "," << fmt(r.indirect.rmse, "%.6g") << ","
               << fmt(r.indirect.relMse, "%.6g") << "," << fmt(r.indirect.flip, "%.6g") << "," << s.referenceSpp << ","
-              << fmt(s.referenceSeconds, "%.3f") << "\n";
+              << fmt(s.referenceSeconds, "%.3f") << "," << r.warmupFrames << ","
+              << (r.temporal ? (r.converged ? "yes" : "no") : "-") << "," << fmt(r.convergeMs, "%.1f") << "\n";
     return c.str();
 }
 

@@ -16,6 +16,8 @@ struct EvalRow {
     std::string method, preset, settings;  // settings as "key=value ..."
     double frameMs = 0.0;
     int warmupFrames = 0, timedFrames = 0, frames = 0;
+    bool temporal = false, converged = false;  // MethodRun's: warmed up until the light settled
+    double convergeMs = 0.0;
     std::vector<std::pair<std::string, StageTiming>> stages;
     ImageMetrics full, indirect;
     bool oracle = false;            // the method saw the reference (its fitted settings below)

@@ -61,24 +61,37 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
     options.height = settings.height;
     FrameRenderer renderer(scene, options, method);
     MethodRun run;
-    run.warmupFrames = std::min(settings.warmup, settings.frames - 1);
-    run.timedFrames = settings.frames - run.warmupFrames;
+    const int warmup = std::min(settings.warmup, settings.frames - 1);
+    run.timedFrames = settings.frames - warmup;
+    GiTechnique* technique = renderer.technique();
+    if (technique) technique->trackConvergence();
+    run.temporal = technique && technique->lightStateChange().has_value();
+    // Warm-up: a fixed number of frames, or for a temporal technique until its light settles.
+    auto settled = [&] {
+        if (!run.temporal) return run.warmupFrames >= warmup;
+        const double change = *technique->lightStateChange();
+        run.converged = change >= 0.0 && change < settings.convergeBelow;
+        return run.warmupFrames >= warmup && (run.converged || run.warmupFrames >= settings.maxWarmup);
+    };
+    while (!settled()) {
+        auto start = Clock::now();
+        renderer.renderFrame();
+        run.convergeMs += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        ++run.warmupFrames;
+    }
     std::map<std::string, std::size_t> gpuStart, cpuStart;
+    for (const auto& [stage, s] : renderer.timers().samples()) {
+        gpuStart[stage] = s.gpuMs.size();
+        cpuStart[stage] = s.cpuMs.size();
+    }
+    Image warm;
+    if (run.warmupFrames > 0) warm = renderer.resolve();
     std::vector<double> frameMs;
     std::map<std::string, std::vector<double>> stats;
-    Image warm;
-    for (int f = 0; f < settings.frames; ++f) {
-        if (f == run.warmupFrames) {
-            for (const auto& [stage, s] : renderer.timers().samples()) {
-                gpuStart[stage] = s.gpuMs.size();
-                cpuStart[stage] = s.cpuMs.size();
-            }
-            if (f > 0) warm = renderer.resolve();
-        }
+    for (int f = 0; f < run.timedFrames; ++f) {
         auto start = Clock::now();
         renderer.renderFrame();
         double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        if (f < run.warmupFrames) continue;
         frameMs.push_back(ms);
         if (const GiTechnique* t = renderer.technique())
             for (const TechniqueStat& st : t->stats()) stats[st.unit == "ms" ? st.name + "_ms" : st.name].push_back(st.value);
@@ -99,7 +112,7 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
     run.image = renderer.resolve();
     // The renderer only keeps the mean of all frames; the mean of the frames after the warm-up
     // (a converging DDGI or LPV is not part of the result) is (n A_n - w A_w) / (n - w).
-    const int n = settings.frames, w = run.warmupFrames;
+    const int w = run.warmupFrames, n = w + run.timedFrames;
     if (w > 0)
         for (const char* name : {"beauty", "direct", "indirect"}) {
             ImageLayer& all = run.image.layer(name);

@@ -24,6 +24,10 @@ struct MethodRun {
     double frameMs = 0.0;  // median wall clock of one frame (renderFrame, which waits for the GPU)
     int warmupFrames = 0;
     int timedFrames = 0;
+    // Temporal techniques (GiTechnique::lightStateChange): the warm-up ran until the light state
+    // changed less than RenderSettings::convergeBelow, or to the frame cap (converged false).
+    bool temporal = false, converged = false;
+    double convergeMs = 0.0;  // wall clock of the warm-up frames, summed
     std::vector<std::pair<std::string, StageTiming>> stages;  // in the renderer's order
     // The technique's stats (GiTechnique::stats), medians over the timed frames; times get
     // "_ms" appended to their name.
@@ -34,6 +38,10 @@ struct RenderSettings {
     int width = 0, height = 0;  // the scene camera's size already overridden
     int frames = 0;             // frames accumulated into the image, warm-up included
     int warmup = 0;             // first frames left out of the timing and of the image
+    // Temporal techniques warm up until their light state changes less than this over their
+    // window (at least `warmup` frames), or for maxWarmup frames.
+    double convergeBelow = 0.01;
+    int maxWarmup = 300;
 };
 
 // Needs a current GL context. The preset's and then the `extra` gi settings are applied over the

@@ -12,8 +12,9 @@ std::size_t product(glm::ivec3 v) { return std::size_t(v.x) * std::size_t(v.y) *
 // The surfel buffer holds every probe's rays (52 bytes each) and the atlases 5 KiB per probe:
 // sizes that would exhaust memory are refused before anything is allocated.
 void requireAffordable(const DdgiDesc& d) {
-    if (d.probeCounts.x <= 0) return;  // fitted: about 8 cells on the longest axis
-    const std::size_t probes = product(d.probeCounts) * std::size_t(d.cascades);
+    // Fitted grids: at most fitCells probes along every axis.
+    const glm::ivec3 counts = d.probeCounts.x > 0 ? d.probeCounts : glm::ivec3(d.fitCells);
+    const std::size_t probes = product(counts) * std::size_t(d.cascades);
     if (probes > 262144) throw InputError("gi.ddgi.probes: more than 262144 probes over all cascades");
     if (probes * std::size_t(d.raysPerProbe()) > (std::size_t(1) << 24))
         throw InputError("gi.ddgi.rays: probes x rays above 16M rays per frame");
@@ -22,7 +23,8 @@ void requireAffordable(const DdgiDesc& d) {
 SettingsTable<DdgiDesc> makeTable() {
     using D = DdgiDesc;
     SettingsTable<D> t("ddgi");
-    t.counts("probes", &D::probeCounts, 1, 256, "probes per axis; fit: about 8 cells on the longest axis", "fit");
+    t.counts("probes", &D::probeCounts, 1, 256, "probes per axis; fit: cubic cells, fit_cells on the bounds' longest axis", "fit");
+    t.integer("fit_cells", &D::fitCells, 1, 32, "probes = fit: cells along the scene bounds' longest axis");
     t.triple("spacing", &D::spacing, 1e-6, 1e6, "cell size (m); fit: the bounds over the probe counts, probes at cell centres",
              "fit");
     t.integer("rays", &D::rays, 1, 4096, "rotated rays per probe per update (blended)").main();

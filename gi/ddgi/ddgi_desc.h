@@ -34,10 +34,12 @@ enum class DdgiScroll {
 };
 
 struct DdgiDesc {
-    // Grid: zero counts/spacing = fit the scene bounds (about 8 cells on the longest axis);
+    // Grid: zero counts/spacing = fit the scene bounds: cubic cells, fitCells of them along the
+    // longest axis (so a long, low scene gets more probes along its length than its height);
     // probes sit at cell centres so none lies on the bounding walls.
     glm::ivec3 probeCounts{0};
     glm::vec3 spacing{0.0f};
+    int fitCells = 8;
     int rays = 256;               // rotated rays per probe per update, used for blending
     int fixedRays = 32;           // unrotated rays used only for classification and relocation
     int irradianceTexels = 8;     // interior texels per side (tile = texels + 2 with the border)

@@ -14,10 +14,18 @@ namespace {
 TechniquePlan ddgiPlan(const Scene& scene) {
     const DdgiDesc d = readDdgiDesc(scene.gi);
     int probes = 0;
-    for (const ProbeVolume& v : layoutVolumes(d, scene.bounds(), scene.camera.eye)) probes += v.probeCount();
+    std::ostringstream grids;  // "8x4x5 at 4.6 m", one per volume
+    grids.precision(3);
+    const char* separator = "";
+    for (const ProbeVolume& v : layoutVolumes(d, scene.bounds(), scene.camera.eye)) {
+        probes += v.probeCount();
+        grids << separator << v.counts.x << "x" << v.counts.y << "x" << v.counts.z
+              << " at " << v.minSpacing() << " m";
+        separator = ", ";
+    }
     TechniquePlan p;
-    p.update.push_back({"ddgi.trace", std::to_string(probes) + " probes x " + std::to_string(d.rays) + " rays (+" +
-                                          std::to_string(d.fixedRayCount()) + " fixed) with Embree"});
+    p.update.push_back({"ddgi.trace", std::to_string(probes) + " probes (" + grids.str() + ") x " + std::to_string(d.rays) +
+                                          " rays (+" + std::to_string(d.fixedRayCount()) + " fixed) with Embree"});
     p.update.push_back({"ddgi.shade", std::string("emission, sky, direct light by ") +
                                           (d.directLight == DdgiDirectLight::ShadowRays ? "shadow rays" : "occlusion probes") +
                                           " and the previous field's irradiance at every hit"});
@@ -71,19 +79,22 @@ MethodInfo ddgiMethod() {
         // Peak resident memory measured on the Cornell box (CPU tracing, GL atlases in host
         // memory on llvmpipe), 4^3 to 16^3 probes: about 40 bytes per atlas texel (the CPU
         // atlases, their upload rows and the GL textures, 16 bytes each) and 110 bytes per ray
-        // (its direction, hit record and shaded surfel). Fitted grids have at most 9 probes
-        // per axis per cascade.
+        // (its direction, hit record and shaded surfel). Fitted grids have at most fit_cells
+        // probes per axis per cascade.
         const DdgiDesc d = readDdgiDesc(gi);
-        const glm::dvec3 counts = d.probeCounts.x > 0 ? glm::dvec3(d.probeCounts) : glm::dvec3(9.0);
+        const glm::dvec3 counts = d.probeCounts.x > 0 ? glm::dvec3(d.probeCounts) : glm::dvec3(d.fitCells);
         const double probes = counts.x * counts.y * counts.z * double(d.cascades);
         const double texels = std::pow(d.irradianceTexels + 2.0, 2.0) + std::pow(d.distanceTexels + 2.0, 2.0);
         return probes * (40.0 * texels + 110.0 * double(d.raysPerProbe()));
     };
     m.create = [](const Scene& s) { return std::make_unique<DdgiTechnique>(s); };
     m.plan = ddgiPlan;
-    m.presets = {{"low", {{"ddgi.rays", "64"}, {"ddgi.probes", "4,4,4"}}},
-                 {"medium", {{"ddgi.rays", "128"}, {"ddgi.probes", "8,8,8"}}},
-                 {"high", {{"ddgi.rays", "256"}, {"ddgi.probes", "10,10,10"}}}};
+    // Grids fitted to the scene's shape (cubic cells): fixed counts per axis gave Sponza's
+    // 37 x 16 x 23 m 4x4x4 probes 9.3 x 3.9 x 5.7 m apart, none in the sunlit courtyard
+    // (docs/ddgi.md, "Fitted grids").
+    m.presets = {{"low", {{"ddgi.rays", "64"}, {"ddgi.fit_cells", "8"}}},
+                 {"medium", {{"ddgi.rays", "128"}, {"ddgi.fit_cells", "10"}}},
+                 {"high", {{"ddgi.rays", "256"}, {"ddgi.fit_cells", "12"}}}};
     m.debugViews = ddgiDebugViews();
     m.stressCases = ddgiStressCases();
     m.benchVariants = {{"gl", {{"ddgi.backend", "gl"}}}, {"cpu", {{"ddgi.backend", "cpu"}}}};

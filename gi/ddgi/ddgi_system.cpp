@@ -112,8 +112,27 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     classifyProbes(field, rays_, trace_, query_);
     stats.classifyMs = msSince(t0);
     stats.states = countStates(field);
+    if (trackChange_) measureChange();
     ++frame_;
     return stats;
+}
+
+void DdgiSystem::measureChange() {
+    const ProbeField& field = *field_;
+    std::vector<glm::vec3> now(std::size_t(field.probeCount()));
+    for (int p = 0; p < field.probeCount(); ++p) now[std::size_t(p)] = field.meanIrradiance(p);
+    meanHistory_.push_back(std::move(now));
+    if (int(meanHistory_.size()) > kChangeWindow + 1) meanHistory_.pop_front();
+    if (int(meanHistory_.size()) <= kChangeWindow) return;
+    const std::vector<glm::vec3>&then = meanHistory_.front(), &current = meanHistory_.back();
+    double moved = 0.0, total = 0.0;
+    for (std::size_t p = 0; p < current.size(); ++p) {
+        const glm::dvec3 d = glm::abs(glm::dvec3(current[p]) - glm::dvec3(then[p]));
+        moved += d.x + d.y + d.z;
+        total += double(current[p].x) + double(current[p].y) + double(current[p].z);
+    }
+    // A dark field that stays dark has converged; one that went dark has not.
+    fieldChange_ = total > 0.0 ? moved / total : (moved > 0.0 ? 1.0 : 0.0);
 }
 
 }  // namespace voxgi

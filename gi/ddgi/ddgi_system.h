@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -58,7 +59,18 @@ public:
     const RaySet& lastRays() const { return rays_; }
     const ProbeTrace& lastTrace() const { return trace_; }
 
+    // How much the field still moves: sum over probes of |mean irradiance now - kChangeWindow
+    // updates ago| over the sum of mean irradiance now (colours summed); negative until
+    // kChangeWindow updates ran after trackChange() (off by default: it reads every probe's
+    // irradiance each update). The window is the default sleep interval, so a sleeping probe
+    // counts its updates too, and long enough that ray noise averages down.
+    static constexpr int kChangeWindow = 10;
+    double fieldChange() const { return fieldChange_; }
+    void trackChange() { trackChange_ = true; }
+
 private:
+    void measureChange();
+
     const RayTracer& tracer_;
     GeometryQuery query_;
     std::unique_ptr<ProbeField> field_;
@@ -71,6 +83,9 @@ private:
     ShadedRays shaded_;
     ShadeWorkspace shadeWorkspace_;
     std::uint32_t frame_ = 0;
+    std::deque<std::vector<glm::vec3>> meanHistory_;  // per-probe mean irradiance, oldest first
+    double fieldChange_ = -1.0;
+    bool trackChange_ = false;
 };
 
 }  // namespace voxgi

@@ -23,6 +23,8 @@ public:
     void dumpVdb(const std::string& path) const override;
     DebugDrawing debugView(const std::string& view, const DebugViewContext& context) const override;
     std::vector<TechniqueStat> stats() const override { return statList(lastStats_); }
+    void trackConvergence() override { system_->trackChange(); }
+    std::optional<double> lightStateChange() const override { return system_->fieldChange(); }
 
     DdgiSystem& system() { return *system_; }
     const DdgiFrameStats& lastStats() const { return lastStats_; }

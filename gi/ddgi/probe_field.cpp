@@ -120,8 +120,10 @@ std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bound
     glm::ivec3 counts = desc.probeCounts;
     glm::vec3 spacing = desc.spacing;
     if (counts.x == 0) {
-        glm::vec3 cell = spacing.x > 0.0f ? spacing : glm::vec3(longest / 8.0f);
-        counts = glm::clamp(glm::ivec3(glm::ceil(extent / cell)), glm::ivec3(1), glm::ivec3(32));
+        glm::vec3 cell = spacing.x > 0.0f ? spacing : glm::vec3(longest / float(desc.fitCells));
+        // Less a tolerance: the longest axis is fitCells cells exactly, which float rounding of
+        // extent / (longest / fitCells) would otherwise make one more.
+        counts = glm::clamp(glm::ivec3(glm::ceil(extent / cell - 1e-3f)), glm::ivec3(1), glm::ivec3(64));
     }
     if (spacing.x == 0.0f) spacing = extent / glm::vec3(counts);
 
