@@ -7,7 +7,9 @@
 
 #include "gi/ddgi/ddgi_system.h"
 #include "gi/ddgi/occupancy_query.h"
+#include "gi/ddgi/probe_blend.h"
 #include "gi/ddgi/probe_sampling.h"
+#include "gi/octahedral/octahedral.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "scenes/errors.h"
 #include "shaders/shared/constants.h"
@@ -439,4 +441,69 @@ TEST(Ddgi, FittedGridsHaveCubicCellsAlongTheScenesShape) {
     }
     // The affordability check sees the fitted grid's worst case before anything is allocated.
     EXPECT_THROW(descFrom({{"fit_cells", "32"}, {"rays", "4096"}}), InputError);
+}
+
+TEST(Ddgi, CpuBlendMatchesAPlainSumOverEveryRay) {
+    // The CPU blend sums from per-frame weight tables and leaves out (ray, texel) pairs whose
+    // distance weight is below 1e-7 / rays of the texel's largest: against a plain double sum
+    // over every ray, both atlases agree to 1e-5 relative, for the default exponent (repeated
+    // squaring) and a fractional one (pow).
+    Scene scene = test::furnaceBox(0.5f, 1.0f);
+    for (const char* exponent : {"50", "7.5"}) {
+        const DdgiDesc desc = descFrom({{"probes", "2"}, {"rays", "256"}, {"hysteresis", "0"},
+                                        {"distance_exponent", exponent}});
+        ProbeField field(desc, layoutVolumes(desc, scene.bounds(), glm::vec3(0.0f)));
+        const RaySet rays = makeRaySet(desc, 1, 3);
+        std::vector<int> probes(std::size_t(field.probeCount()));
+        for (int p = 0; p < field.probeCount(); ++p) probes[std::size_t(p)] = p;
+        const std::vector<BlendJob> jobs = makeBlendJobs(field, probes, rays.blendRays);
+        ShadedRays shaded;
+        shaded.raysPerJob = rays.blendRays;
+        std::uint32_t state = 12345u;
+        auto uniform = [&state] {
+            state = state * 1664525u + 1013904223u;
+            return float(state >> 8) / float(1u << 24);
+        };
+        for (std::size_t i = 0; i < jobs.size() * std::size_t(rays.blendRays); ++i)
+            shaded.values.push_back(glm::vec4(2.0f * uniform(), uniform(), 3.0f * uniform(), 4.0f * uniform() - 1.0f));
+        CpuBlend().blend(field, rays, shaded, jobs);
+
+        const float e = std::stof(exponent);
+        double worst = 0.0;
+        for (const BlendJob& job : jobs) {
+            const glm::vec4* v = &shaded.values[std::size_t(job.rayBase)];
+            for (int y = 0; y < desc.irradianceTexels; ++y)
+                for (int x = 0; x < desc.irradianceTexels; ++x) {
+                    const glm::dvec3 dir(oct::texelDirection(x, y, desc.irradianceTexels));
+                    glm::dvec3 sum(0.0);
+                    double wsum = 0.0;
+                    for (int k = 0; k < rays.blendRays; ++k) {
+                        if (v[k].w < 0.0f) continue;
+                        const double w = std::max(0.0, glm::dot(dir, glm::dvec3(rays.blendDirection(k))));
+                        sum += w * glm::dvec3(v[k]), wsum += w;
+                    }
+                    const glm::dvec3 want = glm::pow(double(kPi) * sum / wsum, glm::dvec3(1.0 / desc.irradianceGamma));
+                    const glm::vec4 got = field.irradiance.at(job.irradianceX + 1 + x, job.irradianceY + 1 + y);
+                    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - want[c]) / want[c]);
+                }
+            for (int y = 0; y < desc.distanceTexels; ++y)
+                for (int x = 0; x < desc.distanceTexels; ++x) {
+                    const glm::dvec3 dir(oct::texelDirection(x, y, desc.distanceTexels));
+                    glm::dvec2 sum(0.0);
+                    double wsum = 0.0;
+                    for (int k = 0; k < rays.blendRays; ++k) {
+                        const double w = std::pow(std::max(0.0, glm::dot(dir, glm::dvec3(rays.blendDirection(k)))), double(e));
+                        const double d = std::min(double(v[k].w >= 0.0f ? v[k].w : -kBackfaceDistanceScale * v[k].w),
+                                                  double(job.maxDistance));
+                        sum += w * glm::dvec2(d, d * d), wsum += w;
+                    }
+                    const glm::dvec2 want = sum / wsum;
+                    const glm::vec4 got = field.distance.at(job.distanceX + 1 + x, job.distanceY + 1 + y);
+                    for (int c = 0; c < 2; ++c) worst = std::max(worst, std::abs(got[c] - want[c]) / want[c]);
+                }
+        }
+        std::printf("distance exponent %s: CPU blend against a plain double sum, max relative difference %.2e\n",
+                    exponent, worst);
+        EXPECT_LT(worst, 1e-5) << exponent;
+    }
 }
