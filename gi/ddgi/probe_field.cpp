@@ -115,8 +115,13 @@ glm::vec3 scrollCentre(const ProbeVolume& v, glm::vec3 eye, glm::vec3 forward, f
 }
 
 std::vector<ProbeVolume> layoutVolumes(const DdgiDesc& desc, const Bounds& bounds, glm::vec3 eye, glm::vec3 forward) {
-    glm::vec3 extent = bounds.valid() ? glm::max(bounds.extent(), glm::vec3(1e-4f)) : glm::vec3(1.0f);
+    glm::vec3 extent = bounds.valid() ? bounds.extent() : glm::vec3(0.0f);
     float longest = std::max(extent.x, std::max(extent.y, extent.z));
+    if (!(longest > 0.0f)) extent = glm::vec3(longest = 1.0f);
+    // A flat axis (a lone plane) gets a sliver of the longest, relative so that the grid of a
+    // scene scaled by any factor is that factor times the same grid (an absolute floor of
+    // 0.1 mm had made a 0.1 mm Cornell box's grid about twice its size).
+    extent = glm::max(extent, glm::vec3(1e-4f * longest));
     glm::ivec3 counts = desc.probeCounts;
     glm::vec3 spacing = desc.spacing;
     if (counts.x == 0) {
