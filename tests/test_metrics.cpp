@@ -32,6 +32,14 @@ TEST(Metrics, SquaredAbsoluteAndRelativeErrors) {
     EXPECT_NEAR(relativeMse(test, ref), (0.0 + 1.0 + 4.0) / (1.0 + 1e-2) / 3.0, 1e-12);
     // relMSE divides by the reference, not the test: a zero reference leaves only eps.
     EXPECT_NEAR(relativeMse({0.1f}, {0.0f}), 0.01 / 1e-2, 1e-6);
+    // Per pixel (here three-channel pixels): the terms summed over channels, whose mean over
+    // every value is relMSE.
+    const std::vector<float> t6{1, 2, 3, 1, 1, 1}, r6{1, 1, 1, 1, 1, 1};
+    const std::vector<double> perPixel = relativeSquaredErrorPerPixel(t6, r6, 3);
+    ASSERT_EQ(perPixel.size(), 2u);
+    EXPECT_NEAR(perPixel[0], 5.0 / (1.0 + 1e-2), 1e-12);
+    EXPECT_EQ(perPixel[1], 0.0);
+    EXPECT_NEAR((perPixel[0] + perPixel[1]) / 6.0, relativeMse(t6, r6), 1e-12);
     EXPECT_NEAR(peakSignalToNoise(0.01, 1.0), 20.0, 1e-12);
     EXPECT_NEAR(peakSignalToNoise(0.01, 10.0), 40.0, 1e-12);
     EXPECT_TRUE(std::isinf(peakSignalToNoise(0.0, 1.0)));
@@ -179,6 +187,17 @@ TEST(Metrics, CompareCommand) {
     EXPECT_NE(r.output.find("RMSE"), std::string::npos);
     EXPECT_TRUE(test::fileExists(dir + "/d.png"));
     EXPECT_TRUE(test::fileExists(dir + "/m.json"));
+    // --worst: one bright pixel holds nearly all of relMSE, and is listed first at its place.
+    Image spot = uniform(16, 16, glm::vec3(0.6f));
+    for (int c = 0; c < 3; ++c) spot.layer("beauty").data[std::size_t(3 * (16 * 5 + 7) + c)] = 60.0f;
+    writeExr(dir + "/spot.exr", spot);
+    auto worst = test::runVoxgi("compare " + dir + "/spot.exr " + dir + "/b.exr --worst 3");
+    ASSERT_EQ(worst.exitCode, 0) << worst.output;
+    const std::size_t first = worst.output.find("worst pixels");
+    ASSERT_NE(first, std::string::npos) << worst.output;
+    EXPECT_NE(worst.output.find("     7    5:", first), std::string::npos) << worst.output;
+    EXPECT_NE(worst.output.find("100.0 %", first), std::string::npos) << worst.output;
+    EXPECT_EQ(test::runVoxgi("compare " + dir + "/a.exr " + dir + "/b.exr --worst -1").exitCode, 2);
     auto depth = test::runVoxgi("compare " + dir + "/a.exr " + dir + "/b.exr --aov depth");
     EXPECT_EQ(depth.exitCode, 0) << depth.output;
     auto missing = test::runVoxgi("compare " + dir + "/a.exr " + dir + "/nothere.exr");

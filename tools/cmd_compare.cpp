@@ -22,9 +22,11 @@ namespace {
 
 const char* kUsage =
     "voxgi compare TEST.exr REFERENCE.exr [--aov NAME] [--diff DIFF.png] [--json OUT.json] [--regions SCENE]\n"
+    "       [--worst N]\n"
     "  --aov: the layer to compare (default beauty); --diff: HDR-FLIP error map (colour layers)\n"
     "  or |difference| scaled to its maximum (1-channel layers); --regions: the layer's mean in each\n"
-    "  of the scene's regions, test against reference (the reference must be voxgi reference's)";
+    "  of the scene's regions, test against reference (the reference must be voxgi reference's);\n"
+    "  --worst: the N pixels with the largest share of relMSE, with both values";
 
 // Black -> red -> yellow -> white: error 0 stays black, 1 is white.
 glm::vec3 heat(float e) {
@@ -53,8 +55,35 @@ void writeDiff(const std::string& path, const Image& test, const Image& referenc
     writePngRgb8(path, reference.width(), reference.height(), rgb);
 }
 
+// The pixels holding most of relMSE: a handful of them can outweigh a whole image.
+void printWorstPixels(const Image& test, const Image& reference, const std::string& layer, int count) {
+    const ImageLayer& t = *test.find(layer);
+    const ImageLayer& r = *reference.find(layer);
+    const std::vector<double> terms = relativeSquaredErrorPerPixel(t.data, r.data, r.channels);
+    double total = 0.0;
+    for (double e : terms) total += e;
+    std::vector<std::size_t> order(terms.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    const std::size_t n = std::min(order.size(), std::size_t(count));
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(n), order.end(),
+                      [&](std::size_t a, std::size_t b) { return terms[a] > terms[b]; });
+    std::printf("  worst pixels by relMSE share (x y: test | reference, share):\n");
+    double shown = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = order[k];
+        std::printf("  %4zu %4zu:", i % std::size_t(reference.width()), i / std::size_t(reference.width()));
+        for (int c = 0; c < r.channels; ++c) std::printf(" %9.4g", t.data[i * std::size_t(r.channels) + std::size_t(c)]);
+        std::printf(" |");
+        for (int c = 0; c < r.channels; ++c) std::printf(" %9.4g", r.data[i * std::size_t(r.channels) + std::size_t(c)]);
+        std::printf("   %5.1f %%\n", total > 0.0 ? 100.0 * terms[i] / total : 0.0);
+        shown += terms[i];
+    }
+    std::printf("  these %zu of %zu pixels: %.1f %% of relMSE\n", n, terms.size(), total > 0.0 ? 100.0 * shown / total : 0.0);
+}
+
 int runCompare(const std::vector<std::string>& argv) {
-    Args args(argv, {"--aov", "--diff", "--json", "--regions"}, {});
+    Args args(argv, {"--aov", "--diff", "--json", "--regions", "--worst"}, {});
+    const int worst = args.integer("--worst", 0, 0, 1 << 20);
     args.requirePositional(2, kUsage);
     const std::string layer = args.value("--aov", "beauty");
     requireOutputs(args, {"--diff", "--json"}, {"--regions"});
@@ -92,6 +121,7 @@ int runCompare(const std::vector<std::string>& argv) {
             std::printf("  %-16s %7zu    %8.4g %8.4g %8.4g   %8.4g %8.4g %8.4g   %.3f\n", r.name.c_str(), r.pixels,
                         r.test.x, r.test.y, r.test.z, r.reference.x, r.reference.y, r.reference.z, r.ratio);
     }
+    if (worst > 0) printWorstPixels(test, reference, layer, worst);
     if (auto d = args.value("--diff")) {
         writeDiff(*d, test, reference, layer);
         std::printf("wrote %s\n", d->c_str());

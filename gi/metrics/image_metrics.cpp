@@ -50,14 +50,27 @@ double meanSquaredError(const std::vector<float>& a, const std::vector<float>& b
     return s / double(a.size());
 }
 
+namespace {
+double relativeSquaredError(float a, float ref, double epsilon) {
+    const double d = double(a) - double(ref);
+    return d * d / (double(ref) * double(ref) + epsilon);
+}
+}  // namespace
+
 double relativeMse(const std::vector<float>& a, const std::vector<float>& ref, double epsilon) {
     requireSameSize(a, ref);
     double s = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        double d = double(a[i]) - double(ref[i]);
-        s += d * d / (double(ref[i]) * double(ref[i]) + epsilon);
-    }
+    for (std::size_t i = 0; i < a.size(); ++i) s += relativeSquaredError(a[i], ref[i], epsilon);
     return s / double(a.size());
+}
+
+std::vector<double> relativeSquaredErrorPerPixel(const std::vector<float>& a, const std::vector<float>& ref, int channels,
+                                                 double epsilon) {
+    requireSameSize(a, ref);
+    std::vector<double> out(a.size() / std::size_t(std::max(channels, 1)), 0.0);
+    for (std::size_t i = 0; i < out.size() * std::size_t(channels); ++i)
+        out[i / std::size_t(channels)] += relativeSquaredError(a[i], ref[i], epsilon);
+    return out;
 }
 
 double meanAbsoluteError(const std::vector<float>& a, const std::vector<float>& b) {

@@ -38,6 +38,10 @@ std::string toJson(const ImageMetrics& metrics);
 // The building blocks, on interleaved values of equal length (tested on hand-made images).
 double meanSquaredError(const std::vector<float>& test, const std::vector<float>& reference);
 double relativeMse(const std::vector<float>& test, const std::vector<float>& reference, double epsilon = kRelMseEpsilon);
+// relMSE's terms summed per pixel (their mean over pixels / channels is relativeMse): which
+// pixels the error comes from.
+std::vector<double> relativeSquaredErrorPerPixel(const std::vector<float>& test, const std::vector<float>& reference,
+                                                 int channels, double epsilon = kRelMseEpsilon);
 double meanAbsoluteError(const std::vector<float>& test, const std::vector<float>& reference);
 double peakSignalToNoise(double mse, double peak);
 // Population Pearson product-moment correlation of the pooled values (seed 003 Eq. 20).
