@@ -49,8 +49,9 @@ public:
         }
     }
 
-    void buffers(std::uint64_t block, std::uint64_t end) {
-        if (block <= f_.size()) f_.seek(block, "grid buffers");  // else they follow the topology
+    // OpenVDB reads the buffers where the topology ends whatever the grid's block position
+    // says, so the walk does too (the caller has checked that both agree).
+    void buffers(std::uint64_t end) {
         for (std::size_t leaf = 0; leaf < leafMasks_.size(); leaf += 8) {
             if (tree_.leaves == VdbTreeLayout::Leaves::Bool) {
                 f_.skip(64 + 12 + 64, "bool leaf buffer");  // value mask, origin, value bits
@@ -150,8 +151,11 @@ void walkVdbTree(VdbFields& f, const VdbTreeLayout& tree, std::uint32_t tiles, s
                  std::uint64_t block, std::uint64_t end) {
     TreeWalk walk(f, tree);
     walk.topology(tiles, children);
-    if (f.position() > block) f.fail("tree topology runs into the grid's buffers");
-    walk.buffers(block, end);
+    // A streamed file (block past the file's end) has no block position to agree with.
+    if (block <= f.size() && f.position() != block)
+        f.fail("tree topology ends at byte " + std::to_string(f.position()) + ", not at the grid's block position " +
+               std::to_string(block));
+    walk.buffers(end);
 }
 
 }  // namespace voxgi::detail

@@ -23,9 +23,9 @@ struct VdbTreeLayout {
 };
 
 // From just after the root's tile and child counts to the end of the grid's leaf buffers: the
-// tiles, every child's masks and compressed values, then from `block` every leaf's buffer
-// (`block` past the file's end: a streamed file, whose buffers follow the topology). The walk
-// must end by `end`.
+// tiles, every child's masks and compressed values, then every leaf's buffer, which OpenVDB
+// reads right after the topology: there the grid's `block` position must point (`block` past
+// the file's end: a streamed file, which has none). The walk must end by `end`.
 void walkVdbTree(VdbFields& f, const VdbTreeLayout& tree, std::uint32_t tiles, std::uint32_t children,
                  std::uint64_t block, std::uint64_t end);
 
