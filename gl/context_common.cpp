@@ -27,6 +27,9 @@ void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum seve
         return v && std::strcmp(v, "all") == 0;
     }();
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION && !all) return;
+    // Compiler messages too: a failed compile throws GlError with its log (gl/program.cpp), and
+    // Mesa reports every warning as high severity (NanoVDB's PNanoVDB.h alone makes 21).
+    if (source == GL_DEBUG_SOURCE_SHADER_COMPILER && !all) return;
     std::fprintf(stderr, "voxgi: gl debug [%s] (id %u): %.*s\n", severityName(severity), id,
                  int(length < 0 ? std::strlen(message) : std::size_t(length)), message);
 }

@@ -28,6 +28,12 @@ std::string resolveInclude(const std::string& includer, const std::string& inclu
     return fs::is_regular_file(fs::path(shaderRoot()) / beside) ? beside : include;
 }
 
+// The absolute path of a library header named in <...>, or "" when it is not installed.
+std::string systemShaderInclude(const std::string& include) {
+    const fs::path full = fs::path(VOXGI_SYSTEM_SHADER_INCLUDE) / include;
+    return fs::is_regular_file(full) ? full.generic_string() : std::string();
+}
+
 // Source-string numbers for #line: 0 is the main file, includes count up from 1.
 void expand(const std::string& relative, std::set<std::string>& seen, std::vector<std::string>& files,
             std::ostringstream& out, int depth) {
@@ -42,6 +48,21 @@ void expand(const std::string& relative, std::set<std::string>& seen, std::vecto
     while (std::getline(in, line)) {
         ++lineNo;
         auto first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && line.compare(first, 8, "#include") == 0 &&
+            line.find("<nanovdb/", first) != std::string::npos) {
+            // A header from a library that ships GLSL (NanoVDB's PNanoVDB.h), by absolute path.
+            // Other <...> includes (C headers inside PNanoVDB.h's C branches) pass through for
+            // the GLSL preprocessor to skip.
+            auto a = line.find('<', first), b = line.rfind('>');
+            if (b == std::string::npos || b <= a) throw GlError(relative + ":" + std::to_string(lineNo) + ": bad #include");
+            const std::string inc = systemShaderInclude(line.substr(a + 1, b - a - 1));
+            if (inc.empty())
+                throw GlError(relative + ":" + std::to_string(lineNo) + ": " + line.substr(a, b - a + 1) +
+                              " not found in " VOXGI_SYSTEM_SHADER_INCLUDE);
+            if (seen.insert(inc).second) expand(inc, seen, files, out, depth + 1);
+            out << "#line " << lineNo + 1 << " " << fileIndex << "\n";
+            continue;
+        }
         if (first != std::string::npos && line.compare(first, 8, "#include") == 0 &&
             line.find('<', first) == std::string::npos) {
             auto a = line.find('"', first), b = line.rfind('"');

@@ -18,6 +18,7 @@
 #include "gi/gbuffer_upload.h"
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/ddgi_system.h"
+#include "gi/ddgi/volume_trace_bench.h"
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gl/resources.h"
@@ -357,6 +358,7 @@ void benchScene(const std::string& path, Scene scene, const BenchRequest& reques
         std::printf("  border + readback %.2f ms wall: kernels %.3f ms GPU, readback %.2f ms\n", g["border"],
                     median(borderGpu), median(readback));
         std::printf("  sample (apply pass, 512x512 G-buffer) %.2f ms wall, %.3f ms GPU\n", applyWall, applyGpu);
+        printVolumeTraceBench(gpuSystem);
     }
 }
 

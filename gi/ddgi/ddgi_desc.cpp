@@ -20,6 +20,15 @@ void requireAffordable(const DdgiDesc& d) {
         throw InputError("gi.ddgi.rays: probes x rays above 16M rays per frame");
 }
 
+// The volume trace runs in GL compute and shades with shadow rays through the volume.
+void requireTraceable(const DdgiDesc& d) {
+    if (d.trace != DdgiTrace::Volume) return;
+    if (!d.gpuBlend()) throw InputError("gi.ddgi.trace: volume traces on the GPU and needs ddgi.backend=gl");
+    if (d.directLight != DdgiDirectLight::ShadowRays)
+        throw InputError("gi.ddgi.trace: volume shades with shadow rays through the volume; ddgi.direct=occlusion needs "
+                         "trace=triangles");
+}
+
 SettingsTable<DdgiDesc> makeTable() {
     using D = DdgiDesc;
     SettingsTable<D> t("ddgi");
@@ -65,7 +74,11 @@ SettingsTable<DdgiDesc> makeTable() {
               "frames between evaluations of a hit-cache cell seen last frame (1: every frame)");
     t.integer("seed", &D::seed, 0, 2147483647, "ray rotations; the same seed and frames give bitwise the same field");
     t.choice("backend", &D::backend, backendChoices(), "blend and border on the GPU (gl) or with the CPU reference (cpu)").main();
+    t.choice("trace", &D::trace, {{"triangles", DdgiTrace::Triangles}, {"volume", DdgiTrace::Volume}},
+             "blend rays against the triangles (Embree, CPU) or the voxelized scene as NanoVDB (GL compute)");
+    t.integer("trace_voxels", &D::traceVoxels, 1, 64, "trace = volume: voxels per smallest probe spacing");
     t.check(requireAffordable);
+    t.check(requireTraceable);
     return t;
 }
 

@@ -26,6 +26,12 @@ enum class DdgiHitCache {
     All,     // ... and one light-visibility test per light (up to four lights)
 };
 
+// What the blend rays are traced against.
+enum class DdgiTrace {
+    Triangles,  // the scene's triangles with Embree on the CPU, shaded on the CPU (the reference)
+    Volume,     // the voxelized scene as NanoVDB, traced and shaded on the GPU (backend gl)
+};
+
 // Camera-centred scrolling of the probe volumes.
 enum class DdgiScroll {
     Auto,  // when there are cascades
@@ -73,6 +79,8 @@ struct DdgiDesc {
     int hitCacheRefresh = 2;
     int seed = 1;                 // random ray rotations; same seed, same frames, same result
     Backend backend = Backend::Gl;  // blend on the GPU (GL compute) or with the CPU reference
+    DdgiTrace trace = DdgiTrace::Triangles;
+    int traceVoxels = 8;          // trace = volume: voxels per smallest probe spacing
 
     bool gpuBlend() const { return backend == Backend::Gl; }
     bool scrolls() const { return scroll == DdgiScroll::Auto ? cascades > 1 : scroll == DdgiScroll::On; }

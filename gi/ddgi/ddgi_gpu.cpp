@@ -43,7 +43,20 @@ DdgiGpu::DdgiGpu(const ProbeField& field) {
     emptyVao_ = gl::createVertexArray();
     blendQuery_ = gl::createTimerQuery();
     borderQuery_ = gl::createTimerQuery();
+    shadeQuery_ = gl::createTimerQuery();
     upload(field);
+}
+
+DdgiGpu::~DdgiGpu() = default;
+
+void DdgiGpu::traceInVolume(const NanoGeometry& geometry, const Scene& scene) {
+    volume_ = std::make_unique<VolumeShadeGl>(geometry, scene);
+}
+
+void DdgiGpu::shadeRays(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
+                        std::uint32_t frame) {
+    volume_->prepare(rays, trace, jobs, frame);
+    shadePending_ = true;
 }
 
 void DdgiGpu::ensureBuffer(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes) {
@@ -90,21 +103,37 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
         uploadAtlases(field);
         times_.atlasesUploaded = true;
     }
-    if (jobs.empty()) return;
+    if (jobs.empty()) {
+        shadePending_ = false;
+        return;
+    }
     std::vector<glm::vec4> dirs;
     dirs.reserve(std::size_t(rays.blendRays));
     for (int i = 0; i < rays.blendRays; ++i) dirs.emplace_back(rays.blendDirection(i), 0.0f);
     ensureBuffer(jobs_, jobsBytes_, jobs.size() * sizeof(BlendJob));
     ensureBuffer(directions_, directionsBytes_, dirs.size() * sizeof(glm::vec4));
-    ensureBuffer(rays_, raysBytes_, shaded.values.size() * sizeof(glm::vec4));
+    const bool shadeHere = volume_ && shadePending_;
+    shadePending_ = false;
+    const std::size_t rayCount = shadeHere ? jobs.size() * std::size_t(rays.blendRays) : shaded.values.size();
+    ensureBuffer(rays_, raysBytes_, rayCount * sizeof(glm::vec4));
     glNamedBufferSubData(jobs_.id(), 0, GLsizeiptr(jobs.size() * sizeof(BlendJob)), jobs.data());
     glNamedBufferSubData(directions_.id(), 0, GLsizeiptr(dirs.size() * sizeof(glm::vec4)), dirs.data());
-    glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(shaded.values.size() * sizeof(glm::vec4)), shaded.values.data());
+    if (!shadeHere)
+        glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(shaded.values.size() * sizeof(glm::vec4)), shaded.values.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
     glFinish();  // the transfers end here, so the kernels' timing holds only the kernels
     times_.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (shadeHere) {
+        // Reads the previous field before the blend below overwrites it.
+        glBeginQuery(GL_TIME_ELAPSED, shadeQuery_.id());
+        volume_->dispatch(field, rays.blendRays, jobs.size(), irradiance_.id(), distance_.id(), probeData_.id());
+        glEndQuery(GL_TIME_ELAPSED);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
+    }
 
     const BlendParams bp = BlendParams::from(field.desc());
     auto run = [&](gl::Program& program, GLuint atlas, int texels) {
@@ -127,6 +156,7 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glFinish();
     times_.blendGpuMs = gl::timerQueryMs(blendQuery_.id());
+    if (shadeHere) times_.shadeGpuMs = gl::timerQueryMs(shadeQuery_.id());
 }
 
 void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
@@ -153,38 +183,43 @@ void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
     times_.readbackMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void DdgiGpu::apply(const ProbeField& field, const GBufferView& g) {
+void bindProbeField(const gl::Program& program, const ProbeField& field, GLuint irradiance, GLuint distance,
+                    GLuint probeData) {
     const DdgiDesc& desc = field.desc();
+    glBindTextureUnit(4, irradiance);
+    glBindTextureUnit(5, distance);
+    program.set("uIrradianceAtlas", 4);
+    program.set("uDistanceAtlas", 5);
+    program.set("uVolumeCount", int(field.volumes().size()));
+    for (int v = 0; v < int(field.volumes().size()); ++v) {
+        const ProbeVolume& vol = field.volumes()[std::size_t(v)];
+        program.set(indexed("uCounts", v).c_str(), vol.counts);
+        program.set(indexed("uSpacing", v).c_str(), vol.spacing);
+        program.set(indexed("uOrigin", v).c_str(), vol.origin);
+        program.set(indexed("uScroll", v).c_str(), vol.scroll);
+        program.set(indexed("uProbeBase", v).c_str(), vol.probeBase);
+        program.set(indexed("uTileRow", v).c_str(), vol.tileRow);
+    }
+    program.set("uIrradianceTexels", desc.irradianceTexels);
+    program.set("uDistanceTexels", desc.distanceTexels);
+    program.set("uNormalBias", desc.normalBias);
+    program.set("uViewBias", desc.viewBias);
+    program.set("uGamma", desc.irradianceGamma);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, probeData);
+}
+
+void DdgiGpu::apply(const ProbeField& field, const GBufferView& g) {
     apply_.use();
     glBindTextureUnit(0, g.position);
     glBindTextureUnit(1, g.normal);
     glBindTextureUnit(2, g.albedo);
     glBindTextureUnit(3, g.emission);
-    glBindTextureUnit(4, irradiance_.id());
-    glBindTextureUnit(5, distance_.id());
     apply_.set("uPosition", 0);
     apply_.set("uNormal", 1);
     apply_.set("uAlbedo", 2);
     apply_.set("uEmission", 3);
-    apply_.set("uIrradianceAtlas", 4);
-    apply_.set("uDistanceAtlas", 5);
     apply_.set("uEye", g.eye);
-    apply_.set("uVolumeCount", int(field.volumes().size()));
-    for (int v = 0; v < int(field.volumes().size()); ++v) {
-        const ProbeVolume& vol = field.volumes()[std::size_t(v)];
-        apply_.set(indexed("uCounts", v).c_str(), vol.counts);
-        apply_.set(indexed("uSpacing", v).c_str(), vol.spacing);
-        apply_.set(indexed("uOrigin", v).c_str(), vol.origin);
-        apply_.set(indexed("uScroll", v).c_str(), vol.scroll);
-        apply_.set(indexed("uProbeBase", v).c_str(), vol.probeBase);
-        apply_.set(indexed("uTileRow", v).c_str(), vol.tileRow);
-    }
-    apply_.set("uIrradianceTexels", desc.irradianceTexels);
-    apply_.set("uDistanceTexels", desc.distanceTexels);
-    apply_.set("uNormalBias", desc.normalBias);
-    apply_.set("uViewBias", desc.viewBias);
-    apply_.set("uGamma", desc.irradianceGamma);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, probeData_.id());
+    bindProbeField(apply_, field, irradiance_.id(), distance_.id(), probeData_.id());
     glBindVertexArray(emptyVao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }

@@ -4,7 +4,10 @@
 // reads them on the CPU, and go up before blending only when the CPU changed them since.
 #pragma once
 
+#include <memory>
+
 #include "gi/ddgi/probe_blend.h"
+#include "gi/ddgi/volume_shade_gpu.h"
 #include "gi/technique.h"
 #include "gl/program.h"
 #include "gl/resources.h"
@@ -14,6 +17,14 @@ namespace voxgi {
 class DdgiGpu : public BlendBackend {
 public:
     explicit DdgiGpu(const ProbeField& field);
+    ~DdgiGpu() override;
+
+    // From now on the blend rays are traced and shaded here, through `geometry` (ddgi.trace =
+    // volume); `scene` gives the lights and must outlive this.
+    void traceInVolume(const NanoGeometry& geometry, const Scene& scene);
+    bool shadesRays() const override { return volume_ != nullptr; }
+    void shadeRays(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
+                   std::uint32_t frame) override;
 
     void blend(ProbeField& field, const RaySet& rays, const ShadedRays& shaded,
                const std::vector<BlendJob>& jobs) override;
@@ -31,9 +42,9 @@ public:
 
     // Where the last blend() and border() spent their time: CPU wall time of the transfers
     // (the atlases and shaded rays going up, the atlases coming back) and GPU time of the
-    // kernels (GL_TIME_ELAPSED queries).
+    // kernels (GL_TIME_ELAPSED queries; shadeGpuMs: tracing and shading the rays in the volume).
     struct Times {
-        double uploadMs = 0.0, blendGpuMs = 0.0, borderGpuMs = 0.0, readbackMs = 0.0;
+        double uploadMs = 0.0, shadeGpuMs = 0.0, blendGpuMs = 0.0, borderGpuMs = 0.0, readbackMs = 0.0;
         bool atlasesUploaded = false;  // false: the GPU copy was current (no CPU write since)
     };
     const Times& lastTimes() const { return times_; }
@@ -47,7 +58,9 @@ private:
     gl::Handle irradiance_, distance_, emptyVao_;
     gl::Handle jobs_, directions_, rays_, probeData_;
     std::size_t jobsBytes_ = 0, directionsBytes_ = 0, raysBytes_ = 0, probeDataBytes_ = 0;
-    gl::Handle blendQuery_, borderQuery_;
+    gl::Handle blendQuery_, borderQuery_, shadeQuery_;
+    std::unique_ptr<VolumeShadeGl> volume_;
+    bool shadePending_ = false;  // shadeRays() prepared this frame's rays for blend()
     Times times_;
     // The field (and its atlasVersion) the GPU atlases hold, after an upload or a read-back.
     std::vector<glm::vec4> staging_;  // atlas rows on their way up or down

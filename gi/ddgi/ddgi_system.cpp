@@ -62,17 +62,19 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     auto t0 = std::chrono::steady_clock::now();
     rays_ = makeRaySet(desc, std::uint32_t(desc.seed), frame_);
     trace_.work = scheduleProbes(field, frame_);
-    // Hits are grouped for the hit cache while they are traced.
-    const bool grouping = hitCacheUsed(desc, tracer_.scene());
-    if (grouping) hitCache_.begin(hitCacheCellSize(field), std::size_t(field.probeCount()) * std::size_t(rays_.blendRays));
-    traceProbes(tracer_, field, rays_, trace_, grouping ? &hitCache_ : nullptr);
-    stats.traceMs = msSince(t0);
-    stats.raysTraced = trace_.raysTraced;
-
     std::vector<int> blendProbes;
     for (int p = 0; p < field.probeCount(); ++p)
         if (trace_.work[std::size_t(p)] == ProbeWork::Full) blendProbes.push_back(p);
     stats.probesBlended = int(blendProbes.size());
+    if (backend && backend->shadesRays()) return updateShadedElsewhere(stats, *backend, blendProbes, t0);
+
+    // Hits are grouped for the hit cache while they are traced.
+    const bool grouping = hitCacheUsed(desc, tracer_.scene());
+    if (grouping) hitCache_.begin(hitCacheCellSize(field), std::size_t(field.probeCount()) * std::size_t(rays_.blendRays));
+    trace_.blendRaysTraced = true;
+    traceProbes(tracer_, field, rays_, trace_, grouping ? &hitCache_ : nullptr);
+    stats.traceMs = msSince(t0);
+    stats.raysTraced = trace_.raysTraced;
 
     t0 = std::chrono::steady_clock::now();
     if (grouping) hitCache_.finish();
@@ -100,8 +102,35 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     }
     stats.shadeMs = msSince(t0);
 
-    BlendBackend& blender = backend ? *backend : cpuBlend_;
-    t0 = std::chrono::steady_clock::now();
+    blendAndClassify(stats, backend ? *backend : cpuBlend_, blendProbes, jobs);
+    return stats;
+}
+
+DdgiFrameStats DdgiSystem::updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend,
+                                                 const std::vector<int>& blendProbes,
+                                                 std::chrono::steady_clock::time_point start) {
+    // Only the classification rays here: the work list says FixedOnly for the probes that blend.
+    ProbeField& field = *field_;
+    std::vector<ProbeWork> work = trace_.work;
+    for (ProbeWork& w : trace_.work)
+        if (w == ProbeWork::Full) w = ProbeWork::FixedOnly;
+    traceProbes(tracer_, field, rays_, trace_, nullptr);
+    trace_.work = std::move(work);
+    trace_.blendRaysTraced = false;
+    stats.raysTraced = trace_.raysTraced + std::int64_t(blendProbes.size()) * rays_.blendRays;
+    stats.traceMs = msSince(start);
+    std::vector<BlendJob> jobs = makeBlendJobs(field, blendProbes, rays_.blendRays);
+    backend.shadeRays(rays_, trace_, jobs, frame_);
+    shaded_.raysPerJob = rays_.blendRays;
+    shaded_.values.clear();
+    blendAndClassify(stats, backend, blendProbes, jobs);
+    return stats;
+}
+
+void DdgiSystem::blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, const std::vector<int>& blendProbes,
+                                  const std::vector<BlendJob>& jobs) {
+    ProbeField& field = *field_;
+    auto t0 = std::chrono::steady_clock::now();
     blender.blend(field, rays_, shaded_, jobs);
     stats.blendMs = msSince(t0);
     t0 = std::chrono::steady_clock::now();
@@ -110,13 +139,12 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     for (int p : blendProbes) ++field.probes[std::size_t(p)].blends;
 
     t0 = std::chrono::steady_clock::now();
-    if (desc.relocate) relocateProbes(field, rays_, trace_);
+    if (field.desc().relocate) relocateProbes(field, rays_, trace_);
     classifyProbes(field, rays_, trace_, query_);
     stats.classifyMs = msSince(t0);
     stats.states = countStates(field);
     if (trackChange_) measureChange();
     ++frame_;
-    return stats;
 }
 
 void DdgiSystem::measureChange() {

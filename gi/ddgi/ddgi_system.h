@@ -3,6 +3,7 @@
 // with the CPU backend, so tests and benchmarks can drive it directly.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -69,6 +70,12 @@ public:
     void trackChange() { trackChange_ = true; }
 
 private:
+    // The rest of update() when the backend traces and shades the blend rays (shadesRays()).
+    DdgiFrameStats updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend,
+                                         const std::vector<int>& blendProbes,
+                                         std::chrono::steady_clock::time_point start);
+    void blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, const std::vector<int>& blendProbes,
+                          const std::vector<BlendJob>& jobs);
     void measureChange();
 
     const RayTracer& tracer_;

@@ -4,6 +4,7 @@
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/occupancy_query.h"
 #include "gi/raytrace/ray_tracer.h"
+#include "volumes/nano_geometry.h"
 
 namespace voxgi {
 
@@ -19,6 +20,8 @@ DdgiTechnique::DdgiTechnique(const Scene& scene, GeometryQuery query) {
     }
     system_ = std::make_unique<DdgiSystem>(*tracer_, desc, std::move(query));
     gpu_ = std::make_unique<DdgiGpu>(system_->field());
+    if (desc.trace == DdgiTrace::Volume && scene.triangleCount() > 0)
+        gpu_->traceInVolume(voxelizeForTracing(*tracer_, system_->field()), scene);
 }
 
 DdgiTechnique::~DdgiTechnique() = default;

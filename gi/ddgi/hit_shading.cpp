@@ -75,15 +75,14 @@ struct ShadeContext {
     std::uint32_t frame;
     float energy;
 
-    // Quad-light sample points of this frame: the offset depends on probe % 7 only, so the
-    // 7 x rays points are tabulated once (empty without quad lights).
+    // Quad-light sample points of this frame (quadLightSamples).
     const std::vector<glm::vec2>& quadSamples;
 
     const ProbeSurfel* jobSurfels(std::size_t job) const { return &trace.at(probes[job], rays.fixedRays); }
     // The point on quad lights this ray's hit uses this frame (only quad lights read it).
     glm::vec2 quadSample(int ray, int probe) const {
         if (quadSamples.empty()) return glm::vec2(0.5f);
-        return quadSamples[std::size_t(probe % 7) * std::size_t(rays.blendRays) + std::size_t(ray)];
+        return quadSamples[std::size_t(probe % kQuadSampleSets) * std::size_t(rays.blendRays) + std::size_t(ray)];
     }
 };
 
@@ -206,6 +205,18 @@ std::int64_t evaluateGroups(const ShadeContext& c, const HitCache& cache, bool s
 
 }  // namespace
 
+std::vector<glm::vec2> quadLightSamples(const Scene& scene, int blendRays, std::uint32_t frame) {
+    bool quadLights = false;
+    for (const Light& l : scene.lights) quadLights |= l.type == LightType::Quad;
+    std::vector<glm::vec2> samples;
+    if (!quadLights) return samples;
+    samples.reserve(std::size_t(kQuadSampleSets) * std::size_t(blendRays));
+    for (int residue = 0; residue < kQuadSampleSets; ++residue)
+        for (int i = 0; i < blendRays; ++i)
+            samples.push_back(r2Sequence(int(frame) * blendRays + i, glm::vec2(0.5f) + 0.137f * float(residue)));
+    return samples;
+}
+
 bool hitCacheUsed(const DdgiDesc& desc, const Scene& scene) {
     if (desc.hitCache == DdgiHitCache::Off) return false;
     return desc.energyPreservation > 0.0f || (desc.hitCache == DdgiHitCache::All && !scene.lights.empty());
@@ -232,13 +243,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
                           std::uint32_t frame, const HitCache* grouped, ShadedRays& out, ShadeWorkspace* workspace) {
     const DdgiDesc& desc = previous.field().desc();
-    bool quadLights = false;
-    for (const Light& l : scene.lights) quadLights |= l.type == LightType::Quad;
-    std::vector<glm::vec2> quadSamples;
-    if (quadLights)
-        for (int residue = 0; residue < 7; ++residue)
-            for (int i = 0; i < rays.blendRays; ++i)
-                quadSamples.push_back(r2Sequence(int(frame) * rays.blendRays + i, glm::vec2(0.5f) + 0.137f * float(residue)));
+    const std::vector<glm::vec2> quadSamples = quadLightSamples(scene, rays.blendRays, frame);
     const std::vector<PreparedLight> prepared = prepareLights(scene);
     const ShadeContext c{scene,  visibility, previous, rays, trace, probes, prepared, frame, desc.energyPreservation,
                          quadSamples};

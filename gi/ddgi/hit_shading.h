@@ -50,6 +50,12 @@ struct ShadeStats {
 class HitCache;
 class ProbeSampler;
 
+// The points on quad lights that blend ray `ray` of `probe` uses in `frame`: entry
+// (probe % kQuadSampleSets) * blendRays + ray, R2 points offset per residue, so neighbouring
+// probes see different points and one table serves every probe (empty without quad lights).
+inline constexpr int kQuadSampleSets = 7;
+std::vector<glm::vec2> quadLightSamples(const Scene& scene, int blendRays, std::uint32_t frame);
+
 // Whether shading with `desc` reads a hit cache (its mode is on and there is something to
 // share: the probe gather, or light visibility in the `all` mode).
 bool hitCacheUsed(const DdgiDesc& desc, const Scene& scene);

@@ -57,6 +57,12 @@ public:
     virtual void blend(ProbeField& field, const RaySet& rays, const ShadedRays& shaded,
                        const std::vector<BlendJob>& jobs) = 0;
     virtual void border(ProbeField& field, const std::vector<BlendJob>& jobs) = 0;
+
+    // A backend that traces and shades the blend rays itself (DDGI's ddgi.trace = volume):
+    // the system then traces only the fixed rays and calls shadeRays() (the jobs' origins and
+    // the frame) before blend(), whose `shaded` is empty.
+    virtual bool shadesRays() const { return false; }
+    virtual void shadeRays(const RaySet&, const ProbeTrace&, const std::vector<BlendJob>&, std::uint32_t /*frame*/) {}
 };
 
 class CpuBlend : public BlendBackend {

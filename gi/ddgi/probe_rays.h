@@ -69,6 +69,9 @@ struct ProbeTrace {
     // (entry 0 is none), what ProbeSurfel::emitter indexes.
     std::vector<glm::vec3> emission;
     std::int64_t raysTraced = 0;
+    // False when only the fixed rays were traced here (the blend rays went to the GPU: ddgi.trace
+    // = volume): the blend rays' surfels are then stale and nothing reads them.
+    bool blendRaysTraced = true;
 
     const ProbeSurfel& at(int probe, int ray) const { return surfels[std::size_t(probe) * std::size_t(stride) + std::size_t(ray)]; }
     // The hit point of ray `ray` (of the RaySet traced) of `probe`; meaningless for misses.

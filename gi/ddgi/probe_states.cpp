@@ -34,7 +34,9 @@ void relocateProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& tra
             int backfaces = 0;
             float closestBack = INFINITY, closestFront = INFINITY;
             glm::vec3 closestBackDir(0.0f), closestFrontDir(0.0f);
-            for (int i = 0; i < trace.stride; ++i) {
+            const int traced = trace.blendRaysTraced ? trace.stride : rays.fixedRays;
+            if (traced == 0) continue;
+            for (int i = 0; i < traced; ++i) {
                 float d = trace.at(p, i).distance;
                 const glm::vec3& dir = rays.directions[std::size_t(i)];
                 if (d < 0.0f) {
@@ -46,7 +48,7 @@ void relocateProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& tra
             }
             ProbeRecord& rec = field.probes[std::size_t(p)];
             glm::vec3 offset = rec.offset;
-            if (float(backfaces) / float(trace.stride) > desc.relocationBackfaceThreshold) {
+            if (float(backfaces) / float(traced) > desc.relocationBackfaceThreshold) {
                 // Inside: step through the nearest backface to the open side.
                 offset += closestBackDir * (closestBack + 0.5f * minFront);
             } else if (closestFront < minFront) {

@@ -1,0 +1,70 @@
+#include "gi/ddgi/volume_shade_gpu.h"
+
+#include "gi/ddgi/hit_shading.h"
+#include "scenes/scene.h"
+#include "shaders/shared/light_model.h"
+#include "volumes/nano_geometry.h"
+
+namespace voxgi {
+
+namespace {
+// Grows `buffer` to hold `bytes` (doubling, so per-frame sizes settle) and uploads `data`.
+void upload(gl::Handle& buffer, std::size_t& capacity, const void* data, std::size_t bytes) {
+    bytes = std::max<std::size_t>(bytes, 16);
+    if (!buffer || capacity < bytes) {
+        capacity = bytes * 2;
+        buffer = gl::createBuffer(capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    if (data) glNamedBufferSubData(buffer.id(), 0, GLsizeiptr(bytes), data);
+}
+}  // namespace
+
+VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene)
+    : scene_(scene),
+      program_(gl::Program::compute("ddgi/volume_shade.comp")),
+      grids_(gl::createBuffer(geometry.bytes(), geometry.words.data(), 0)),
+      normalGrid_(geometry.normalGrid),
+      albedoGrid_(geometry.albedoGrid),
+      offsetGrid_(geometry.offsetGrid),
+      voxelSize_(geometry.voxelSize) {}
+
+void VolumeShadeGl::prepare(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
+                            std::uint32_t frame) {
+    std::vector<glm::vec4> origins;
+    origins.reserve(jobs.size());
+    for (const BlendJob& j : jobs) origins.emplace_back(trace.origins[std::size_t(j.probe)], 0.0f);
+    upload(origins_, originsBytes_, origins.data(), origins.size() * sizeof(glm::vec4));
+    // Lights may move between frames: a few hundred bytes each time.
+    std::vector<shading::PackedLight> lights;
+    for (const Light& l : scene_.lights) lights.push_back(shading::packLight(l));
+    lightCount_ = int(lights.size());
+    upload(lights_, lightsBytes_, lights.data(), lights.size() * sizeof(shading::PackedLight));
+    const std::vector<glm::vec2> quad = quadLightSamples(scene_, rays.blendRays, frame);
+    quadLights_ = !quad.empty();
+    upload(quadSamples_, quadBytes_, quad.data(), quad.size() * sizeof(glm::vec2));
+}
+
+void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance,
+                             GLuint distance, GLuint probeData) {
+    if (jobs == 0) return;
+    program_.use();
+    bindProbeField(program_, field, irradiance, distance, probeData);
+    program_.set("uNanoNormalGrid", unsigned(normalGrid_));
+    program_.set("uNanoAlbedoGrid", unsigned(albedoGrid_));
+    program_.set("uNanoOffsetGrid", unsigned(offsetGrid_));
+    program_.set("uNanoVoxelSize", voxelSize_);
+    program_.set("uRays", blendRays);
+    program_.set("uLightCount", lightCount_);
+    program_.set("uQuadSampleSets", quadLights_ ? kQuadSampleSets : 0);
+    program_.set("uMissDistance", kMissDistance);
+    program_.set("uEnergy", field.desc().energyPreservation);
+    program_.set("uSky", scene_.sky.enabled ? scene_.sky.radiance : glm::vec3(0.0f));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, grids_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, lights_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, quadSamples_.id());
+    glDispatchCompute(GLuint((blendRays + 63) / 64), GLuint(jobs), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+}  // namespace voxgi

@@ -1,0 +1,52 @@
+// ddgi.trace = volume: the blend rays traced and shaded on the GPU (shaders/ddgi/
+// volume_shade.comp) through the scene's geometry volume uploaded once as NanoVDB, written into
+// the buffer the blend kernels read, so no shaded ray crosses the bus. The Embree trace and CPU
+// shading (gi/ddgi/probe_rays.h, hit_shading.h) are its reference.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "gi/ddgi/probe_blend.h"
+#include "gl/program.h"
+#include "gl/resources.h"
+
+namespace voxgi {
+
+struct NanoGeometry;
+struct Scene;
+
+class VolumeShadeGl {
+public:
+    // Uploads the grids; `scene` (its lights and sky) must outlive this. Needs a GL 4.5 context.
+    VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene);
+
+    // Per frame, before dispatch(): the jobs' probe positions (the trace's origins, relocation
+    // included), this frame's quad-light points and the scene's lights.
+    void prepare(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
+                 std::uint32_t frame);
+    // Shades every job's blend rays into the ray buffer bound at 2, with the jobs bound at 0
+    // and the blend directions at 1; reads the previous field from the atlases and probe data.
+    void dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance, GLuint distance,
+                  GLuint probeData);
+
+    float voxelSize() const { return voxelSize_; }
+
+private:
+    const Scene& scene_;
+    gl::Program program_;
+    gl::Handle grids_, origins_, lights_, quadSamples_;
+    std::size_t originsBytes_ = 0, lightsBytes_ = 0, quadBytes_ = 0;
+    std::uint32_t normalGrid_ = 0, albedoGrid_ = 0, offsetGrid_ = 0;
+    float voxelSize_ = 0.0f;
+    int lightCount_ = 0;
+    bool quadLights_ = false;
+};
+
+// The probe field's uniforms of shaders/ddgi/sampling.glsl (volumes, atlases on texture units
+// 4 and 5, probe data at storage binding 5), for every pass that samples the field.
+void bindProbeField(const gl::Program& program, const ProbeField& field, GLuint irradiance, GLuint distance,
+                    GLuint probeData);
+
+}  // namespace voxgi

@@ -1,0 +1,49 @@
+#include "gi/ddgi/volume_trace_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "gi/ddgi/ddgi_system.h"
+#include "gi/ddgi/volume_trace_gpu.h"
+#include "gi/raytrace/ray_tracer.h"
+#include "volumes/geometry_volume.h"
+#include "volumes/nano_geometry.h"
+
+namespace voxgi {
+
+void printVolumeTraceBench(const DdgiSystem& ddgi) {
+    const ProbeField& field = ddgi.field();
+    const RaySet& set = ddgi.lastRays();
+    std::vector<VolumeRay> rays;
+    rays.reserve(std::size_t(field.probeCount()) * std::size_t(set.stride()));
+    for (int p = 0; p < field.probeCount(); ++p)
+        for (const glm::vec3& d : set.directions) rays.push_back({field.probePosition(p), 1e30f, d, 0.0f});
+    float spacing = field.volumes().front().minSpacing();
+    for (const ProbeVolume& v : field.volumes()) spacing = std::min(spacing, v.minSpacing());
+    std::printf("GL probe rays through the NanoVDB geometry volume (%zu rays, every probe's; kernel only):\n",
+                rays.size());
+    for (int perSpacing : {4, 8, 16}) {
+        VoxelizeSettings settings;
+        settings.voxelSize = spacing / float(perSpacing);
+        const auto t0 = std::chrono::steady_clock::now();
+        const SparseGeometryVolume volume = voxelizeScene(ddgi.tracer().scene(), settings);
+        const NanoGeometry nano = makeNanoGeometry(volume);
+        const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        VolumeTracerGl tracer(nano);
+        std::vector<double> gpu, wall;
+        for (int k = 0; k < 3; ++k) {
+            tracer.trace(rays, kMissDistance);
+            gpu.push_back(tracer.lastKernelMs());
+            wall.push_back(tracer.lastKernelWallMs());
+        }
+        std::sort(gpu.begin(), gpu.end());
+        std::sort(wall.begin(), wall.end());
+        std::printf("  voxel = spacing/%-2d (%.4g): %llu voxels, %.1f MiB NanoVDB, built in %.0f ms; kernel %.2f ms "
+                    "GPU, %.2f ms wall, %.1f Mrays/s (wall)\n",
+                    perSpacing, double(settings.voxelSize), static_cast<unsigned long long>(nano.activeVoxels),
+                    double(nano.bytes()) / (1 << 20), buildMs, gpu[1], wall[1], double(rays.size()) / wall[1] * 1e-3);
+    }
+}
+
+}  // namespace voxgi

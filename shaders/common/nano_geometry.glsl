@@ -1,0 +1,89 @@
+// Ray casting through a geometry volume level uploaded as NanoVDB (volumes/nano_geometry.h):
+// the first occupied voxel along a ray, by a DDA that steps voxel by voxel inside allocated
+// leaves and jumps over the empty nodes and tiles of the tree in one step each (PNanoVDB's
+// readaccessor_get_dim: 1 inside a leaf, 8, 128 or 4096 across an empty node). Define
+// NANO_GEOMETRY_BINDING (the storage-buffer binding of the grids) before including.
+layout(std430, binding = NANO_GEOMETRY_BINDING) readonly buffer NanoGeometryGrids { uint pnanovdb_buf_data[]; };
+#define PNANOVDB_GLSL
+#include <nanovdb/PNanoVDB.h>
+
+uniform uint uNanoNormalGrid;  // byte offsets of the grids in the buffer
+uniform uint uNanoAlbedoGrid;
+uniform uint uNanoOffsetGrid;  // 0: none
+uniform float uNanoVoxelSize;  // world size of a voxel: voxel ijk covers [ijk, ijk + 1] * size
+
+// Safety cap on DDA steps per ray (a ray crossing a 4096^3 index box in single voxels makes 12288).
+const int kNanoMaxSteps = 16384;
+
+pnanovdb_readaccessor_t nanoAccessor(uint gridOffset) {
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
+    pnanovdb_grid_handle_t grid;
+    grid.address.byte_offset = gridOffset;
+    pnanovdb_readaccessor_t acc;
+    pnanovdb_readaccessor_init(acc, pnanovdb_tree_get_root(buf, pnanovdb_grid_get_tree(buf, grid)));
+    return acc;
+}
+
+vec3 nanoReadVec3(inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
+    pnanovdb_address_t a = pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ijk);
+    return vec3(pnanovdb_read_float(buf, a), pnanovdb_read_float(buf, pnanovdb_address_offset(a, 4u)),
+                pnanovdb_read_float(buf, pnanovdb_address_offset(a, 8u)));
+}
+
+float nanoReadFloat(inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
+    return pnanovdb_read_float(buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
+}
+
+// Where a ray that entered `voxel` at tEntry meets the plane of its surface (unit normal n, the
+// surface offset grid's point), kept inside the voxel; tEntry without offsets.
+float nanoSurfaceHit(vec3 origin, vec3 dir, ivec3 voxel, vec3 n, float tEntry) {
+    if (uNanoOffsetGrid == 0u) return tEntry;
+    pnanovdb_readaccessor_t offsets = nanoAccessor(uNanoOffsetGrid);
+    const float h = uNanoVoxelSize;
+    vec3 onPlane = (vec3(voxel) + 0.5) * h + nanoReadFloat(offsets, voxel) * n;
+    float dn = dot(dir, n);
+    if (abs(dn) < 1e-6) return tEntry;
+    vec3 exitT = ((vec3(voxel) + step(vec3(0.0), dir)) * h - origin) / dir;
+    float tExit = min(exitT.x, min(exitT.y, exitT.z));
+    return clamp(dot(onPlane - origin, n) / dn, tEntry, max(tEntry, tExit));
+}
+
+// The first occupied voxel met by origin + t * dir (world units, unit dir) for t in
+// [tMin, tMax]: true with the distance where the ray enters it and its index. Occupied voxels
+// are solid: treating each as its surface plane only (a ray that crosses the plane outside the
+// voxel goes on) leaked light through a thin wall where it meets the floor, whose normal the
+// voxel's then holds alone.
+bool nanoFirstHit(vec3 origin, vec3 dir, float tMin, float tMax, out float tHit, out ivec3 voxel) {
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
+    pnanovdb_readaccessor_t acc = nanoAccessor(uNanoNormalGrid);
+    const float h = uNanoVoxelSize;
+    vec3 o = origin / h;
+    // 1/0 is +-inf: an axis the ray does not move along never bounds it.
+    vec3 inv = 1.0 / dir;
+    vec3 lo = vec3(pnanovdb_root_get_bbox_min(buf, acc.root));
+    vec3 hi = vec3(pnanovdb_root_get_bbox_max(buf, acc.root)) + 1.0;
+    vec3 ta = (lo - o) * inv, tb = (hi - o) * inv;
+    vec3 tNear = min(ta, tb), tFar = max(ta, tb);
+    float t = max(tMin / h, max(tNear.x, max(tNear.y, tNear.z)));
+    float tEnd = min(tMax / h, min(tFar.x, min(tFar.y, tFar.z)));
+    // A nudge past each boundary, in voxels: small against a voxel, large against the float
+    // spacing of index coordinates below 2^12.
+    const float nudge = 1e-3;
+    vec3 side = step(vec3(0.0), dir);  // 1 where the ray leaves a box through its upper face
+    for (int i = 0; i < kNanoMaxSteps && t <= tEnd; ++i) {
+        ivec3 ijk = ivec3(floor(o + t * dir));
+        int dim = int(pnanovdb_readaccessor_get_dim(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ijk));
+        if (dim == 1 && pnanovdb_readaccessor_is_active(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ijk)) {
+            tHit = t * h;
+            voxel = ijk;
+            return true;
+        }
+        // Leave the voxel or empty node holding ijk (aligned to its size).
+        vec3 boxLo = vec3(ijk & ivec3(~(dim - 1)));
+        vec3 exitT = (boxLo + side * float(dim) - o) * inv;
+        t = max(min(exitT.x, min(exitT.y, exitT.z)), t) + nudge;
+    }
+    return false;
+}

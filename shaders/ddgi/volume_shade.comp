@@ -1,0 +1,79 @@
+#version 450 core
+// DDGI's blend rays traced and shaded on the GPU (ddgi.trace = volume), one thread per ray of
+// one blend job (workgroup y = job), written where blend.comp reads them: rgb radiance toward
+// the probe, a signed hit distance. Rays march the NanoVDB geometry volume; a front-face hit
+// reflects the frame's lights (shadow rays through the same volume) and the previous frame's
+// probe irradiance times ddgi.energy over a Lambert lobe, as the CPU reference does
+// (gi/ddgi/hit_shading.cpp). The hit is where the ray meets the plane of the surface in the
+// first occupied voxel (its mean normal and surface offset), within that voxel.
+#define NANO_GEOMETRY_BINDING 3
+#include "common/nano_geometry.glsl"
+#include "ddgi/blend_common.glsl"
+#include "ddgi/sampling.glsl"
+#include "shared/constants.h"
+#include "shared/light_model.h"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 1) readonly buffer Directions { vec4 directions[]; };  // blend rays
+layout(std430, binding = 2) writeonly buffer Rays { vec4 rayValues[]; };  // rgb radiance, a signed distance
+layout(std430, binding = 4) readonly buffer JobOrigins { vec4 jobOrigins[]; };  // per job: probe position
+layout(std430, binding = 6) readonly buffer Lights { PackedLight lights[]; };
+layout(std430, binding = 7) readonly buffer QuadSamples { vec2 quadSamples[]; };  // gi/ddgi/hit_shading.h
+
+uniform int uRays;
+uniform int uLightCount;
+uniform int uQuadSampleSets;  // kQuadSampleSets, or 0 without quad lights (the sample is then the centre)
+uniform float uMissDistance;
+uniform float uEnergy;
+uniform vec3 uSky;
+// Shadow rays leave this many voxels off the hit along its normal, and stop this many voxels
+// before the light (a quad light sits on a voxelized ceiling).
+const float kShadowOffsetVoxels = 1.5;
+const float kShadowStopVoxels = 3.0;
+
+void main() {
+    int ray = int(gl_GlobalInvocationID.x);
+    if (ray >= uRays) return;
+    BlendJob job = jobs[gl_WorkGroupID.y];
+    int out_ = job.rayBase + ray;
+    vec3 origin = jobOrigins[gl_WorkGroupID.y].xyz;
+    vec3 dir = directions[ray].xyz;
+    float t;
+    ivec3 voxel;
+    if (!nanoFirstHit(origin, dir, 0.0, uMissDistance, t, voxel)) {
+        rayValues[out_] = vec4(uSky, uMissDistance);
+        return;
+    }
+    pnanovdb_readaccessor_t normals = nanoAccessor(uNanoNormalGrid);
+    vec3 coverage = nanoReadVec3(normals, voxel);
+    vec3 n = dot(coverage, coverage) > 0.0 ? normalize(coverage) : -dir;
+    if (dot(n, dir) > 0.0) {  // a back face carries no light
+        rayValues[out_] = vec4(0.0, 0.0, 0.0, -t);
+        return;
+    }
+    t = nanoSurfaceHit(origin, dir, voxel, n, t);  // shade on the surface, not at the voxel's entry
+    pnanovdb_readaccessor_t albedos = nanoAccessor(uNanoAlbedoGrid);
+    vec3 albedo = nanoReadVec3(albedos, voxel);
+    if (albedo == vec3(0.0)) {
+        rayValues[out_] = vec4(0.0, 0.0, 0.0, t);
+        return;
+    }
+    vec3 p = origin + t * dir;
+    vec2 u = uQuadSampleSets > 0 ? quadSamples[(job.probe % uQuadSampleSets) * uRays + ray] : vec2(0.5);
+    vec3 e = vec3(0.0);
+    float h = uNanoVoxelSize;
+    vec3 shadowOrigin = p + n * (kShadowOffsetVoxels * h);
+    for (int l = 0; l < uLightCount; ++l) {
+        IncidentLight incident = evaluateLight(lights[l], p, u);
+        if (!(incident.falloff > 0.0)) continue;
+        float c = dot(n, incident.direction);
+        if (!(c > 0.0)) continue;
+        float tMax = isinf(incident.distance) ? uMissDistance : incident.distance - kShadowStopVoxels * h;
+        float tBlock;
+        ivec3 blocker;
+        if (tMax > 0.0 && nanoFirstHit(shadowOrigin, incident.direction, 0.0, tMax, tBlock, blocker)) continue;
+        e += incident.irradiance * c;
+    }
+    if (uEnergy > 0.0) e += uEnergy * ddgiSampleIrradiance(p, n, -dir);
+    rayValues[out_] = vec4(albedo * kInvPi * e, t);
+}

@@ -1,0 +1,40 @@
+// A geometry volume level as NanoVDB grids in one buffer, for GPU ray casting through the
+// occupancy (shaders/common/nano_geometry.glsl reads it with PNanoVDB.h). Two Vec3f grids over
+// the occupied voxels: the normal (vector coverage, as SparseGeometryVolume::normal) and the
+// diffuse albedo; optionally a float grid of where the surface lies in each voxel. Voxel (i, j, k) covers [i, i+1] x [j, j+1] x [k, k+1] * voxelSize in world
+// space, so a world point p lies in voxel floor(p / voxelSize).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace voxgi {
+
+class SparseGeometryVolume;
+
+struct NanoGeometry {
+    std::vector<std::uint32_t> words;  // the grids, each starting on a 32-byte boundary
+    std::uint32_t normalGrid = 0;      // byte offsets of the grids in `words`
+    std::uint32_t albedoGrid = 0;
+    std::uint32_t offsetGrid = 0;      // 0: no surface offsets
+    float voxelSize = 0.0f;
+    std::uint64_t activeVoxels = 0;
+
+    std::uint64_t bytes() const { return words.size() * sizeof(std::uint32_t); }
+};
+
+// Where the surface lies in an occupied voxel: the signed distance s from the voxel's centre
+// along its unit mean normal n to the surface (the surface passes through centre + s n). Called
+// from several threads.
+using SurfaceOffset = std::function<float(glm::vec3 centre, glm::vec3 normal)>;
+
+// The grids of `level`: mean normal (coverage) and albedo as Vec3f and, given `surfaceOffset`,
+// the offsets as a float grid. Throws InputError when the buffer would pass 4 GiB (32-bit
+// addresses).
+NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level = 0,
+                              const SurfaceOffset& surfaceOffset = {});
+
+}  // namespace voxgi
