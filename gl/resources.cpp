@@ -1,5 +1,6 @@
 #include "gl/resources.h"
 
+#include <algorithm>
 #include <string>
 
 #include "gl/context.h"
@@ -44,6 +45,13 @@ Handle createTimerQuery() {
     GLuint id = 0;
     glCreateQueries(GL_TIME_ELAPSED, 1, &id);
     return Handle(id, [](GLuint i) { glDeleteQueries(1, &i); });
+}
+
+void ensureBuffer(Handle& buffer, std::size_t& capacity, std::size_t bytes) {
+    bytes = std::max<std::size_t>(bytes, 16);
+    if (buffer && capacity >= bytes) return;
+    capacity = bytes * 2;
+    buffer = createBuffer(capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 
 double timerQueryMs(GLuint query) {

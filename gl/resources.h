@@ -43,6 +43,9 @@ private:
 Handle createTexture(GLenum target, GLenum internalFormat, int width, int height, int depth = 1,
                      int levels = 1);
 Handle createBuffer(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+// Makes `buffer` hold at least `bytes` (at least 16), growing it to twice the request when it
+// is too small so that sizes changing frame by frame settle; `capacity` tracks its size.
+void ensureBuffer(Handle& buffer, std::size_t& capacity, std::size_t bytes);
 Handle createFramebuffer();
 Handle createVertexArray();
 // A GL_TIME_ELAPSED query object.

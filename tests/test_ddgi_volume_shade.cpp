@@ -9,6 +9,8 @@
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/ddgi_system.h"
 #include "gi/ddgi/occupancy_query.h"
+#include "gi/ddgi/probe_sampling.h"
+#include "gi/ddgi/probe_states.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gl/context.h"
 #include "scenes/scene_loader.h"
@@ -33,6 +35,7 @@ std::vector<glm::vec3> converge(const Scene& scene, std::map<std::string, std::s
         system.update(scene.camera.eye, &gpu);
         gpu.uploadProbeData(system.field());
     }
+    gpu.syncToCpu(system.field());
     std::vector<glm::vec3> mean;
     for (int p = 0; p < system.field().probeCount(); ++p) mean.push_back(system.field().meanIrradiance(p));
     return mean;
@@ -100,4 +103,102 @@ TEST_F(DdgiVolumeShade, NoLightLeaksThroughAThinWall) {
     std::printf("two rooms: lit room %.4g, dark room %.4g\n", lit, dark);
     EXPECT_GT(lit, 0.0);
     EXPECT_LT(dark, 1e-3 * lit);
+}
+
+// Ray by ray, on one frame: the GPU's shaded blend rays against Embree's trace and the CPU
+// shading of the same rays from the same previous field. Misses and back faces must agree on
+// most rays; the radiance summed over the front hits both see within 15 %.
+TEST_F(DdgiVolumeShade, RaysAgreeWithTheCpuShadingOfTheSameField) {
+    const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/cornell-box.json");
+    const DdgiDesc desc = test::descFrom({{"fit_cells", "4"}, {"rays", "128"}, {"trace", "volume"}, {"hit_cache", "off"}});
+    RayTracer tracer(scene);
+    DdgiSystem system(tracer, desc);
+    DdgiGpu gpu(system.field());
+    gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), scene);
+    const int frames = 12;
+    for (int f = 0; f < frames; ++f) {
+        system.update(scene.camera.eye, &gpu);
+        gpu.uploadProbeData(system.field());
+    }
+    // Frame `frames` on the CPU first, from the field the GPU left.
+    gpu.syncToCpu(system.field());
+    const ProbeField& field = system.field();
+    const RaySet rays = makeRaySet(desc, std::uint32_t(desc.seed), std::uint32_t(frames));
+    ProbeTrace trace;
+    trace.work = scheduleProbes(field, std::uint32_t(frames));
+    traceProbes(tracer, field, rays, trace);
+    std::vector<int> probes;
+    for (int p = 0; p < field.probeCount(); ++p)
+        if (trace.work[std::size_t(p)] == ProbeWork::Full) probes.push_back(p);
+    ShadowRayVisibility visibility(tracer, 1e-4f * glm::length(scene.bounds().extent()));
+    ProbeSampler previous(field);
+    ShadedRays cpu;
+    shadeProbeRays(scene, visibility, previous, rays, trace, probes, std::uint32_t(frames), nullptr, cpu);
+    system.update(scene.camera.eye, &gpu);
+    const std::vector<glm::vec4> gl = gpu.readRayValues(cpu.values.size());
+    ASSERT_EQ(gl.size(), cpu.values.size());
+
+    int kindMismatch = 0, frontBoth = 0;
+    glm::dvec3 sumCpu(0.0), sumGl(0.0);
+    for (std::size_t i = 0; i < gl.size(); ++i) {
+        auto kind = [](const glm::vec4& v) { return v.w >= kMissDistance ? 0 : v.w < 0.0f ? 1 : 2; };
+        const int a = kind(cpu.values[i]), b = kind(gl[i]);
+        if (a != b) {
+            ++kindMismatch;
+            continue;
+        }
+        if (a != 2) continue;
+        ++frontBoth;
+        sumCpu += glm::dvec3(cpu.values[i]);
+        sumGl += glm::dvec3(gl[i]);
+        if (std::getenv("VOXGI_DEBUG_TRACE")) {
+            const int job = int(i) / rays.blendRays, ray = int(i) % rays.blendRays;
+            const glm::vec3 o = trace.origins[std::size_t(probes[std::size_t(job)])], d = rays.blendDirection(ray);
+            const glm::vec3 c(cpu.values[i]), g(gl[i]);
+            if (c.x + c.y + c.z > 2.0f * (g.x + g.y + g.z) + 0.05f || g.x + g.y + g.z > 2.0f * (c.x + c.y + c.z) + 0.05f)
+                std::printf("probe %d ray %d: hit %.3f %.3f %.3f, cpu %.4f (t %.4f) gpu %.4f (t %.4f)\n",
+                            probes[std::size_t(job)], ray, o.x + d.x * cpu.values[i].w, o.y + d.y * cpu.values[i].w,
+                            o.z + d.z * cpu.values[i].w, c.x + c.y + c.z, cpu.values[i].w, g.x + g.y + g.z, gl[i].w);
+        }
+    }
+    const double ratio = (sumGl.x + sumGl.y + sumGl.z) / (sumCpu.x + sumCpu.y + sumCpu.z);
+    std::printf("%zu rays: %d differ in kind (miss, back, front), %d front hits in both; radiance gpu / cpu %.3f "
+                "(r %.3f g %.3f b %.3f)\n",
+                gl.size(), kindMismatch, frontBoth, ratio, sumGl.x / sumCpu.x, sumGl.y / sumCpu.y, sumGl.z / sumCpu.z);
+    EXPECT_LT(kindMismatch, int(gl.size()) / 20);
+    EXPECT_GT(ratio, 0.85);
+    EXPECT_LT(ratio, 1.15);
+}
+
+// Tracing in the volume, the atlases stay on the GPU between frames; scrolling cascades reset
+// probes on the CPU copy, which must first be brought up to date. Reading back after every
+// frame and only at the end must give the same field, bit for bit.
+TEST_F(DdgiVolumeShade, AtlasesKeptOnTheGpuMatchThoseReadBackEveryFrame) {
+    const Scene scene = test::openYard();
+    const DdgiDesc desc = test::descFrom({{"probes", "6 4 6"}, {"spacing", "0.5 0.5 0.5"}, {"cascades", "2"},
+                                          {"rays", "64"}, {"trace", "volume"}});
+    RayTracer tracer(scene);
+    DdgiSystem everyFrame(tracer, desc), atEnd(tracer, desc);
+    DdgiGpu gpuEvery(everyFrame.field()), gpuEnd(atEnd.field());
+    gpuEvery.traceInVolume(voxelizeForTracing(tracer, everyFrame.field()), scene);
+    gpuEnd.traceInVolume(voxelizeForTracing(tracer, atEnd.field()), scene);
+    int scrolled = 0;
+    for (int f = 0; f < 10; ++f) {
+        const glm::vec3 eye(-1.5f + 0.35f * float(f), 1.0f, 0.2f * float(f % 3));
+        const glm::vec3 before = atEnd.field().volumes().front().origin;
+        everyFrame.update(eye, &gpuEvery, glm::vec3(1.0f, 0.0f, 0.0f));
+        gpuEvery.syncToCpu(everyFrame.field());
+        gpuEvery.uploadProbeData(everyFrame.field());
+        atEnd.update(eye, &gpuEnd, glm::vec3(1.0f, 0.0f, 0.0f));
+        gpuEnd.uploadProbeData(atEnd.field());
+        scrolled += atEnd.field().volumes().front().origin != before;
+    }
+    gpuEnd.syncToCpu(atEnd.field());
+    EXPECT_GE(scrolled, 3);
+    ASSERT_EQ(everyFrame.field().irradiance.texels.size(), atEnd.field().irradiance.texels.size());
+    EXPECT_TRUE(everyFrame.field().irradiance.texels == atEnd.field().irradiance.texels);
+    EXPECT_TRUE(everyFrame.field().distance.texels == atEnd.field().distance.texels);
+    double sum = 0.0;
+    for (int p = 0; p < atEnd.field().probeCount(); ++p) sum += atEnd.field().meanIrradiance(p).x;
+    EXPECT_GT(sum, 0.0);
 }

@@ -359,6 +359,7 @@ void benchScene(const std::string& path, Scene scene, const BenchRequest& reques
                     median(borderGpu), median(readback));
         std::printf("  sample (apply pass, 512x512 G-buffer) %.2f ms wall, %.3f ms GPU\n", applyWall, applyGpu);
         printVolumeTraceBench(gpuSystem);
+        printVolumeUpdateBench(tracer, all, eye, std::min(frames, 5));
     }
 }
 

@@ -59,13 +59,6 @@ void DdgiGpu::shadeRays(const RaySet& rays, const ProbeTrace& trace, const std::
     shadePending_ = true;
 }
 
-void DdgiGpu::ensureBuffer(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes) {
-    bytes = std::max<std::size_t>(bytes, 16);
-    if (buffer && capacity >= bytes) return;
-    capacity = bytes * 2;
-    buffer = gl::createBuffer(capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
-}
-
 void DdgiGpu::upload(const ProbeField& field) {
     uploadAtlases(field);
     uploadProbeData(field);
@@ -78,11 +71,18 @@ void DdgiGpu::uploadAtlases(const ProbeField& field) {
     syncedVersion_ = field.atlasVersion();
 }
 
+std::vector<glm::vec4> DdgiGpu::readRayValues(std::size_t count) const {
+    std::vector<glm::vec4> values(std::min(count, raysBytes_ / sizeof(glm::vec4)));
+    if (!values.empty())
+        glGetNamedBufferSubData(rays_.id(), 0, GLsizeiptr(values.size() * sizeof(glm::vec4)), values.data());
+    return values;
+}
+
 void DdgiGpu::uploadProbeData(const ProbeField& field) {
     std::vector<glm::vec4> data;
     data.reserve(field.probes.size());
     for (const ProbeRecord& r : field.probes) data.emplace_back(r.offset, float(int(r.state)));
-    ensureBuffer(probeData_, probeDataBytes_, data.size() * sizeof(glm::vec4));
+    gl::ensureBuffer(probeData_, probeDataBytes_, data.size() * sizeof(glm::vec4));
     glNamedBufferSubData(probeData_.id(), 0, GLsizeiptr(data.size() * sizeof(glm::vec4)), data.data());
 }
 
@@ -110,12 +110,12 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
     std::vector<glm::vec4> dirs;
     dirs.reserve(std::size_t(rays.blendRays));
     for (int i = 0; i < rays.blendRays; ++i) dirs.emplace_back(rays.blendDirection(i), 0.0f);
-    ensureBuffer(jobs_, jobsBytes_, jobs.size() * sizeof(BlendJob));
-    ensureBuffer(directions_, directionsBytes_, dirs.size() * sizeof(glm::vec4));
+    gl::ensureBuffer(jobs_, jobsBytes_, jobs.size() * sizeof(BlendJob));
+    gl::ensureBuffer(directions_, directionsBytes_, dirs.size() * sizeof(glm::vec4));
     const bool shadeHere = volume_ && shadePending_;
     shadePending_ = false;
     const std::size_t rayCount = shadeHere ? jobs.size() * std::size_t(rays.blendRays) : shaded.values.size();
-    ensureBuffer(rays_, raysBytes_, rayCount * sizeof(glm::vec4));
+    gl::ensureBuffer(rays_, raysBytes_, rayCount * sizeof(glm::vec4));
     glNamedBufferSubData(jobs_.id(), 0, GLsizeiptr(jobs.size() * sizeof(BlendJob)), jobs.data());
     glNamedBufferSubData(directions_.id(), 0, GLsizeiptr(dirs.size() * sizeof(glm::vec4)), dirs.data());
     if (!shadeHere)
@@ -178,9 +178,19 @@ void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
         glFinish();
         times_.borderGpuMs = gl::timerQueryMs(borderQuery_.id());
     }
+    if (volume_) {
+        cpuStale_ = true;
+        return;
+    }
     const auto start = std::chrono::steady_clock::now();
     readBack(field);
     times_.readbackMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void DdgiGpu::syncToCpu(ProbeField& field) {
+    if (!cpuStale_) return;
+    readBack(field);
+    cpuStale_ = false;
 }
 
 void bindProbeField(const gl::Program& program, const ProbeField& field, GLuint irradiance, GLuint distance,

@@ -1,7 +1,9 @@
 // The GL side of DDGI: the probe atlases as textures, the update kernels (blend.comp,
-// border.comp) as a BlendBackend, and the fullscreen apply pass. The CPU ProbeField stays the
-// master copy: atlases come back after the border pass, because the next frame's ray shading
-// reads them on the CPU, and go up before blending only when the CPU changed them since.
+// border.comp) as a BlendBackend, and the fullscreen apply pass. With CPU ray shading the CPU
+// ProbeField stays the master copy: atlases come back after the border pass, because the next
+// frame's ray shading reads them on the CPU, and go up before blending only when the CPU
+// changed them since. Tracing in the volume (traceInVolume), they stay on the GPU until a CPU
+// reader asks (syncToCpu).
 #pragma once
 
 #include <memory>
@@ -23,6 +25,9 @@ public:
     // volume); `scene` gives the lights and must outlive this.
     void traceInVolume(const NanoGeometry& geometry, const Scene& scene);
     bool shadesRays() const override { return volume_ != nullptr; }
+    // Tracing in the volume, nothing on the CPU reads the atlases each frame: border() leaves
+    // them on the GPU and this reads them back when they are newer than the CPU's.
+    void syncToCpu(ProbeField& field) override;
     void shadeRays(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
                    std::uint32_t frame) override;
 
@@ -38,6 +43,8 @@ public:
     void apply(const ProbeField& field, const GBufferView& gbuffer);
 
     GLuint irradianceTexture() const { return irradiance_.id(); }
+    // The last blend's ray values (job * blendRays + ray), read back: for tests and diagnostics.
+    std::vector<glm::vec4> readRayValues(std::size_t count) const;
     GLuint distanceTexture() const { return distance_.id(); }
 
     // Where the last blend() and border() spent their time: CPU wall time of the transfers
@@ -52,7 +59,6 @@ public:
 private:
     void uploadAtlases(const ProbeField& field);
     void readBack(ProbeField& field);
-    void ensureBuffer(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes);
 
     gl::Program blendIrradiance_, blendDistance_, border_, apply_;
     gl::Handle irradiance_, distance_, emptyVao_;
@@ -61,6 +67,7 @@ private:
     gl::Handle blendQuery_, borderQuery_, shadeQuery_;
     std::unique_ptr<VolumeShadeGl> volume_;
     bool shadePending_ = false;  // shadeRays() prepared this frame's rays for blend()
+    bool cpuStale_ = false;      // the GPU atlases are newer than the field's (syncToCpu)
     Times times_;
     // The field (and its atlasVersion) the GPU atlases hold, after an upload or a read-back.
     std::vector<glm::vec4> staging_;  // atlas rows on their way up or down

@@ -55,9 +55,12 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     ProbeField& field = *field_;
     const DdgiDesc& desc = field.desc();
     if (desc.scrolls())
-        for (int v = 0; v < int(field.volumes().size()); ++v)
-            field.scrollTo(v, scrollCentre(field.volumes()[std::size_t(v)], eye, forward, desc.forwardOffset,
-                                           bounds_));
+        for (int v = 0; v < int(field.volumes().size()); ++v) {
+            const glm::vec3 centre = scrollCentre(field.volumes()[std::size_t(v)], eye, forward, desc.forwardOffset, bounds_);
+            // Scrolling resets probes in the CPU atlases, which must hold the newest field first.
+            if (backend && field.scrollShift(v, centre) != glm::ivec3(0)) backend->syncToCpu(field);
+            field.scrollTo(v, centre);
+        }
 
     auto t0 = std::chrono::steady_clock::now();
     rays_ = makeRaySet(desc, std::uint32_t(desc.seed), frame_);
@@ -143,7 +146,10 @@ void DdgiSystem::blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, 
     classifyProbes(field, rays_, trace_, query_);
     stats.classifyMs = msSince(t0);
     stats.states = countStates(field);
-    if (trackChange_) measureChange();
+    if (trackChange_) {
+        blender.syncToCpu(field);
+        measureChange();
+    }
     ++frame_;
 }
 

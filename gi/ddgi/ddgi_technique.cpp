@@ -48,12 +48,17 @@ void DdgiTechnique::applyIndirect(const FrameInput& input, const GBufferView& gb
     input.timers.end();
 }
 
-void DdgiTechnique::dumpVdb(const std::string& path) const { writeProbeVdb(system_->field(), path); }
+void DdgiTechnique::dumpVdb(const std::string& path) const {
+    gpu_->syncToCpu(system_->field());
+    writeProbeVdb(system_->field(), path);
+}
 
 DebugDrawing DdgiTechnique::debugView(const std::string& view, const DebugViewContext& context) const {
     if (view == kCascadeBoundsView) return probeBounds(system_->field());
-    if (view == kProbesView)
+    if (view == kProbesView) {
+        gpu_->syncToCpu(system_->field());
         return probeSpheres(system_->field(), probesOptions().read(context.options).color, context.exposureStops);
+    }
     return {};
 }
 

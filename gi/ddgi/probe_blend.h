@@ -63,6 +63,10 @@ public:
     // the frame) before blend(), whose `shaded` is empty.
     virtual bool shadesRays() const { return false; }
     virtual void shadeRays(const RaySet&, const ProbeTrace&, const std::vector<BlendJob>&, std::uint32_t /*frame*/) {}
+    // A backend that keeps the newest atlases to itself (no read-back each frame) brings
+    // field.irradiance and field.distance up to date here; callers do so before any CPU read
+    // or write of them.
+    virtual void syncToCpu(ProbeField&) {}
 };
 
 class CpuBlend : public BlendBackend {

@@ -221,10 +221,15 @@ glm::vec3 ProbeField::meanIrradiance(int probe) const {
     return sum / float(n * n);
 }
 
+glm::ivec3 ProbeField::scrollShift(int index, glm::vec3 target) const {
+    const ProbeVolume& v = volumes_[std::size_t(index)];
+    glm::vec3 centre = v.origin + 0.5f * glm::vec3(v.counts - 1) * v.spacing;
+    return glm::ivec3(glm::floor((target - centre) / v.spacing + 0.5f));
+}
+
 glm::ivec3 ProbeField::scrollTo(int index, glm::vec3 target) {
     ProbeVolume& v = volumes_[std::size_t(index)];
-    glm::vec3 centre = v.origin + 0.5f * glm::vec3(v.counts - 1) * v.spacing;
-    glm::ivec3 shift = glm::ivec3(glm::floor((target - centre) / v.spacing + 0.5f));
+    const glm::ivec3 shift = scrollShift(index, target);
     if (shift == glm::ivec3(0)) return shift;
     v.origin += glm::vec3(shift) * v.spacing;
     v.scroll += shift;

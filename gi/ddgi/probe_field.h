@@ -112,6 +112,8 @@ public:
     // Moves a scrolling volume by whole cells so its centre follows `centre`; resets the probe
     // planes that enter. Returns the shift in cells.
     glm::ivec3 scrollTo(int volume, glm::vec3 centre);
+    // The shift scrollTo(volume, centre) would make, without making it.
+    glm::ivec3 scrollShift(int volume, glm::vec3 centre) const;
 
     // Every CPU write to `irradiance` or `distance` (probe resets, the CPU blend) bumps this, so
     // that a GPU copy of the atlases uploads them again only when they changed.

@@ -8,14 +8,9 @@
 namespace voxgi {
 
 namespace {
-// Grows `buffer` to hold `bytes` (doubling, so per-frame sizes settle) and uploads `data`.
 void upload(gl::Handle& buffer, std::size_t& capacity, const void* data, std::size_t bytes) {
-    bytes = std::max<std::size_t>(bytes, 16);
-    if (!buffer || capacity < bytes) {
-        capacity = bytes * 2;
-        buffer = gl::createBuffer(capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
-    }
-    if (data) glNamedBufferSubData(buffer.id(), 0, GLsizeiptr(bytes), data);
+    gl::ensureBuffer(buffer, capacity, bytes);
+    if (bytes > 0) glNamedBufferSubData(buffer.id(), 0, GLsizeiptr(bytes), data);
 }
 }  // namespace
 

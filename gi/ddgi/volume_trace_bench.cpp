@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cstdio>
 
+#include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/ddgi_system.h"
+#include "gi/ddgi/occupancy_query.h"
 #include "gi/ddgi/volume_trace_gpu.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "volumes/geometry_volume.h"
@@ -43,6 +45,40 @@ void printVolumeTraceBench(const DdgiSystem& ddgi) {
                     "GPU, %.2f ms wall, %.1f Mrays/s (wall)\n",
                     perSpacing, double(settings.voxelSize), static_cast<unsigned long long>(nano.activeVoxels),
                     double(nano.bytes()) / (1 << 20), buildMs, gpu[1], wall[1], double(rays.size()) / wall[1] * 1e-3);
+    }
+}
+
+void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 eye, int frames) {
+    desc.trace = DdgiTrace::Volume;
+    desc.backend = Backend::Gl;
+    std::printf("GL update with ddgi.trace = volume (medians of %d frames; wall ms unless GPU):\n", frames);
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    };
+    for (int perSpacing : {4, 8, 16}) {
+        desc.traceVoxels = perSpacing;
+        DdgiSystem system(tracer, desc);
+        DdgiGpu gpu(system.field());
+        const auto t0 = std::chrono::steady_clock::now();
+        gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), tracer.scene());
+        const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        std::vector<double> total, trace, blend, border, shadeGpu, blendGpu;
+        for (int f = 0; f < frames + 2; ++f) {
+            const DdgiFrameStats s = system.update(eye, &gpu);
+            gpu.uploadProbeData(system.field());
+            if (f < 2) continue;
+            total.push_back(s.traceMs + s.shadeMs + s.blendMs + s.borderMs + s.classifyMs);
+            trace.push_back(s.traceMs);
+            blend.push_back(s.blendMs);
+            border.push_back(s.borderMs);
+            shadeGpu.push_back(gpu.lastTimes().shadeGpuMs);
+            blendGpu.push_back(gpu.lastTimes().blendGpuMs);
+        }
+        std::printf("  trace_voxels %-2d: volume built in %.0f ms; update %.2f: fixed rays (Embree) %.2f, trace + shade + "
+                    "blend %.2f (GPU %.3f + %.3f), border + readback %.2f\n",
+                    perSpacing, buildMs, median(total), median(trace), median(blend), median(shadeGpu),
+                    median(blendGpu), median(border));
     }
 }
 

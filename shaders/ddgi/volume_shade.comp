@@ -26,10 +26,13 @@ uniform int uQuadSampleSets;  // kQuadSampleSets, or 0 without quad lights (the 
 uniform float uMissDistance;
 uniform float uEnergy;
 uniform vec3 uSky;
-// Shadow rays leave this many voxels off the hit along its normal, and stop this many voxels
-// before the light (a quad light sits on a voxelized ceiling).
+// Shadow rays leave this many voxels off the hit along its normal, and stop short of the light:
+// a point or spot light may sit anywhere in an occupied voxel (a lamp's), which the ray enters
+// up to a voxel diagonal before it; a quad light lies on a voxelized surface (a ceiling) whose
+// voxels a slanted ray meets farther out.
 const float kShadowOffsetVoxels = 1.5;
-const float kShadowStopVoxels = 3.0;
+const float kShadowStopPointVoxels = 1.75;
+const float kShadowStopQuadVoxels = 3.0;
 
 void main() {
     int ray = int(gl_GlobalInvocationID.x);
@@ -68,7 +71,8 @@ void main() {
         if (!(incident.falloff > 0.0)) continue;
         float c = dot(n, incident.direction);
         if (!(c > 0.0)) continue;
-        float tMax = isinf(incident.distance) ? uMissDistance : incident.distance - kShadowStopVoxels * h;
+        float stop = lights[l].kind.x == kLightQuad ? kShadowStopQuadVoxels : kShadowStopPointVoxels;
+        float tMax = isinf(incident.distance) ? uMissDistance : incident.distance - stop * h;
         float tBlock;
         ivec3 blocker;
         if (tMax > 0.0 && nanoFirstHit(shadowOrigin, incident.direction, 0.0, tMax, tBlock, blocker)) continue;
