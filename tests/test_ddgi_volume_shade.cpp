@@ -57,7 +57,7 @@ protected:
 };
 
 // The Cornell box's field from the volume against the triangles', probe by probe where the
-// triangles' probe holds light. Known differences (measured, fit_cells 4): probes within a
+// triangles' probe holds light. Known differences (measured, fit_cells 4, 8 voxels per spacing): probes within a
 // voxel or two of a block see the block's voxels where Embree sees past its face (bottom
 // layer, down to 0.16 of the triangles'); the light's black quad, 0.8 mm under the ceiling,
 // shares the ceiling's voxels and reflects there (top layer, up to 1.7x). In all 0.955.
@@ -66,6 +66,7 @@ TEST_F(DdgiVolumeShade, CornellBoxFieldAgreesWithTheEmbreeTrace) {
     const std::map<std::string, std::string> keys{{"fit_cells", "4"}, {"rays", "128"}};
     auto volumeKeys = keys;
     volumeKeys["trace"] = "volume";
+    volumeKeys["trace_voxels"] = "8";
     const std::vector<glm::vec3> tri = converge(scene, keys, 24), vol = converge(scene, volumeKeys, 24);
     ASSERT_EQ(tri.size(), vol.size());
     std::vector<int> lit;
@@ -106,11 +107,17 @@ TEST_F(DdgiVolumeShade, NoLightLeaksThroughAThinWall) {
 }
 
 // Ray by ray, on one frame: the GPU's shaded blend rays against Embree's trace and the CPU
-// shading of the same rays from the same previous field. Misses and back faces must agree on
-// most rays; the radiance summed over the front hits both see within 15 %.
-TEST_F(DdgiVolumeShade, RaysAgreeWithTheCpuShadingOfTheSameField) {
-    const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/cornell-box.json");
-    const DdgiDesc desc = test::descFrom({{"fit_cells", "4"}, {"rays", "128"}, {"trace", "volume"}, {"hit_cache", "off"}});
+// shading of the same rays from the same previous field.
+namespace {
+
+struct RayAgreement {
+    int rays = 0, kindMismatch = 0, frontBoth = 0;
+    int confusion[3][3] = {};  // [cpu][gpu] kind: miss, back, front
+    double ratio = 0.0;        // radiance summed over the front hits both see, GPU over CPU
+};
+
+RayAgreement compareRays(const Scene& scene, const std::map<std::string, std::string>& keys) {
+    const DdgiDesc desc = test::descFrom(keys);
     RayTracer tracer(scene);
     DdgiSystem system(tracer, desc);
     DdgiGpu gpu(system.field());
@@ -136,38 +143,55 @@ TEST_F(DdgiVolumeShade, RaysAgreeWithTheCpuShadingOfTheSameField) {
     shadeProbeRays(scene, visibility, previous, rays, trace, probes, std::uint32_t(frames), nullptr, cpu);
     system.update(scene.camera.eye, &gpu);
     const std::vector<glm::vec4> gl = gpu.readRayValues(cpu.values.size());
-    ASSERT_EQ(gl.size(), cpu.values.size());
+    EXPECT_EQ(gl.size(), cpu.values.size());
 
-    int kindMismatch = 0, frontBoth = 0;
+    RayAgreement r;
+    r.rays = int(gl.size());
     glm::dvec3 sumCpu(0.0), sumGl(0.0);
+    auto kind = [](const glm::vec4& v) { return v.w >= kMissDistance ? 0 : v.w < 0.0f ? 1 : 2; };
     for (std::size_t i = 0; i < gl.size(); ++i) {
-        auto kind = [](const glm::vec4& v) { return v.w >= kMissDistance ? 0 : v.w < 0.0f ? 1 : 2; };
         const int a = kind(cpu.values[i]), b = kind(gl[i]);
-        if (a != b) {
-            ++kindMismatch;
-            continue;
-        }
-        if (a != 2) continue;
-        ++frontBoth;
+        ++r.confusion[a][b];
+        if (a != b) ++r.kindMismatch;
+        if (a != 2 || b != 2) continue;
+        ++r.frontBoth;
         sumCpu += glm::dvec3(cpu.values[i]);
         sumGl += glm::dvec3(gl[i]);
-        if (std::getenv("VOXGI_DEBUG_TRACE")) {
-            const int job = int(i) / rays.blendRays, ray = int(i) % rays.blendRays;
-            const glm::vec3 o = trace.origins[std::size_t(probes[std::size_t(job)])], d = rays.blendDirection(ray);
-            const glm::vec3 c(cpu.values[i]), g(gl[i]);
-            if (c.x + c.y + c.z > 2.0f * (g.x + g.y + g.z) + 0.05f || g.x + g.y + g.z > 2.0f * (c.x + c.y + c.z) + 0.05f)
-                std::printf("probe %d ray %d: hit %.3f %.3f %.3f, cpu %.4f (t %.4f) gpu %.4f (t %.4f)\n",
-                            probes[std::size_t(job)], ray, o.x + d.x * cpu.values[i].w, o.y + d.y * cpu.values[i].w,
-                            o.z + d.z * cpu.values[i].w, c.x + c.y + c.z, cpu.values[i].w, g.x + g.y + g.z, gl[i].w);
-        }
     }
-    const double ratio = (sumGl.x + sumGl.y + sumGl.z) / (sumCpu.x + sumCpu.y + sumCpu.z);
-    std::printf("%zu rays: %d differ in kind (miss, back, front), %d front hits in both; radiance gpu / cpu %.3f "
-                "(r %.3f g %.3f b %.3f)\n",
-                gl.size(), kindMismatch, frontBoth, ratio, sumGl.x / sumCpu.x, sumGl.y / sumCpu.y, sumGl.z / sumCpu.z);
-    EXPECT_LT(kindMismatch, int(gl.size()) / 20);
-    EXPECT_GT(ratio, 0.85);
-    EXPECT_LT(ratio, 1.15);
+    r.ratio = (sumGl.x + sumGl.y + sumGl.z) / (sumCpu.x + sumCpu.y + sumCpu.z);
+    std::printf("%d rays: %d differ in kind (cpu -> gpu: miss->back %d, miss->front %d, back->front %d, front->back "
+                "%d), %d front hits in both; radiance gpu / cpu %.3f (r %.3f g %.3f b %.3f)\n",
+                r.rays, r.kindMismatch, r.confusion[0][1], r.confusion[0][2], r.confusion[1][2], r.confusion[2][1],
+                r.frontBoth, r.ratio, sumGl.x / sumCpu.x, sumGl.y / sumCpu.y, sumGl.z / sumCpu.z);
+    return r;
+}
+
+}  // namespace
+
+// The Cornell box at 8 voxels per spacing: rays that differ are grazing ones (a floor point
+// 5 mm beside the tall block is lit by Embree and shadowed by the block's voxels).
+TEST_F(DdgiVolumeShade, RaysAgreeWithTheCpuShadingOfTheSameField) {
+    const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/cornell-box.json");
+    const RayAgreement r = compareRays(scene, {{"fit_cells", "4"}, {"rays", "128"}, {"trace", "volume"}, {"hit_cache", "off"},
+                                               {"trace_voxels", "8"}});
+    EXPECT_LT(r.kindMismatch, r.rays / 20);
+    EXPECT_GT(r.ratio, 0.9);
+    EXPECT_LT(r.ratio, 1.1);
+}
+
+// Sponza's columns and thin walls put faces looking every way into one voxel: such a voxel has
+// no back side. Before that rule, 21 % of the rays Embree sees hit front faces (4114 of 19200 at
+// 8 voxels per spacing, 3411 at 16) hit back faces in the volume.
+TEST_F(DdgiVolumeShade, SponzaRaysSeeTheFrontFacesEmbreeSees) {
+    const std::string dir = test::sharedScenesDir();
+    if (dir.empty()) GTEST_SKIP() << "../shared/scenes not present";
+    const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/sponza.json");
+    const RayAgreement r = compareRays(scene, {{"fit_cells", "8"}, {"rays", "128"}, {"trace", "volume"},
+                                               {"hit_cache", "off"}, {"trace_voxels", "16"}});
+    EXPECT_LT(r.confusion[2][1], r.rays / 50);
+    EXPECT_LT(r.kindMismatch, r.rays / 20);
+    EXPECT_GT(r.ratio, 0.9);
+    EXPECT_LT(r.ratio, 1.1);
 }
 
 // Tracing in the volume, the atlases stay on the GPU between frames; scrolling cascades reset

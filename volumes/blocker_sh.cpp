@@ -35,6 +35,11 @@ glm::vec4 blockerFromCoverage(float coverage, const glm::vec3& vectorCoverage, B
     return blockerSH(constant / kShY00, vectorCoverage, fit);
 }
 
+float coverageFromBlocker(float c0, const glm::vec3& vectorCoverage, BlockerFit fit) {
+    const float constant = 4.0f * kShY00 * c0;
+    return fit == BlockerFit::Projection ? constant : constant + glm::length(vectorCoverage);
+}
+
 glm::vec4 blockerSH(float c0, const glm::vec3& vectorCoverage, BlockerFit fit) {
     const glm::vec3 linear = fit == BlockerFit::Projection ? 0.5f * vectorCoverage : vectorCoverage;
     return glm::vec4(c0, -linear.y / kShY1, linear.z / kShY1, -linear.x / kShY1);

@@ -33,6 +33,10 @@ glm::vec4 blockerFromCoverage(float coverage, const glm::vec3& vectorCoverage, B
 // blockerFromCoverage(S, m, fit) == blockerSH(blockerFromCoverage(S, m, fit)[0], m, fit) exactly.
 glm::vec4 blockerSH(float c0, const glm::vec3& vectorCoverage, BlockerFit fit);
 
+// The coverage S back from a stored c0 and the vector coverage (the inverse of
+// blockerFromCoverage's c0, up to rounding).
+float coverageFromBlocker(float c0, const glm::vec3& vectorCoverage, BlockerFit fit);
+
 // B(w) with the convention above, clamped to [0, 1].
 float evaluateBlocker(const glm::vec4& sh, const glm::vec3& w);
 

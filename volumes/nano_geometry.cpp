@@ -1,11 +1,13 @@
 #include "volumes/nano_geometry.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <nanovdb/util/OpenToNanoVDB.h>
 #include <tbb/parallel_for.h>
 
 #include "scenes/errors.h"
+#include "volumes/blocker_sh.h"
 #include "volumes/detail/geometry_grids.h"
 
 namespace voxgi {
@@ -48,8 +50,12 @@ NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level, con
     NanoGeometry out;
     out.voxelSize = float(l.voxelSize);
     out.activeVoxels = l.occupancy->activeVoxelCount();
+    const BlockerFit fit = volume.grids().blockerFit;
     const auto normal = attributeGrid<openvdb::Vec3fGrid>(l, [&](std::size_t i, const openvdb::Coord&) {
-        const glm::vec4& n = l.normalC0[i];
+        const glm::vec3 m(l.normalC0[i]);
+        const float length = glm::length(m), area = coverageFromBlocker(l.normalC0[i].w, m, fit);
+        if (!(length > 0.0f) || !(area > 0.0f)) return openvdb::Vec3f(0.0f);
+        const glm::vec3 n = m * (std::min(1.0f, length / area) / length);
         return openvdb::Vec3f(n.x, n.y, n.z);
     });
     const auto albedo = attributeGrid<openvdb::Vec3fGrid>(l, [&](std::size_t i, const openvdb::Coord&) {

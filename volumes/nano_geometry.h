@@ -1,7 +1,9 @@
 // A geometry volume level as NanoVDB grids in one buffer, for GPU ray casting through the
 // occupancy (shaders/common/nano_geometry.glsl reads it with PNanoVDB.h). Two Vec3f grids over
-// the occupied voxels: the normal (vector coverage, as SparseGeometryVolume::normal) and the
-// diffuse albedo; optionally a float grid of where the surface lies in each voxel. Voxel (i, j, k) covers [i, i+1] x [j, j+1] x [k, k+1] * voxelSize in world
+// the occupied voxels: the mean normal, its length the voxel's consistency |sum a n| / sum a
+// (1 for surfaces all facing one way, near 0 for the two faces of a thin wall or a column's
+// faces all round), and the diffuse albedo; optionally a float grid of where the surface lies
+// in each voxel. Voxel (i, j, k) covers [i, i+1] x [j, j+1] x [k, k+1] * voxelSize in world
 // space, so a world point p lies in voxel floor(p / voxelSize).
 #pragma once
 

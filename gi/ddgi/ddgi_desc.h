@@ -80,7 +80,7 @@ struct DdgiDesc {
     int seed = 1;                 // random ray rotations; same seed, same frames, same result
     Backend backend = Backend::Gl;  // blend on the GPU (GL compute) or with the CPU reference
     DdgiTrace trace = DdgiTrace::Triangles;
-    int traceVoxels = 8;          // trace = volume: voxels per smallest probe spacing
+    int traceVoxels = 16;         // trace = volume: voxels per smallest probe spacing
 
     bool gpuBlend() const { return backend == Backend::Gl; }
     bool scrolls() const { return scroll == DdgiScroll::Auto ? cascades > 1 : scroll == DdgiScroll::On; }

@@ -36,6 +36,21 @@ float nanoReadFloat(inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
     return pnanovdb_read_float(buf, pnanovdb_readaccessor_get_value_address(PNANOVDB_GRID_TYPE_FLOAT, buf, acc, ijk));
 }
 
+// Voxels whose mean normal is shorter than this (consistency |sum a n| / sum a) have faces
+// looking every way (a thin wall's two sides, a column): they have no back side.
+const float kNanoOneSidedConsistency = 0.5;
+
+// The face a ray along `dir` meets in a voxel of mean normal `mean` (the normal grid's value):
+// true for a back face; `n` the unit normal, turned toward the ray for a voxel without a back side.
+bool nanoBackFace(vec3 mean, vec3 dir, out vec3 n) {
+    float consistency = length(mean);
+    n = consistency > 0.0 ? mean / consistency : -dir;
+    if (dot(n, dir) <= 0.0) return false;
+    if (consistency >= kNanoOneSidedConsistency) return true;
+    n = -n;
+    return false;
+}
+
 // Where a ray that entered `voxel` at tEntry meets the plane of its surface (unit normal n, the
 // surface offset grid's point), kept inside the voxel; tEntry without offsets.
 float nanoSurfaceHit(vec3 origin, vec3 dir, ivec3 voxel, vec3 n, float tEntry) {

@@ -1,7 +1,7 @@
 #version 450 core
 // Rays through the NanoVDB geometry volume, one thread per ray: the first occupied voxel's
-// entry distance (signed: negative where the voxel's mean normal faces away from the ray, a
-// back face), its unit normal (zero for misses) and albedo. The Embree probe trace
+// entry distance (signed: negative for a back face, nanoBackFace), its unit normal (zero for
+// misses and back faces) and albedo. The Embree probe trace
 // (gi/ddgi/probe_rays.cpp) is the reference it is tested against.
 #define NANO_GEOMETRY_BINDING 0
 #include "common/nano_geometry.glsl"
@@ -26,9 +26,8 @@ void main() {
     }
     pnanovdb_readaccessor_t normals = nanoAccessor(uNanoNormalGrid);
     pnanovdb_readaccessor_t albedos = nanoAccessor(uNanoAlbedoGrid);
-    vec3 coverage = nanoReadVec3(normals, voxel);
-    vec3 n = dot(coverage, coverage) > 0.0 ? normalize(coverage) : -b.xyz;
-    bool back = dot(n, b.xyz) > 0.0;
+    vec3 n;
+    bool back = nanoBackFace(nanoReadVec3(normals, voxel), b.xyz, n);
     hits[2 * ray] = vec4(back ? vec3(0.0) : n, back ? -t : t);
     hits[2 * ray + 1] = vec4(nanoReadVec3(albedos, voxel), 0.0);
 }

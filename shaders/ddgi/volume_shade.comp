@@ -48,9 +48,8 @@ void main() {
         return;
     }
     pnanovdb_readaccessor_t normals = nanoAccessor(uNanoNormalGrid);
-    vec3 coverage = nanoReadVec3(normals, voxel);
-    vec3 n = dot(coverage, coverage) > 0.0 ? normalize(coverage) : -dir;
-    if (dot(n, dir) > 0.0) {  // a back face carries no light
+    vec3 n;
+    if (nanoBackFace(nanoReadVec3(normals, voxel), dir, n)) {  // a back face carries no light
         rayValues[out_] = vec4(0.0, 0.0, 0.0, -t);
         return;
     }
