@@ -13,6 +13,8 @@
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/sampling/sequences.h"
 #include "gl/context.h"
+#include "scenes/errors.h"
+#include "scenes/memory_limit.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
 #include "test_ddgi_scenes.h"
@@ -141,4 +143,28 @@ TEST_F(DdgiVolumeTrace, AThinWallStopsRaysLikeTheTriangles) {
     EXPECT_EQ(a.farther, 0);
     EXPECT_LT(percentile(a.distanceError, 0.5f), 1.5f);
     EXPECT_LT(percentile(a.depthError, 0.95f), 1.5f);
+}
+
+// The NanoVDB volume's memory is estimated from the occupancy's nodes before it is built: the
+// estimate covers the buffer, and a limit below it refuses the build with the volume named.
+TEST_F(DdgiVolumeTrace, TheVolumesMemoryIsEstimatedBeforeItIsBuilt) {
+    const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/cornell-box.json");
+    VoxelizeSettings settings;
+    settings.voxelSize = glm::length(scene.bounds().extent()) / 128.0f;
+    const SparseGeometryVolume volume = voxelizeScene(scene, settings);
+    const SurfaceOffset none = [](glm::vec3, glm::vec3) { return 0.0f; };
+    const double estimate = nanoGeometryBytes(volume, 0, true);
+    const NanoGeometry nano = makeNanoGeometry(volume, 0, none);
+    std::printf("estimate %.1f MiB, buffer %.1f MiB\n", estimate / 1048576.0, double(nano.bytes()) / 1048576.0);
+    EXPECT_GE(estimate, double(nano.bytes()));
+    EXPECT_LE(estimate, 4.0 * double(nano.bytes()));
+    const std::uint64_t before = memoryLimit();
+    setMemoryLimit(std::uint64_t(0.5 * estimate));
+    try {
+        makeNanoGeometry(volume, 0, none);
+        ADD_FAILURE() << "not refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("the NanoVDB geometry volume"), std::string::npos) << e.what();
+    }
+    setMemoryLimit(before);
 }

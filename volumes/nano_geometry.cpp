@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 
+#include <nanovdb/NanoVDB.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
 #include <tbb/parallel_for.h>
 
 #include "scenes/errors.h"
+#include "scenes/memory_limit.h"
 #include "volumes/blocker_sh.h"
 #include "volumes/detail/geometry_grids.h"
 
@@ -43,10 +46,33 @@ void append(NanoGeometry& out, const Grid& grid, std::uint32_t& offset) {
     std::memcpy(reinterpret_cast<unsigned char*>(out.words.data()) + start, handle.data(), std::size_t(size));
 }
 
+// NanoVDB bytes of a grid of `Value` on the occupancy's topology (its nodes; the grid, tree
+// and root headers and the root's tiles within 64 KiB).
+template <typename Value>
+double nanoGridBytes(const std::vector<openvdb::Index32>& nodes) {
+    using Tree = typename nanovdb::NanoTree<Value>;
+    return double(nodes[0]) * double(sizeof(typename Tree::LeafNodeType)) +
+           double(nodes[1]) * double(sizeof(typename Tree::Node1)) +
+           double(nodes[2]) * double(sizeof(typename Tree::Node2)) + 65536.0;
+}
+
 }  // namespace
+
+double nanoGeometryBytes(const SparseGeometryVolume& volume, int level, bool surfaceOffsets) {
+    const detail::LevelGrids& l = volume.grids().levels.at(std::size_t(level));
+    const std::vector<openvdb::Index32> nodes = l.occupancy->tree().nodeCount();
+    const double vec3 = nanoGridBytes<nanovdb::Vec3f>(nodes);
+    const double buffer = 2.0 * vec3 + (surfaceOffsets ? nanoGridBytes<float>(nodes) : 0.0);
+    // While a grid is converted, its OpenVDB copy (leaves of 512 values) and its NanoVDB handle
+    // live beside the buffer.
+    const double openVdbVec3 = double(nodes[0]) * 512.0 * double(sizeof(openvdb::Vec3f)) * 1.1;
+    return buffer + vec3 + openVdbVec3;
+}
 
 NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level, const SurfaceOffset& surfaceOffset) {
     const detail::LevelGrids& l = volume.grids().levels.at(std::size_t(level));
+    requireMemory(nanoGeometryBytes(volume, level, bool(surfaceOffset)),
+                  "the NanoVDB geometry volume (" + std::to_string(l.occupancy->activeVoxelCount()) + " voxels)");
     NanoGeometry out;
     out.voxelSize = float(l.voxelSize);
     out.activeVoxels = l.occupancy->activeVoxelCount();

@@ -33,8 +33,13 @@ struct NanoGeometry {
 // from several threads.
 using SurfaceOffset = std::function<float(glm::vec3 centre, glm::vec3 normal)>;
 
+// Peak bytes makeNanoGeometry needs for `level` (the buffer, and one grid's OpenVDB copy and
+// NanoVDB handle while it is converted), from the occupancy's node counts.
+double nanoGeometryBytes(const SparseGeometryVolume& volume, int level = 0, bool surfaceOffsets = true);
+
 // The grids of `level`: mean normal (coverage) and albedo as Vec3f and, given `surfaceOffset`,
-// the offsets as a float grid. Throws InputError when the buffer would pass 4 GiB (32-bit
+// the offsets as a float grid. Throws InputError when nanoGeometryBytes exceeds the memory
+// limit (scenes/memory_limit.h), before building, and when the buffer would pass 4 GiB (32-bit
 // addresses).
 NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level = 0,
                               const SurfaceOffset& surfaceOffset = {});
