@@ -364,6 +364,15 @@ TEST(Ddgi, VoxelOccupancyPutsProbesFarFromGeometryToSleep) {
     EXPECT_EQ(c.sleeping, 8);
     EXPECT_EQ(c.active, 56);
     EXPECT_EQ(c.off, 0);
+    // With the occupancy known, a sleeping probe traces nothing between its full updates (one
+    // every sleep_interval frames): over 10 frames the 56 active probes trace 10 x 64 rays, the
+    // 8 sleepers 64 once each (with rays alone they also trace the 32 fixed rays every frame).
+    std::int64_t rays = 0;
+    for (int f = 0; f < desc.sleepInterval; ++f) rays += ddgi.update(scene.camera.eye).raysTraced;
+    EXPECT_EQ(rays, std::int64_t(desc.sleepInterval) * 56 * 64 + 8 * 64);
+    c = countStates(ddgi.field());
+    EXPECT_EQ(c.sleeping, 8);
+    EXPECT_EQ(c.active, 56);
 }
 
 TEST(Ddgi, ScrollingVolumesCentreAheadOfTheCameraInsideTheScene) {

@@ -13,6 +13,7 @@
 #include "gi/ddgi/probe_states.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gl/context.h"
+#include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
 #include "test_ddgi_scenes.h"
@@ -225,4 +226,21 @@ TEST_F(DdgiVolumeShade, AtlasesKeptOnTheGpuMatchThoseReadBackEveryFrame) {
     double sum = 0.0;
     for (int p = 0; p < atEnd.field().probeCount(); ++p) sum += atEnd.field().meanIrradiance(p).x;
     EXPECT_GT(sum, 0.0);
+}
+
+// The volume trace runs in GL compute with shadow rays: the CPU back end and occlusion probes
+// are refused by name before anything is built.
+TEST(DdgiVolumeSettings, CombinationsTheVolumeCannotRunAreRefused) {
+    auto refused = [](const std::map<std::string, std::string>& keys) {
+        try {
+            test::descFrom(keys);
+        } catch (const InputError& e) {
+            return std::string(e.what()).find("gi.ddgi.trace") != std::string::npos;
+        }
+        return false;
+    };
+    EXPECT_TRUE(refused({{"trace", "volume"}, {"backend", "cpu"}}));
+    EXPECT_TRUE(refused({{"trace", "volume"}, {"direct", "occlusion"}}));
+    EXPECT_FALSE(refused({{"trace", "volume"}}));
+    EXPECT_FALSE(refused({{"trace", "triangles"}, {"backend", "cpu"}}));
 }

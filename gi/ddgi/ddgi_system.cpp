@@ -64,7 +64,7 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
 
     auto t0 = std::chrono::steady_clock::now();
     rays_ = makeRaySet(desc, std::uint32_t(desc.seed), frame_);
-    trace_.work = scheduleProbes(field, frame_);
+    trace_.work = scheduleProbes(field, frame_, bool(query_.distanceToGeometry));
     std::vector<int> blendProbes;
     for (int p = 0; p < field.probeCount(); ++p)
         if (trace_.work[std::size_t(p)] == ProbeWork::Full) blendProbes.push_back(p);

@@ -8,7 +8,7 @@
 
 namespace voxgi {
 
-std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t frame) {
+std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t frame, bool occupancyKnown) {
     const DdgiDesc& desc = field.desc();
     std::vector<ProbeWork> work(std::size_t(field.probeCount()), ProbeWork::Full);
     if (!desc.classify) return work;
@@ -19,7 +19,8 @@ std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t fra
         if (rec.state == ProbeState::Sleeping)
             work[std::size_t(p)] = (frame + std::uint32_t(p)) % std::uint32_t(desc.sleepInterval) == 0
                                        ? ProbeWork::Full
-                                       : ProbeWork::FixedOnly;
+                                   : occupancyKnown ? ProbeWork::None
+                                                    : ProbeWork::FixedOnly;
     }
     return work;
 }

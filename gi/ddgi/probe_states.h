@@ -23,9 +23,11 @@ struct ProbeStateCounts {
 };
 
 // What each probe traces this frame: active probes everything; sleeping probes everything
-// every sleepInterval frames (staggered by index), else only the fixed rays; off probes only
-// the fixed rays. Without classification every probe traces everything.
-std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t frame);
+// every sleepInterval frames (staggered by index), else only the fixed rays, or nothing when
+// `occupancyKnown` (a distanceToGeometry query: the occupancy, not rays, keeps telling that
+// no geometry is near, and the probe's full updates re-classify it); off probes only the fixed
+// rays. Without classification every probe traces everything.
+std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t frame, bool occupancyKnown = false);
 
 // Moves probes that see too many backfaces (inside a wall) through the nearest backface, and
 // probes closer than minFrontfaceDistance to a wall away from it; at most 0.45 cells per axis.
