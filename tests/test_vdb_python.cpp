@@ -45,6 +45,8 @@ TEST(VdbPython, EveryDumpReadsWholeWithPyopenvdb) {
         {"dump cornell-box --method clpv --set lpv.resolution=8", "clpv.vdb", {"lpv_r_L2_sh3", "albedo_L2"}},
         {"dump cornell-box --method ddgi --set ddgi.rays=16", "ddgi.vdb",
          {"probe_position", "probe_offset", "probe_state", "probe_irradiance"}},
+        {"dump cornell-box --method ddgi --set ddgi.rays=16 --set ddgi.trace=volume --set ddgi.trace_voxels=4",
+         "ddgi-volume.vdb", {"probe_irradiance", "trace_normal", "trace_albedo", "trace_surface_offset"}},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.arguments);

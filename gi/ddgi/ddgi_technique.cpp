@@ -50,7 +50,10 @@ void DdgiTechnique::applyIndirect(const FrameInput& input, const GBufferView& gb
 
 void DdgiTechnique::dumpVdb(const std::string& path) const {
     gpu_->syncToCpu(system_->field());
-    writeProbeVdb(system_->field(), path);
+    if (!gpu_->shadesRays()) return writeProbeVdb(system_->field(), path);
+    // The volume the GPU traces, built again (it lives only on the GPU).
+    const NanoGeometry trace = voxelizeForTracing(*tracer_, system_->field());
+    writeProbeVdb(system_->field(), path, &trace);
 }
 
 DebugDrawing DdgiTechnique::debugView(const std::string& view, const DebugViewContext& context) const {

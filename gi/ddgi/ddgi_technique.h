@@ -9,6 +9,8 @@
 
 namespace voxgi {
 
+struct NanoGeometry;
+
 class DdgiGpu;
 
 class DdgiTechnique : public GiTechnique {
@@ -37,7 +39,9 @@ private:
 };
 
 // Writes probe_position, probe_offset, probe_state and probe_irradiance (mean per probe) grids,
-// one set per cascade (suffix _c1, _c2... after the first), index space = logical probe grid.
-void writeProbeVdb(const ProbeField& field, const std::string& path);
+// one set per cascade (suffix _c1, _c2... after the first), index space = logical probe grid;
+// with `traceVolume` (ddgi.trace = volume) also its grids, trace_normal, trace_albedo and
+// trace_surface_offset.
+void writeProbeVdb(const ProbeField& field, const std::string& path, const NanoGeometry* traceVolume = nullptr);
 
 }  // namespace voxgi

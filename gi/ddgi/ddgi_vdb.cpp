@@ -2,11 +2,12 @@
 #include <openvdb/openvdb.h>
 
 #include "gi/ddgi/ddgi_technique.h"
+#include "volumes/nano_geometry_vdb.h"
 #include "volumes/openvdb_file.h"
 
 namespace voxgi {
 
-void writeProbeVdb(const ProbeField& field, const std::string& path) {
+void writeProbeVdb(const ProbeField& field, const std::string& path, const NanoGeometry* traceVolume) {
     openvdb::initialize();
     openvdb::GridPtrVec grids;
     for (std::size_t vi = 0; vi < field.volumes().size(); ++vi) {
@@ -54,6 +55,8 @@ void writeProbeVdb(const ProbeField& field, const std::string& path) {
         state->insertMeta("voxgi_states", openvdb::StringMetadata("0 active, 1 sleeping, 2 off"));
         irradiance->insertMeta("voxgi_units", openvdb::StringMetadata("W/m^2, mean over directions"));
     }
+    if (traceVolume)
+        for (const openvdb::GridBase::Ptr& g : nanoGeometryGrids(*traceVolume, "trace_")) grids.push_back(g);
     writeVdbFile(path, grids);
 }
 
