@@ -3,7 +3,6 @@
 #include "gi/ddgi/hit_shading.h"
 #include "scenes/scene.h"
 #include "shaders/shared/light_model.h"
-#include "volumes/nano_geometry.h"
 
 namespace voxgi {
 
@@ -17,11 +16,7 @@ void upload(gl::Handle& buffer, std::size_t& capacity, const void* data, std::si
 VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene)
     : scene_(scene),
       program_(gl::Program::compute("ddgi/volume_shade.comp")),
-      grids_(gl::createBuffer(geometry.bytes(), geometry.words.data(), 0)),
-      normalGrid_(geometry.normalGrid),
-      albedoGrid_(geometry.albedoGrid),
-      offsetGrid_(geometry.offsetGrid),
-      voxelSize_(geometry.voxelSize) {}
+      geometry_(geometry) {}
 
 void VolumeShadeGl::prepare(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
                             std::uint32_t frame) {
@@ -44,17 +39,13 @@ void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, std::size_t
     if (jobs == 0) return;
     program_.use();
     bindProbeField(program_, field, irradiance, distance, probeData);
-    program_.set("uNanoNormalGrid", unsigned(normalGrid_));
-    program_.set("uNanoAlbedoGrid", unsigned(albedoGrid_));
-    program_.set("uNanoOffsetGrid", unsigned(offsetGrid_));
-    program_.set("uNanoVoxelSize", voxelSize_);
+    geometry_.bind(program_, 3);
     program_.set("uRays", blendRays);
     program_.set("uLightCount", lightCount_);
     program_.set("uQuadSampleSets", quadLights_ ? kQuadSampleSets : 0);
     program_.set("uMissDistance", kMissDistance);
     program_.set("uEnergy", field.desc().energyPreservation);
     program_.set("uSky", scene_.sky.enabled ? scene_.sky.radiance : glm::vec3(0.0f));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, grids_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, quadSamples_.id());

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "gi/ddgi/nano_geometry_gl.h"
 #include "gi/ddgi/probe_blend.h"
 #include "gl/program.h"
 #include "gl/resources.h"
@@ -31,15 +32,14 @@ public:
     void dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance, GLuint distance,
                   GLuint probeData);
 
-    float voxelSize() const { return voxelSize_; }
+    float voxelSize() const { return geometry_.voxelSize(); }
 
 private:
     const Scene& scene_;
     gl::Program program_;
-    gl::Handle grids_, origins_, lights_, quadSamples_;
+    NanoGeometryGl geometry_;
+    gl::Handle origins_, lights_, quadSamples_;
     std::size_t originsBytes_ = 0, lightsBytes_ = 0, quadBytes_ = 0;
-    std::uint32_t normalGrid_ = 0, albedoGrid_ = 0, offsetGrid_ = 0;
-    float voxelSize_ = 0.0f;
     int lightCount_ = 0;
     bool quadLights_ = false;
 };

@@ -2,7 +2,6 @@
 
 #include <chrono>
 
-#include "volumes/nano_geometry.h"
 
 namespace voxgi {
 
@@ -10,11 +9,8 @@ static_assert(sizeof(VolumeRay) == 32 && sizeof(VolumeHit) == 32, "std430 layout
 
 VolumeTracerGl::VolumeTracerGl(const NanoGeometry& geometry)
     : program_(gl::Program::compute("ddgi/volume_rays.comp")),
-      grids_(gl::createBuffer(geometry.bytes(), geometry.words.data(), 0)),
-      query_(gl::createTimerQuery()),
-      normalGrid_(geometry.normalGrid),
-      albedoGrid_(geometry.albedoGrid),
-      voxelSize_(geometry.voxelSize) {}
+      geometry_(geometry),
+      query_(gl::createTimerQuery()) {}
 
 std::vector<VolumeHit> VolumeTracerGl::trace(const std::vector<VolumeRay>& rays, float missDistance) {
     std::vector<VolumeHit> hits(rays.size());
@@ -27,12 +23,9 @@ std::vector<VolumeHit> VolumeTracerGl::trace(const std::vector<VolumeRay>& rays,
     }
     glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(bytes), rays.data());
     program_.use();
-    program_.set("uNanoNormalGrid", unsigned(normalGrid_));
-    program_.set("uNanoAlbedoGrid", unsigned(albedoGrid_));
-    program_.set("uNanoVoxelSize", voxelSize_);
+    geometry_.bind(program_, 0);
     program_.set("uRayCount", int(rays.size()));
     program_.set("uMissDistance", missDistance);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, grids_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, rays_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, hits_.id());
     glFinish();

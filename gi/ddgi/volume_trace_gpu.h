@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gi/ddgi/nano_geometry_gl.h"
 #include "gl/program.h"
 #include "gl/resources.h"
 
@@ -44,10 +45,9 @@ public:
 
 private:
     gl::Program program_;
-    gl::Handle grids_, rays_, hits_, query_;
+    NanoGeometryGl geometry_;
+    gl::Handle rays_, hits_, query_;
     std::size_t raysBytes_ = 0;
-    std::uint32_t normalGrid_ = 0, albedoGrid_ = 0;
-    float voxelSize_ = 0.0f;
     double kernelMs_ = 0.0, kernelWallMs_ = 0.0;
 };
 
