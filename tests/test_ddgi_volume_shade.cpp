@@ -58,10 +58,10 @@ protected:
 };
 
 // The Cornell box's field from the volume against the triangles', probe by probe where the
-// triangles' probe holds light. Known differences (measured, fit_cells 4, 8 voxels per spacing): probes within a
-// voxel or two of a block see the block's voxels where Embree sees past its face (bottom
-// layer, down to 0.16 of the triangles'); the light's black quad, 0.8 mm under the ceiling,
-// shares the ceiling's voxels and reflects there (top layer, up to 1.7x). In all 0.955.
+// triangles' probe holds light (measured, fit_cells 4, 8 voxels per spacing: 0.956 in all, 3
+// of 64 probes off by more than 40 %, probes within a voxel or two of a block). Before the
+// voxels a surface only touches were dropped, the top layer read up to 1.7x (those voxels,
+// hit with no normal under the ceiling, faced the light).
 TEST_F(DdgiVolumeShade, CornellBoxFieldAgreesWithTheEmbreeTrace) {
     const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/cornell-box.json");
     const std::map<std::string, std::string> keys{{"fit_cells", "4"}, {"rays", "128"}};
@@ -86,7 +86,7 @@ TEST_F(DdgiVolumeShade, CornellBoxFieldAgreesWithTheEmbreeTrace) {
                 lit.size(), ratio, far);
     EXPECT_GT(ratio, 0.85);
     EXPECT_LT(ratio, 1.1);
-    EXPECT_LE(far, int(lit.size()) / 5);
+    EXPECT_LE(far, int(lit.size()) / 10);
 }
 
 // A wall half a voxel thick between a lit and a dark room: the dark room's probes stay dark.
@@ -104,7 +104,7 @@ TEST_F(DdgiVolumeShade, NoLightLeaksThroughAThinWall) {
     const double lit = total(vol, litRoom), dark = total(vol, darkRoom);
     std::printf("two rooms: lit room %.4g, dark room %.4g\n", lit, dark);
     EXPECT_GT(lit, 0.0);
-    EXPECT_LT(dark, 1e-3 * lit);
+    EXPECT_LT(dark, 1e-5 * lit);  // 3e-8 measured; planes at the wall's corners let 1.2e-3 through
 }
 
 // Ray by ray, on one frame: the GPU's shaded blend rays against Embree's trace and the CPU

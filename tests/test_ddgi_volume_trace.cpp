@@ -46,7 +46,9 @@ Agreement compare(const Scene& scene, const Bounds& box, float voxelSize) {
     settings.voxelSize = voxelSize;
     const SparseGeometryVolume volume = voxelizeScene(scene, settings);
     const NanoGeometry nano = makeNanoGeometry(volume);
-    EXPECT_EQ(nano.activeVoxels, volume.activeVoxelCount());
+    // Voxels a surface only touches (on their face) are dropped: they hold no surface.
+    EXPECT_LE(nano.activeVoxels, volume.activeVoxelCount());
+    EXPECT_GT(nano.activeVoxels, volume.activeVoxelCount() / 2);
     RayTracer tracer(scene);
     std::vector<VolumeRay> rays;
     for (int i = 0; i < 64; ++i) {
@@ -152,12 +154,13 @@ TEST_F(DdgiVolumeTrace, TheVolumesMemoryIsEstimatedBeforeItIsBuilt) {
     VoxelizeSettings settings;
     settings.voxelSize = glm::length(scene.bounds().extent()) / 128.0f;
     const SparseGeometryVolume volume = voxelizeScene(scene, settings);
-    const SurfaceOffset none = [](glm::vec3, glm::vec3) { return 0.0f; };
+    const SurfaceProbe none = [](glm::vec3, glm::vec3) { return VoxelSurface{}; };
     const double estimate = nanoGeometryBytes(volume, 0, true);
     const NanoGeometry nano = makeNanoGeometry(volume, 0, none);
     std::printf("estimate %.1f MiB, buffer %.1f MiB\n", estimate / 1048576.0, double(nano.bytes()) / 1048576.0);
     EXPECT_GE(estimate, double(nano.bytes()));
-    EXPECT_LE(estimate, 4.0 * double(nano.bytes()));
+    // An upper bound: it counts the voxels a surface only touches, which the build then drops.
+    EXPECT_LE(estimate, 6.0 * double(nano.bytes()));
     const std::uint64_t before = memoryLimit();
     setMemoryLimit(std::uint64_t(0.5 * estimate));
     try {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
+#include <type_traits>
 
 #include <nanovdb/NanoVDB.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
+#include <openvdb/tools/Prune.h>
 #include <tbb/parallel_for.h>
 
 #include "scenes/errors.h"
@@ -66,40 +68,70 @@ double nanoGeometryBytes(const SparseGeometryVolume& volume, int level, bool sur
     // While a grid is converted, its OpenVDB copy (leaves of 512 values) and its NanoVDB handle
     // live beside the buffer.
     const double openVdbVec3 = double(nodes[0]) * 512.0 * double(sizeof(openvdb::Vec3f)) * 1.1;
-    return buffer + vec3 + openVdbVec3;
+    const double surfaces = surfaceOffsets ? double(l.normalC0.size()) * double(sizeof(VoxelSurface)) : 0.0;
+    return buffer + vec3 + openVdbVec3 + surfaces;
 }
 
-NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level, const SurfaceOffset& surfaceOffset) {
+NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level, const SurfaceProbe& surfaceProbe) {
     const detail::LevelGrids& l = volume.grids().levels.at(std::size_t(level));
-    requireMemory(nanoGeometryBytes(volume, level, bool(surfaceOffset)),
+    requireMemory(nanoGeometryBytes(volume, level, bool(surfaceProbe)),
                   "the NanoVDB geometry volume (" + std::to_string(l.occupancy->activeVoxelCount()) + " voxels)");
     NanoGeometry out;
     out.voxelSize = float(l.voxelSize);
     out.activeVoxels = l.occupancy->activeVoxelCount();
     const BlockerFit fit = volume.grids().blockerFit;
-    const auto normal = attributeGrid<openvdb::Vec3fGrid>(l, [&](std::size_t i, const openvdb::Coord&) {
+    // Unit mean normal times consistency, per attribute slot.
+    auto meanNormal = [&](std::size_t i) {
         const glm::vec3 m(l.normalC0[i]);
         const float length = glm::length(m), area = coverageFromBlocker(l.normalC0[i].w, m, fit);
-        if (!(length > 0.0f) || !(area > 0.0f)) return openvdb::Vec3f(0.0f);
-        const glm::vec3 n = m * (std::min(1.0f, length / area) / length);
+        if (!(length > 0.0f) || !(area > 0.0f)) return glm::vec3(0.0f);
+        return m * (std::min(1.0f, length / area) / length);
+    };
+    const auto normal = attributeGrid<openvdb::Vec3fGrid>(l, [&](std::size_t i, const openvdb::Coord&) {
+        const glm::vec3 n = meanNormal(i);
         return openvdb::Vec3f(n.x, n.y, n.z);
     });
+    // The probe's answers per slot (each written once, from one thread).
+    std::vector<VoxelSurface> surfaces(surfaceProbe ? l.normalC0.size() : 0);
+    openvdb::FloatGrid::Ptr offset;
+    if (surfaceProbe)
+        offset = attributeGrid<openvdb::FloatGrid>(l, [&](std::size_t i, const openvdb::Coord& c) {
+            const glm::vec3 n = meanNormal(i);
+            if (n == glm::vec3(0.0f)) return 0.0f;
+            const glm::vec3 centre = (glm::vec3(float(c.x()), float(c.y()), float(c.z())) + 0.5f) * out.voxelSize;
+            surfaces[i] = surfaceProbe(centre, glm::normalize(n));
+            return surfaces[i].offset;
+        });
     const auto albedo = attributeGrid<openvdb::Vec3fGrid>(l, [&](std::size_t i, const openvdb::Coord&) {
-        const glm::vec3 a = detail::dequantizeAlbedo(l.albedo[i]);
+        const glm::vec3 a = !surfaces.empty() && surfaces[i].albedoSeen ? surfaces[i].albedo
+                                                                         : detail::dequantizeAlbedo(l.albedo[i]);
         return openvdb::Vec3f(a.x, a.y, a.z);
     });
+    // Voxels a surface only touches (it lies on their face and its area went to the neighbour)
+    // hold no surface: tracing them as solid hit nothing at all, with no normal, beside the
+    // real surface's voxel (half of the Cornell box's ceiling layer, lit by the light just
+    // below it). The traced topology drops them.
+    auto dropEmpty = [&](auto& grid) {
+        using Tree = typename std::decay_t<decltype(*grid)>::TreeType;
+        std::vector<typename Tree::LeafNodeType*> leaves;
+        grid->tree().getNodes(leaves);
+        tbb::parallel_for(std::size_t(0), leaves.size(), [&](std::size_t i) {
+            for (auto it = leaves[i]->beginValueOn(); it; ++it) {
+                const std::int64_t slot = l.attributeIndex(it.getCoord());
+                if (slot < 0 || !(coverageFromBlocker(l.normalC0[std::size_t(slot)].w,
+                                                      glm::vec3(l.normalC0[std::size_t(slot)]), fit) > 0.0f))
+                    it.setValueOff();
+            }
+        });
+        openvdb::tools::pruneInactive(grid->tree());
+    };
+    dropEmpty(normal);
+    dropEmpty(albedo);
+    if (offset) dropEmpty(offset);
+    out.activeVoxels = normal->activeVoxelCount();
     append(out, *normal, out.normalGrid);
     append(out, *albedo, out.albedoGrid);
-    if (surfaceOffset) {
-        const auto offset = attributeGrid<openvdb::FloatGrid>(l, [&](std::size_t i, const openvdb::Coord& c) {
-            const glm::vec3 n(l.normalC0[i]);
-            const float length = glm::length(n);
-            if (!(length > 0.0f)) return 0.0f;
-            const glm::vec3 centre = (glm::vec3(float(c.x()), float(c.y()), float(c.z())) + 0.5f) * out.voxelSize;
-            return surfaceOffset(centre, n / length);
-        });
-        append(out, *offset, out.offsetGrid);
-    }
+    if (offset) append(out, *offset, out.offsetGrid);
     return out;
 }
 

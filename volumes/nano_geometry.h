@@ -28,20 +28,27 @@ struct NanoGeometry {
     std::uint64_t bytes() const { return words.size() * sizeof(std::uint32_t); }
 };
 
-// Where the surface lies in an occupied voxel: the signed distance s from the voxel's centre
-// along its unit mean normal n to the surface (the surface passes through centre + s n). Called
-// from several threads.
-using SurfaceOffset = std::function<float(glm::vec3 centre, glm::vec3 normal)>;
+// What the source geometry says about an occupied voxel's surface (centre and unit mean
+// normal given): the signed distance s from the centre along the normal to the surface (it
+// passes through centre + s n), and the albedo a ray arriving along -n sees, when one was seen
+// (it replaces the area mean: a black light quad 0.8 mm in front of a white ceiling shares its
+// voxels, and the area mean makes both grey). Called from several threads.
+struct VoxelSurface {
+    float offset = 0.0f;
+    glm::vec3 albedo{0.0f};
+    bool albedoSeen = false;
+};
+using SurfaceProbe = std::function<VoxelSurface(glm::vec3 centre, glm::vec3 normal)>;
 
 // Peak bytes makeNanoGeometry needs for `level` (the buffer, and one grid's OpenVDB copy and
 // NanoVDB handle while it is converted), from the occupancy's node counts.
 double nanoGeometryBytes(const SparseGeometryVolume& volume, int level = 0, bool surfaceOffsets = true);
 
-// The grids of `level`: mean normal (coverage) and albedo as Vec3f and, given `surfaceOffset`,
-// the offsets as a float grid. Throws InputError when nanoGeometryBytes exceeds the memory
+// The grids of `level`: mean normal (coverage) and albedo as Vec3f and, given `surfaceProbe`,
+// the offsets as a float grid and the albedo it saw. Throws InputError when nanoGeometryBytes exceeds the memory
 // limit (scenes/memory_limit.h), before building, and when the buffer would pass 4 GiB (32-bit
 // addresses).
 NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level = 0,
-                              const SurfaceOffset& surfaceOffset = {});
+                              const SurfaceProbe& surfaceProbe = {});
 
 }  // namespace voxgi

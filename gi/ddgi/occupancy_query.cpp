@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gi/raytrace/ray_tracer.h"
+#include "shaders/shared/material.h"
 #include "volumes/geometry_volume.h"
 #include "volumes/nano_geometry.h"
 
@@ -21,16 +22,41 @@ NanoGeometry voxelizeForTracing(const RayTracer& tracer, const ProbeField& field
     for (const ProbeVolume& v : field.volumes()) spacing = std::min(spacing, v.minSpacing());
     VoxelizeSettings settings;
     settings.voxelSize = spacing / float(field.desc().traceVoxels);
-    // The nearest surface along the voxel's mean normal, either way, within half its diagonal:
-    // shading then happens on the surface, not where the ray entered the voxel (up to a
-    // diagonal before it, which put the Cornell box's ceiling below its light).
-    const float reach = 0.5f * std::sqrt(3.0f) * settings.voxelSize;
-    const SurfaceOffset offset = [&tracer, reach](glm::vec3 centre, glm::vec3 n) {
+    const float h = settings.voxelSize, reach = 0.5f * std::sqrt(3.0f) * h;
+    const Scene& scene = tracer.scene();
+    const SurfaceProbe probe = [&tracer, &scene, h, reach](glm::vec3 centre, glm::vec3 n) {
+        VoxelSurface s;
+        // The nearest surface along the mean normal, either way, within half the voxel's
+        // diagonal: shading then happens on the surface, not where the ray entered the voxel
+        // (up to a diagonal before it, which put the Cornell box's ceiling below its light).
         const RayHit up = tracer.intersect(centre, n, 0.0f, reach), down = tracer.intersect(centre, -n, 0.0f, reach);
-        if (up.hit && (!down.hit || up.t <= down.t)) return up.t;
-        return down.hit ? -down.t : 0.0f;
+        if (up.hit && (!down.hit || up.t <= down.t)) s.offset = up.t;
+        else if (down.hit) s.offset = -down.t;
+        // What rays arriving along -n see in this voxel: five rays from the normal side (the
+        // centre's and four a quarter voxel across), front faces inside the voxel only, their
+        // diffuse albedo averaged over a voxel-wide footprint.
+        const glm::vec3 t = glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0)) : glm::cross(n, glm::vec3(0, 1, 0)));
+        const glm::vec3 b = glm::cross(n, t);
+        const glm::vec2 across[5] = {{0, 0}, {0.25f, 0.25f}, {-0.25f, 0.25f}, {0.25f, -0.25f}, {-0.25f, -0.25f}};
+        glm::vec3 sum(0.0f);
+        int seen = 0;
+        for (const glm::vec2& a : across) {
+            const glm::vec3 origin = centre + reach * n + h * (a.x * t + a.y * b);
+            const RayHit hit = tracer.intersect(origin, -n, 0.0f, 2.0f * reach);
+            if (!hit.hit || !(glm::dot(hit.geometricNormal, n) > 0.0f)) continue;
+            if (glm::any(glm::greaterThan(glm::abs(hit.position - centre), glm::vec3(0.5f * h)))) continue;
+            const Material& m = scene.materials[hit.material];
+            sum += shading::diffuseAlbedo(tracer.albedoInCone(hit, -n, h / std::max(hit.t, 1e-3f * h)), m.metallic,
+                                          m.specular);
+            ++seen;
+        }
+        if (seen > 0) {
+            s.albedo = sum / float(seen);
+            s.albedoSeen = true;
+        }
+        return s;
     };
-    return makeNanoGeometry(voxelizeScene(tracer.scene(), settings), 0, offset);
+    return makeNanoGeometry(voxelizeScene(scene, settings), 0, probe);
 }
 
 GeometryQuery occupancyQuery(std::shared_ptr<const SparseGeometryVolume> voxels, const ProbeVolume& volume) {

@@ -40,6 +40,9 @@ float nanoReadFloat(inout pnanovdb_readaccessor_t acc, ivec3 ijk) {
 // looking every way (a thin wall's two sides, a column): they have no back side.
 const float kNanoOneSidedConsistency = 0.5;
 
+// Voxels at least this consistent are traced as their surface plane (nanoFirstHit).
+const float kNanoPlanarConsistency = 0.9;
+
 // The face a ray along `dir` meets in a voxel of mean normal `mean` (the normal grid's value):
 // true for a back face; `n` the unit normal, turned toward the ray for a voxel without a back side.
 bool nanoBackFace(vec3 mean, vec3 dir, out vec3 n) {
@@ -73,6 +76,7 @@ float nanoSurfaceHit(vec3 origin, vec3 dir, ivec3 voxel, vec3 n, float tEntry) {
 bool nanoFirstHit(vec3 origin, vec3 dir, float tMin, float tMax, out float tHit, out ivec3 voxel) {
     pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
     pnanovdb_readaccessor_t acc = nanoAccessor(uNanoNormalGrid);
+    pnanovdb_readaccessor_t offsets = nanoAccessor(uNanoOffsetGrid != 0u ? uNanoOffsetGrid : uNanoNormalGrid);
     const float h = uNanoVoxelSize;
     vec3 o = origin / h;
     // 1/0 is +-inf: an axis the ray does not move along never bounds it.
@@ -90,15 +94,35 @@ bool nanoFirstHit(vec3 origin, vec3 dir, float tMin, float tMax, out float tHit,
     for (int i = 0; i < kNanoMaxSteps && t <= tEnd; ++i) {
         ivec3 ijk = ivec3(floor(o + t * dir));
         int dim = int(pnanovdb_readaccessor_get_dim(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ijk));
-        if (dim == 1 && pnanovdb_readaccessor_is_active(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ijk)) {
-            tHit = t * h;
-            voxel = ijk;
-            return true;
-        }
         // Leave the voxel or empty node holding ijk (aligned to its size).
         vec3 boxLo = vec3(ijk & ivec3(~(dim - 1)));
         vec3 exitT = (boxLo + side * float(dim) - o) * inv;
-        t = max(min(exitT.x, min(exitT.y, exitT.z)), t) + nudge;
+        float tExit = max(min(exitT.x, min(exitT.y, exitT.z)), t);
+        if (dim == 1 && pnanovdb_readaccessor_is_active(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ijk)) {
+            // With surface offsets, a voxel whose faces look one way (consistency at least
+            // kNanoPlanarConsistency) is its surface plane: the ray hits it where it crosses the
+            // plane inside the voxel (within the nudge: a surface on the voxel's face is crossed
+            // where the ray enters), else goes on. Others are solid: a thin wall's two sides, a
+            // column, and corners (two perpendicular faces give 0.71), whose mean plane would
+            // let rays through the corner.
+            vec3 mean = nanoReadVec3(acc, ijk);
+            float consistency = length(mean);
+            if (uNanoOffsetGrid == 0u || consistency < kNanoPlanarConsistency) {
+                tHit = t * h;
+                voxel = ijk;
+                return true;
+            }
+            vec3 n = mean / consistency;
+            float dn = dot(dir, n);
+            vec3 onPlane = (vec3(ijk) + 0.5) * h + nanoReadFloat(offsets, ijk) * n;
+            float tPlane = abs(dn) > 1e-6 ? dot(onPlane - origin, n) / dn : -1.0;
+            if (tPlane >= max((t - 2.0 * nudge) * h, tMin) && tPlane <= min((tExit + 2.0 * nudge) * h, tMax)) {
+                tHit = max(tPlane, tMin);
+                voxel = ijk;
+                return true;
+            }
+        }
+        t = tExit + nudge;
     }
     return false;
 }
