@@ -54,25 +54,15 @@ bool nanoBackFace(vec3 mean, vec3 dir, out vec3 n) {
     return false;
 }
 
-// Where a ray that entered `voxel` at tEntry meets the plane of its surface (unit normal n, the
-// surface offset grid's point), kept inside the voxel; tEntry without offsets.
-float nanoSurfaceHit(vec3 origin, vec3 dir, ivec3 voxel, vec3 n, float tEntry) {
-    if (uNanoOffsetGrid == 0u) return tEntry;
-    pnanovdb_readaccessor_t offsets = nanoAccessor(uNanoOffsetGrid);
-    const float h = uNanoVoxelSize;
-    vec3 onPlane = (vec3(voxel) + 0.5) * h + nanoReadFloat(offsets, voxel) * n;
-    float dn = dot(dir, n);
-    if (abs(dn) < 1e-6) return tEntry;
-    vec3 exitT = ((vec3(voxel) + step(vec3(0.0), dir)) * h - origin) / dir;
-    float tExit = min(exitT.x, min(exitT.y, exitT.z));
-    return clamp(dot(onPlane - origin, n) / dn, tEntry, max(tEntry, tExit));
-}
-
 // The first occupied voxel met by origin + t * dir (world units, unit dir) for t in
-// [tMin, tMax]: true with the distance where the ray enters it and its index. Occupied voxels
-// are solid: treating each as its surface plane only (a ray that crosses the plane outside the
-// voxel goes on) leaked light through a thin wall where it meets the floor, whose normal the
-// voxel's then holds alone.
+// [tMin, tMax]: true with the hit distance and the voxel's index. Without surface offsets every
+// occupied voxel is solid and the hit is where the ray enters it. With them, a voxel whose
+// faces look one way (consistency at least kNanoPlanarConsistency) is its surface plane: the
+// ray hits it where it crosses the plane inside the voxel (within the nudge: a surface on the
+// voxel's face is crossed where the ray enters), else goes on. Other voxels stay solid (a thin
+// wall's two sides, a column, and corners, whose two perpendicular faces give 0.71 and whose
+// mean plane would let rays through the corner); their hit is moved onto their plane, kept
+// inside the voxel, so shading happens on the surface rather than at the voxel's entry.
 bool nanoFirstHit(vec3 origin, vec3 dir, float tMin, float tMax, out float tHit, out ivec3 voxel) {
     pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
     pnanovdb_readaccessor_t acc = nanoAccessor(uNanoNormalGrid);
@@ -99,26 +89,25 @@ bool nanoFirstHit(vec3 origin, vec3 dir, float tMin, float tMax, out float tHit,
         vec3 exitT = (boxLo + side * float(dim) - o) * inv;
         float tExit = max(min(exitT.x, min(exitT.y, exitT.z)), t);
         if (dim == 1 && pnanovdb_readaccessor_is_active(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ijk)) {
-            // With surface offsets, a voxel whose faces look one way (consistency at least
-            // kNanoPlanarConsistency) is its surface plane: the ray hits it where it crosses the
-            // plane inside the voxel (within the nudge: a surface on the voxel's face is crossed
-            // where the ray enters), else goes on. Others are solid: a thin wall's two sides, a
-            // column, and corners (two perpendicular faces give 0.71), whose mean plane would
-            // let rays through the corner.
             vec3 mean = nanoReadVec3(acc, ijk);
             float consistency = length(mean);
-            if (uNanoOffsetGrid == 0u || consistency < kNanoPlanarConsistency) {
-                tHit = t * h;
-                voxel = ijk;
+            float tEntry = max(t * h, tMin);
+            voxel = ijk;
+            if (uNanoOffsetGrid == 0u || !(consistency > 0.0)) {
+                tHit = tEntry;
                 return true;
             }
             vec3 n = mean / consistency;
             float dn = dot(dir, n);
             vec3 onPlane = (vec3(ijk) + 0.5) * h + nanoReadFloat(offsets, ijk) * n;
-            float tPlane = abs(dn) > 1e-6 ? dot(onPlane - origin, n) / dn : -1.0;
+            bool crosses = abs(dn) > 1e-6;
+            float tPlane = crosses ? dot(onPlane - origin, n) / dn : -1.0;
+            if (consistency < kNanoPlanarConsistency) {
+                tHit = crosses ? clamp(tPlane, tEntry, max(tEntry, min(tExit * h, tMax))) : tEntry;
+                return true;
+            }
             if (tPlane >= max((t - 2.0 * nudge) * h, tMin) && tPlane <= min((tExit + 2.0 * nudge) * h, tMax)) {
                 tHit = max(tPlane, tMin);
-                voxel = ijk;
                 return true;
             }
         }

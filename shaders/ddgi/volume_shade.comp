@@ -53,7 +53,6 @@ void main() {
         rayValues[out_] = vec4(0.0, 0.0, 0.0, -t);
         return;
     }
-    t = nanoSurfaceHit(origin, dir, voxel, n, t);  // shade on the surface, not at the voxel's entry
     pnanovdb_readaccessor_t albedos = nanoAccessor(uNanoAlbedoGrid);
     vec3 albedo = nanoReadVec3(albedos, voxel);
     if (albedo == vec3(0.0)) {
