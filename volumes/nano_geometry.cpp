@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 #include <string>
-#include <type_traits>
 
 #include <nanovdb/NanoVDB.h>
 #include <nanovdb/util/OpenToNanoVDB.h>
@@ -20,9 +19,10 @@ namespace voxgi {
 namespace {
 
 // An OpenVDB grid on the occupancy's topology holding `value(index, ijk)` of every occupied
-// voxel (index: the voxel's slot in the level's attribute arrays).
-template <typename Grid, typename Value>
-typename Grid::Ptr attributeGrid(const detail::LevelGrids& level, const Value& value) {
+// voxel that `holdsSurface(index)` (index: the voxel's slot in the level's attribute arrays);
+// the other voxels are dropped.
+template <typename Grid, typename Keep, typename Value>
+typename Grid::Ptr attributeGrid(const detail::LevelGrids& level, const Keep& holdsSurface, const Value& value) {
     using Tree = typename Grid::TreeType;
     auto tree = std::make_shared<Tree>(level.occupancy->tree(), typename Grid::ValueType(0.0f), openvdb::TopologyCopy());
     std::vector<typename Tree::LeafNodeType*> leaves;
@@ -30,9 +30,11 @@ typename Grid::Ptr attributeGrid(const detail::LevelGrids& level, const Value& v
     tbb::parallel_for(std::size_t(0), leaves.size(), [&](std::size_t i) {
         for (auto it = leaves[i]->beginValueOn(); it; ++it) {
             const std::int64_t slot = level.attributeIndex(it.getCoord());
-            if (slot >= 0) it.setValue(value(std::size_t(slot), it.getCoord()));
+            if (slot >= 0 && holdsSurface(std::size_t(slot))) it.setValue(value(std::size_t(slot), it.getCoord()));
+            else it.setValueOff();
         }
     });
+    openvdb::tools::pruneInactive(*tree);
     return Grid::create(tree);
 }
 
@@ -78,60 +80,48 @@ NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level, con
                   "the NanoVDB geometry volume (" + std::to_string(l.occupancy->activeVoxelCount()) + " voxels)");
     NanoGeometry out;
     out.voxelSize = float(l.voxelSize);
-    out.activeVoxels = l.occupancy->activeVoxelCount();
     const BlockerFit fit = volume.grids().blockerFit;
-    // Unit mean normal times consistency, per attribute slot.
+    // Voxels a surface only touches (it lies on their face and its area went to the neighbour)
+    // hold no surface and are dropped: traced as solid, they were hit with no normal beside the
+    // real surface's voxel (the layer under the Cornell box's ceiling, lit by the light just
+    // below it).
+    auto holdsSurface = [&](std::size_t i) {
+        return coverageFromBlocker(l.normalC0[i].w, glm::vec3(l.normalC0[i]), fit) > 0.0f;
+    };
+    // Unit mean normal times consistency (|sum a n| / sum a), per attribute slot.
     auto meanNormal = [&](std::size_t i) {
         const glm::vec3 m(l.normalC0[i]);
         const float length = glm::length(m), area = coverageFromBlocker(l.normalC0[i].w, m, fit);
         if (!(length > 0.0f) || !(area > 0.0f)) return glm::vec3(0.0f);
         return m * (std::min(1.0f, length / area) / length);
     };
-    const auto normal = attributeGrid<openvdb::Vec3fGrid>(l, [&](std::size_t i, const openvdb::Coord&) {
-        const glm::vec3 n = meanNormal(i);
-        return openvdb::Vec3f(n.x, n.y, n.z);
-    });
+    // One grid at a time, each converted before the next is built (nanoGeometryBytes' peak).
+    {
+        const auto normal = attributeGrid<openvdb::Vec3fGrid>(l, holdsSurface, [&](std::size_t i, const openvdb::Coord&) {
+            const glm::vec3 n = meanNormal(i);
+            return openvdb::Vec3f(n.x, n.y, n.z);
+        });
+        out.activeVoxels = normal->activeVoxelCount();
+        append(out, *normal, out.normalGrid);
+    }
     // The probe's answers per slot (each written once, from one thread).
     std::vector<VoxelSurface> surfaces(surfaceProbe ? l.normalC0.size() : 0);
-    openvdb::FloatGrid::Ptr offset;
-    if (surfaceProbe)
-        offset = attributeGrid<openvdb::FloatGrid>(l, [&](std::size_t i, const openvdb::Coord& c) {
+    if (surfaceProbe) {
+        const auto offset = attributeGrid<openvdb::FloatGrid>(l, holdsSurface, [&](std::size_t i, const openvdb::Coord& c) {
             const glm::vec3 n = meanNormal(i);
             if (n == glm::vec3(0.0f)) return 0.0f;
             const glm::vec3 centre = (glm::vec3(float(c.x()), float(c.y()), float(c.z())) + 0.5f) * out.voxelSize;
             surfaces[i] = surfaceProbe(centre, glm::normalize(n));
             return surfaces[i].offset;
         });
-    const auto albedo = attributeGrid<openvdb::Vec3fGrid>(l, [&](std::size_t i, const openvdb::Coord&) {
+        append(out, *offset, out.offsetGrid);
+    }
+    const auto albedo = attributeGrid<openvdb::Vec3fGrid>(l, holdsSurface, [&](std::size_t i, const openvdb::Coord&) {
         const glm::vec3 a = !surfaces.empty() && surfaces[i].albedoSeen ? surfaces[i].albedo
                                                                          : detail::dequantizeAlbedo(l.albedo[i]);
         return openvdb::Vec3f(a.x, a.y, a.z);
     });
-    // Voxels a surface only touches (it lies on their face and its area went to the neighbour)
-    // hold no surface: tracing them as solid hit nothing at all, with no normal, beside the
-    // real surface's voxel (half of the Cornell box's ceiling layer, lit by the light just
-    // below it). The traced topology drops them.
-    auto dropEmpty = [&](auto& grid) {
-        using Tree = typename std::decay_t<decltype(*grid)>::TreeType;
-        std::vector<typename Tree::LeafNodeType*> leaves;
-        grid->tree().getNodes(leaves);
-        tbb::parallel_for(std::size_t(0), leaves.size(), [&](std::size_t i) {
-            for (auto it = leaves[i]->beginValueOn(); it; ++it) {
-                const std::int64_t slot = l.attributeIndex(it.getCoord());
-                if (slot < 0 || !(coverageFromBlocker(l.normalC0[std::size_t(slot)].w,
-                                                      glm::vec3(l.normalC0[std::size_t(slot)]), fit) > 0.0f))
-                    it.setValueOff();
-            }
-        });
-        openvdb::tools::pruneInactive(grid->tree());
-    };
-    dropEmpty(normal);
-    dropEmpty(albedo);
-    if (offset) dropEmpty(offset);
-    out.activeVoxels = normal->activeVoxelCount();
-    append(out, *normal, out.normalGrid);
     append(out, *albedo, out.albedoGrid);
-    if (offset) append(out, *offset, out.offsetGrid);
     return out;
 }
 

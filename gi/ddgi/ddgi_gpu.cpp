@@ -130,9 +130,6 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
         glBeginQuery(GL_TIME_ELAPSED, shadeQuery_.id());
         volume_->dispatch(field, rays.blendRays, jobs.size(), irradiance_.id(), distance_.id(), probeData_.id());
         glEndQuery(GL_TIME_ELAPSED);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
     }
 
     const BlendParams bp = BlendParams::from(field.desc());

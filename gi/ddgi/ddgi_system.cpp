@@ -69,12 +69,14 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     for (int p = 0; p < field.probeCount(); ++p)
         if (trace_.work[std::size_t(p)] == ProbeWork::Full) blendProbes.push_back(p);
     stats.probesBlended = int(blendProbes.size());
-    if (backend && backend->shadesRays()) return updateShadedElsewhere(stats, *backend, blendProbes, t0);
+    if (backend && backend->shadesRays()) {
+        updateShadedElsewhere(stats, *backend, blendProbes, t0);
+        return stats;
+    }
 
     // Hits are grouped for the hit cache while they are traced.
     const bool grouping = hitCacheUsed(desc, tracer_.scene());
     if (grouping) hitCache_.begin(hitCacheCellSize(field), std::size_t(field.probeCount()) * std::size_t(rays_.blendRays));
-    trace_.blendRaysTraced = true;
     traceProbes(tracer_, field, rays_, trace_, grouping ? &hitCache_ : nullptr);
     stats.traceMs = msSince(t0);
     stats.raysTraced = trace_.raysTraced;
@@ -109,17 +111,11 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     return stats;
 }
 
-DdgiFrameStats DdgiSystem::updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend,
-                                                 const std::vector<int>& blendProbes,
-                                                 std::chrono::steady_clock::time_point start) {
-    // Only the classification rays here: the work list says FixedOnly for the probes that blend.
+void DdgiSystem::updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend, const std::vector<int>& blendProbes,
+                                       std::chrono::steady_clock::time_point start) {
+    // Only the classification rays here.
     ProbeField& field = *field_;
-    std::vector<ProbeWork> work = trace_.work;
-    for (ProbeWork& w : trace_.work)
-        if (w == ProbeWork::Full) w = ProbeWork::FixedOnly;
-    traceProbes(tracer_, field, rays_, trace_, nullptr);
-    trace_.work = std::move(work);
-    trace_.blendRaysTraced = false;
+    traceProbes(tracer_, field, rays_, trace_, nullptr, false);
     stats.raysTraced = trace_.raysTraced + std::int64_t(blendProbes.size()) * rays_.blendRays;
     stats.traceMs = msSince(start);
     std::vector<BlendJob> jobs = makeBlendJobs(field, blendProbes, rays_.blendRays);
@@ -127,7 +123,6 @@ DdgiFrameStats DdgiSystem::updateShadedElsewhere(DdgiFrameStats& stats, BlendBac
     shaded_.raysPerJob = rays_.blendRays;
     shaded_.values.clear();
     blendAndClassify(stats, backend, blendProbes, jobs);
-    return stats;
 }
 
 void DdgiSystem::blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, const std::vector<int>& blendProbes,

@@ -71,9 +71,8 @@ public:
 
 private:
     // The rest of update() when the backend traces and shades the blend rays (shadesRays()).
-    DdgiFrameStats updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend,
-                                         const std::vector<int>& blendProbes,
-                                         std::chrono::steady_clock::time_point start);
+    void updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend, const std::vector<int>& blendProbes,
+                               std::chrono::steady_clock::time_point start);
     void blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, const std::vector<int>& blendProbes,
                           const std::vector<BlendJob>& jobs);
     void measureChange();

@@ -223,9 +223,7 @@ bool hitCacheUsed(const DdgiDesc& desc, const Scene& scene) {
 }
 
 float hitCacheCellSize(const ProbeField& field) {
-    float cell = field.volumes().front().minSpacing();
-    for (const ProbeVolume& v : field.volumes()) cell = std::min(cell, v.minSpacing());
-    return cell / float(field.desc().hitCacheCells);
+    return field.smallestSpacing() / float(field.desc().hitCacheCells);
 }
 
 void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays, const ProbeTrace& trace) {

@@ -19,7 +19,6 @@ public:
     // Binds the buffer at `binding` (the shader's NANO_GEOMETRY_BINDING) and sets the grid
     // offsets and voxel size on `program`.
     void bind(const gl::Program& program, GLuint binding) const;
-    float voxelSize() const { return voxelSize_; }
 
 private:
     gl::Handle buffer_;

@@ -18,10 +18,8 @@ std::shared_ptr<const SparseGeometryVolume> voxelizeForProbes(const Scene& scene
 }
 
 NanoGeometry voxelizeForTracing(const RayTracer& tracer, const ProbeField& field) {
-    float spacing = field.volumes().front().minSpacing();
-    for (const ProbeVolume& v : field.volumes()) spacing = std::min(spacing, v.minSpacing());
     VoxelizeSettings settings;
-    settings.voxelSize = spacing / float(field.desc().traceVoxels);
+    settings.voxelSize = field.smallestSpacing() / float(field.desc().traceVoxels);
     const float h = settings.voxelSize, reach = 0.5f * std::sqrt(3.0f) * h;
     const Scene& scene = tracer.scene();
     const SurfaceProbe probe = [&tracer, &scene, h, reach](glm::vec3 centre, glm::vec3 n) {

@@ -179,6 +179,12 @@ int ProbeField::volumeOf(int probe) const {
     return 0;
 }
 
+float ProbeField::smallestSpacing() const {
+    float spacing = volumes_.front().minSpacing();
+    for (const ProbeVolume& v : volumes_) spacing = std::min(spacing, v.minSpacing());
+    return spacing;
+}
+
 glm::vec3 ProbeField::probePosition(int probe) const {
     const ProbeVolume& v = volumes_[std::size_t(volumeOf(probe))];
     glm::ivec3 logical = v.logicalOf(v.storageFromLocal(probe - v.probeBase));

@@ -99,6 +99,8 @@ public:
 
     const DdgiDesc& desc() const { return desc_; }
     const std::vector<ProbeVolume>& volumes() const { return volumes_; }
+    // The smallest spacing of any volume on any axis (the finest cascade's).
+    float smallestSpacing() const;
     int probeCount() const { return int(probes.size()); }
     // Volume index of a global probe index.
     int volumeOf(int probe) const;

@@ -94,7 +94,7 @@ RaySet makeRaySet(const DdgiDesc& desc, std::uint32_t seed, std::uint32_t frame)
 }
 
 void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace,
-                 HitCache* group) {
+                 HitCache* group, bool blendRays) {
     const Scene& scene = tracer.scene();
     // Emission table entries per emissive material, and which meshes count as emitters.
     trace.emission.assign(1, glm::vec3(0.0f));
@@ -115,11 +115,13 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
     trace.surfels.resize(std::size_t(probes) * std::size_t(trace.stride));
     trace.origins.resize(std::size_t(probes));
     for (int p = 0; p < probes; ++p) trace.origins[std::size_t(p)] = field.probePosition(p);
+    trace.blendRaysTraced = blendRays;
+    // The rays a probe's work asks for, as traced here.
+    auto tracedRays = [&](ProbeWork w) {
+        return w == ProbeWork::Full && blendRays ? trace.stride : w == ProbeWork::None ? 0 : rays.fixedRays;
+    };
     std::int64_t traced = 0;
-    for (int p = 0; p < probes; ++p) {
-        ProbeWork w = trace.work[std::size_t(p)];
-        traced += w == ProbeWork::Full ? trace.stride : w == ProbeWork::FixedOnly ? rays.fixedRays : 0;
-    }
+    for (int p = 0; p < probes; ++p) traced += tracedRays(trace.work[std::size_t(p)]);
     trace.raysTraced = traced;
 
     // Each blend ray stands for 1 / blendRays of the sphere: its albedo is the texture averaged
@@ -135,9 +137,7 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
         const TriangleSurface* surfaces[chunk];
         for (int task = r.begin(); task != r.end(); ++task) {
             int p = task / chunksPerProbe;
-            ProbeWork w = trace.work[std::size_t(p)];
-            if (w == ProbeWork::None) continue;
-            int end = w == ProbeWork::Full ? trace.stride : rays.fixedRays;
+            const int end = tracedRays(trace.work[std::size_t(p)]);
             int first = (task % chunksPerProbe) * chunk;
             int last = std::min(end, first + chunk);
             if (first >= last) continue;

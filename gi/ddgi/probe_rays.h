@@ -80,10 +80,11 @@ struct ProbeTrace {
     }
 };
 
-// Traces the rays `work` asks for from every probe's (relocated) position. With `group` (begun
-// for probeCount * blendRays hits), shaded blend-ray hits are added to it as they are traced:
-// hit probe * blendRays + ray.
+// Traces the rays `work` asks for from every probe's (relocated) position; without
+// `blendRays`, only the fixed rays even of the probes that blend (their blend rays are traced
+// elsewhere: ProbeTrace::blendRaysTraced). With `group` (begun for probeCount * blendRays
+// hits), shaded blend-ray hits are added to it as they are traced: hit probe * blendRays + ray.
 void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet& rays, ProbeTrace& trace,
-                 HitCache* group = nullptr);
+                 HitCache* group = nullptr, bool blendRays = true);
 
 }  // namespace voxgi

@@ -32,7 +32,6 @@ public:
     void dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance, GLuint distance,
                   GLuint probeData);
 
-    float voxelSize() const { return geometry_.voxelSize(); }
 
 private:
     const Scene& scene_;

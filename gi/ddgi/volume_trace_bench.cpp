@@ -21,8 +21,7 @@ void printVolumeTraceBench(const DdgiSystem& ddgi) {
     rays.reserve(std::size_t(field.probeCount()) * std::size_t(set.stride()));
     for (int p = 0; p < field.probeCount(); ++p)
         for (const glm::vec3& d : set.directions) rays.push_back({field.probePosition(p), 1e30f, d, 0.0f});
-    float spacing = field.volumes().front().minSpacing();
-    for (const ProbeVolume& v : field.volumes()) spacing = std::min(spacing, v.minSpacing());
+    const float spacing = field.smallestSpacing();
     std::printf("GL probe rays through the NanoVDB geometry volume (%zu rays, every probe's; kernel only):\n",
                 rays.size());
     for (int perSpacing : {4, 8, 16}) {
