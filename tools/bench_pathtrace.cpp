@@ -28,11 +28,12 @@ namespace {
 
 const char* kUsage =
     "voxgi bench pathtrace [--scenes cornell-box,sibenik,sponza] [--size 128] [--reference-spp 16384]\n"
-    "       [--seconds 8] [--cache DIR] [--csv OUT.csv]\n"
+    "       [--seconds 8] [--cache DIR] [--csv OUT.csv] [--unidirectional]\n"
     "  RMSE of the beauty layer against a cached --reference-spp render (another seed) after\n"
     "  --seconds/8, /4, /2 and --seconds of CPU time (all threads) of progressive rendering, and\n"
     "  rays per CPU second; then the path tracer's rays per CPU second against Embree's alone\n"
     "  (rtcIntersect1 / rtcOccluded1) on the very same rays.\n"
+    "  --unidirectional: without the light-vertex connections (gi/pathtrace/light_paths.h).\n"
     "  --cache: reference cache (default $VOXGI_EVAL_CACHE, else out/eval-cache). Scenes whose\n"
     "  meshes are absent are skipped.";
 
@@ -68,7 +69,7 @@ void embreeShare(PathTracer& tracer, int n) {
                 double(logged.size()), n, path * 1e-6, bare * 1e-6, 100.0 * path / bare);
 }
 
-void benchScene(const std::string& name, Scene scene, int size, int referenceSpp, double budget,
+void benchScene(const std::string& name, Scene scene, int size, int referenceSpp, double budget, bool lightPaths,
                 const std::string& cache, std::ostringstream& csv) {
     scene.camera.width = scene.camera.height = size;
     std::printf("%s: %zu triangles, %dx%d, %d threads\n", name.c_str(), scene.triangleCount(), size, size,
@@ -79,6 +80,7 @@ void benchScene(const std::string& name, Scene scene, int size, int referenceSpp
 
     PathTracerOptions options;
     options.seed = 1;  // the reference uses seed 0: independent noise
+    options.lightPaths = lightPaths;
     PathTracer tracer(scene, options);
     double elapsed = 0.0;
     for (double checkpoint : {budget / 8.0, budget / 4.0, budget / 2.0, budget}) {
@@ -95,14 +97,15 @@ void benchScene(const std::string& name, Scene scene, int size, int referenceSpp
                     tracer.samplesPerPixel(), m.rmse, m.relMse, m.flip, raysPerSecond * 1e-6);
         csv << name << "," << size << "," << checkpoint << "," << elapsed << "," << tracer.samplesPerPixel() << ","
             << tracer.raysTraced() << "," << raysPerSecond * 1e-6 << "," << m.rmse << "," << m.relMse << "," << m.flip
-            << "," << referenceSpp << "\n";
+            << "," << referenceSpp << "," << (lightPaths ? 1 : 0) << "\n";
         std::fflush(stdout);
     }
     embreeShare(tracer, std::max(1, tracer.samplesPerPixel() / 8));
 }
 
 int runBench(const std::vector<std::string>& argv) {
-    Args args(argv, {"--scenes", "--size", "--reference-spp", "--seconds", "--cache", "--csv"}, {});
+    Args args(argv, {"--scenes", "--size", "--reference-spp", "--seconds", "--cache", "--csv"}, {"--unidirectional"});
+    const bool lightPaths = !args.flag("--unidirectional");
     const std::vector<std::string> scenes = splitList(args.value("--scenes", "cornell-box,sibenik,sponza"));
     const int size = args.integer("--size", 128, 8, 8192);
     const int referenceSpp = args.integer("--reference-spp", 16384, 1, 1 << 24);
@@ -112,7 +115,7 @@ int runBench(const std::vector<std::string>& argv) {
     if (auto c = args.value("--csv")) requireWritable(*c, "--csv");
 
     std::ostringstream csv;
-    csv << "scene,size,budget_cpu_s,cpu_s,spp,rays,mrays_per_cpu_s,rmse,relmse,flip,reference_spp\n";
+    csv << "scene,size,budget_cpu_s,cpu_s,spp,rays,mrays_per_cpu_s,rmse,relmse,flip,reference_spp,light_paths\n";
     for (const std::string& name : scenes) {
         Scene scene;
         try {
@@ -123,7 +126,7 @@ int runBench(const std::vector<std::string>& argv) {
             std::printf("%s: skipped (%s)\n", name.c_str(), e.what());
             continue;
         }
-        benchScene(name, std::move(scene), size, referenceSpp, budget, cache, csv);
+        benchScene(name, std::move(scene), size, referenceSpp, budget, lightPaths, cache, csv);
     }
     if (auto c = args.value("--csv")) {
         writeTextAtomically(*c, csv.str());

@@ -16,9 +16,11 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi reference SCENE (--spp N | --time SECONDS) -o OUT.exr [--max-bounces B] [--seed S]\n"
+    "voxgi reference SCENE (--spp N | --time SECONDS) -o OUT.exr [--max-bounces B] [--seed S] [--unidirectional]\n"
     "       [--width W --height H] [--png OUT.png] [--exposure STOPS] [--set section.key=value]...\n"
-    "  --max-bounces: scattering events per path (1 = direct light only; default unlimited, Russian roulette)";
+    "  --max-bounces: scattering events per path (1 = direct light only; default unlimited, Russian roulette)\n"
+    "  --unidirectional: camera paths only, without connections to light subpaths from point and spot\n"
+    "  lights (the same image in expectation, noisier; docs/reference.md)";
 
 using Clock = std::chrono::steady_clock;
 
@@ -33,7 +35,7 @@ void printProgress(double fraction, double elapsed, int spp) {
 
 int runReference(const std::vector<std::string>& argv) {
     Args args(argv, {"--spp", "--time", "-o", "--max-bounces", "--seed", "--width", "--height", "--png", "--exposure", "--set"},
-              {"--quiet"}, {"--set"});
+              {"--quiet", "--unidirectional"}, {"--set"});
     args.requirePositional(1, kUsage);
     if (args.has("--spp") == args.has("--time")) throw InputError("give exactly one of --spp N or --time SECONDS");
     auto out = args.value("-o");
@@ -45,6 +47,7 @@ int runReference(const std::vector<std::string>& argv) {
     PathTracerOptions options;
     options.maxBounces = args.integer("--max-bounces", 0, 0, 1 << 20);
     options.seed = std::uint64_t(args.number("--seed", 0.0, 0.0, 9007199254740992.0));
+    options.lightPaths = !args.flag("--unidirectional");
 
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);

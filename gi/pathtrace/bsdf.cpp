@@ -47,17 +47,21 @@ float fresnelDielectric(float cosIncident, float eta) {
     return 0.5f * (rs * rs + rp * rp);
 }
 
+void orthonormalBasis(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
+    // Without branches on the normal's sign (Duff et al. 2017).
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float c = n.x * n.y * a;
+    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
 Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometric, glm::vec3 shading, bool frontFace)
     : wo_(wo), albedo_(albedo) {
     ng_ = glm::dot(geometric, wo) < 0.0f ? -geometric : geometric;
     // Two-sided shading like the rasterizer's G-buffer: the shading normal follows the side seen.
     n_ = glm::dot(shading, ng_) < 0.0f ? -shading : shading;
-    // Orthonormal basis without branches on the normal's sign (Duff et al. 2017).
-    float sign = std::copysign(1.0f, n_.z);
-    float a = -1.0f / (sign + n_.z);
-    float b = n_.x * n_.y * a;
-    t_ = glm::vec3(1.0f + sign * n_.x * n_.x * a, sign * b, -sign * n_.x);
-    b_ = glm::vec3(b, sign + n_.y * n_.y * a, -n_.y);
+    orthonormalBasis(n_, t_, b_);
 
     transmission_ = std::clamp(m.transmission, 0.0f, 1.0f);
     opaqueWeight_ = 1.0f - transmission_;

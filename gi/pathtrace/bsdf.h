@@ -59,6 +59,9 @@ private:
     bool smoothDielectric_ = false;
 };
 
+// Unit t and b completing unit n to a right-handed orthonormal frame.
+void orthonormalBasis(glm::vec3 n, glm::vec3& t, glm::vec3& b);
+
 // Fresnel reflectance of a dielectric interface for unpolarised light; eta = n_incident / n_transmitted.
 float fresnelDielectric(float cosIncident, float eta);
 

@@ -55,7 +55,15 @@ glm::vec3 leavingPoint(const RayHit& hit, glm::vec3 direction, float sceneScale)
     return offsetOrigin(hit.position, hit.geometricNormal, direction, sceneScale);
 }
 
-glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, std::uint32_t& rays) const {
+namespace {
+// Where the shadow ray towards a delta light seen along `direction` at `distance` stops.
+float shadowRayEnd(float distance) {
+    return std::isinf(distance) ? std::numeric_limits<float>::infinity() : distance * (1.0f - 1e-5f);
+}
+}  // namespace
+
+glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, Arrival arrival,
+                                   std::uint32_t& rays) const {
     const glm::vec3 p = hit.position;
     glm::vec3 sum(0.0f);
     for (std::size_t i = 0; i < lights_.deltaCount(); ++i) {
@@ -63,11 +71,15 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
         if (maxComponent(ls.radiance) <= 0.0f) continue;
         glm::vec3 f = bsdf.eval(ls.direction);
         if (maxComponent(f) <= 0.0f) continue;
+        // The same path, previous vertex - this one - light, is also made by a light subpath
+        // landing here and the previous vertex connecting to it.
+        float weight = 1.0f;
+        if (arrival.pdfArea > 0.0f)
+            weight = powerHeuristic(arrival.pdfArea, lights_.emissionPdfArea(i, ls.direction, ls.distance,
+                                                                            std::abs(glm::dot(hit.geometricNormal, ls.direction))));
         glm::vec3 o = leavingPoint(hit, ls.direction, sceneScale_);
-        float tMax = std::isinf(ls.distance) ? std::numeric_limits<float>::infinity()
-                                             : ls.distance * (1.0f - 1e-5f);
         ++rays;
-        if (!tracer_.occluded(o, ls.direction, 0.0f, tMax)) sum += f * ls.radiance;
+        if (!tracer_.occluded(o, ls.direction, 0.0f, shadowRayEnd(ls.distance))) sum += f * ls.radiance * weight;
     }
     if (lights_.hasEmitters()) {
         LightSample ls = lights_.sampleEmitter(p, glm::vec2(u.x, u.y), u.z);
@@ -84,7 +96,69 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
     return sum;
 }
 
-PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler) const {
+std::uint32_t Integrator::traceLightPath(const PathSampler& sampler, LightVertex& out) const {
+    out = LightVertex{};
+    const EmittedRay e = lights_.sampleEmission(sampler.get3D(0));
+    if (!(e.pdf > 0.0f) || maxComponent(e.intensity) <= 0.0f) return 0;
+    const RayHit hit = tracer_.intersect(e.origin, e.direction);
+    std::uint32_t rays = 1;
+    if (!hit.hit) return rays;
+    const glm::vec3 toLight = -e.direction;
+    const float cosine = std::abs(glm::dot(hit.geometricNormal, toLight));
+    if (!(cosine > 0.0f)) return rays;
+    const Material& material = scene_.materials[hit.material];
+    const glm::vec3 albedo = tracer_.albedoAt(hit);
+    // Only surfaces a camera path takes this light at by next-event estimation: no delta BSDFs.
+    if (!Bsdf(material, albedo, toLight, hit.geometricNormal, hit.shadingNormal, hit.frontFace).hasSmoothPart())
+        return rays;
+    // The light must also pass the shadow ray next-event estimation would trace from here,
+    // which starts from the smooth surface (leavingPoint) where the vertex normals bulge out:
+    // light ray and shadow ray then need not agree, and the two strategies must see one scene.
+    if (hit.smoothPosition != hit.position) {
+        ++rays;
+        if (tracer_.occluded(leavingPoint(hit, toLight, sceneScale_), toLight, 0.0f, shadowRayEnd(hit.t))) return rays;
+    }
+    out.position = hit.position;
+    out.material = hit.material;
+    out.geometricNormal = hit.geometricNormal;
+    out.shadingNormal = hit.shadingNormal;
+    out.albedo = albedo;
+    out.toLight = toLight;
+    out.pdfArea = e.pdf * cosine / (hit.t * hit.t);
+    out.flux = e.intensity / (e.pdf * cosine);
+    if (!(out.pdfArea > 0.0f) || !std::isfinite(out.pdfArea) || !std::isfinite(maxComponent(out.flux)))
+        out = LightVertex{};
+    return rays;
+}
+
+glm::vec3 Integrator::connect(const Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,
+                              std::uint32_t& rays) const {
+    if (pool.vertices.empty()) return glm::vec3(0.0f);
+    const LightVertex& v = pool.vertices[std::min(std::size_t(u * float(pool.vertices.size())), pool.vertices.size() - 1)];
+    if (!v.valid()) return glm::vec3(0.0f);
+    const glm::vec3 d = v.position - hit.position;
+    const float d2 = glm::dot(d, d);
+    if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+    const glm::vec3 w = d / std::sqrt(d2);
+    float pdfHere;
+    const glm::vec3 fHere = bsdf.evalPdf(w, &pdfHere);
+    const float cosThere = std::abs(glm::dot(v.geometricNormal, w));
+    if (maxComponent(fHere) <= 0.0f || !(cosThere > 0.0f)) return glm::vec3(0.0f);
+    // The light vertex as the camera path would meet it, arriving along w.
+    const Bsdf there(scene_.materials[v.material], v.albedo, -w, v.geometricNormal, v.shadingNormal,
+                     glm::dot(v.geometricNormal, w) < 0.0f);
+    const glm::vec3 fThere = there.eval(v.toLight);
+    if (maxComponent(fThere) <= 0.0f) return glm::vec3(0.0f);
+    const float geometry = cosThere / d2;
+    const glm::vec3 c = fHere * fThere * v.flux * (geometry * powerHeuristic(v.pdfArea, pdfHere * geometry));
+    if (maxComponent(c) <= 0.0f) return glm::vec3(0.0f);
+    ++rays;
+    return segmentOccluded(leavingPoint(hit, w, sceneScale_), v.position, v.geometricNormal) ? glm::vec3(0.0f) : c;
+}
+
+PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
+                             const LightVertices* lightVertices) const {
+    const bool connecting = lightVertices && !lightVertices->vertices.empty();
     PathSample out;
     glm::vec3 throughput(1.0f);
     float radianceScale = 1.0f;
@@ -125,9 +199,17 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         glm::vec3 wo = -direction;
         Bsdf bsdf(material, albedo, wo, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
         // The bounce's decisions: light sample, BSDF sample, roulette (gi/pathtrace/sampler.h).
-        const std::uint32_t decision = 1 + 3 * std::uint32_t(std::min(depth, 1 << 20));
-        if (bsdf.hasSmoothPart())
-            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), out.rays));
+        const std::uint32_t decision = 1 + 4 * std::uint32_t(std::min(depth, 1 << 20));
+        if (bsdf.hasSmoothPart()) {
+            // A light-vertex connection from the previous vertex could have made this path's
+            // next-event samples of delta lights when that vertex sampled a smooth lobe.
+            Arrival arrival;
+            if (connecting && depth >= 1 && !previousDelta)
+                arrival.pdfArea = previousPdf * std::abs(glm::dot(hit.geometricNormal, direction)) / (hit.t * hit.t);
+            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), arrival, out.rays));
+            if (connecting && depth + 1 < maxBounces_)
+                deposit(depth + 2, throughput * connect(bsdf, hit, *lightVertices, sampler.get1D(decision + 3), out.rays));
+        }
 
         glm::vec3 u = sampler.get3D(decision + 1);
         BsdfSample s;

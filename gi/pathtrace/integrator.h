@@ -2,6 +2,7 @@
 // pixels, tiles and accumulation (gi/pathtrace/path_tracer.cpp).
 #pragma once
 
+#include "gi/pathtrace/light_paths.h"
 #include "gi/pathtrace/lights.h"
 #include "gi/pathtrace/path_tracer.h"
 #include "gi/pathtrace/sampler.h"
@@ -17,13 +18,34 @@ constexpr int kBounceGuard = 10000;
 class Integrator {
 public:
     Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces);
-    // Decision 0 of `sampler` is the caller's (the pixel position); bounce k uses 1 + 3k..3 + 3k.
-    PathSample trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler) const;
+    // Decision 0 of `sampler` is the caller's (the pixel position); bounce k uses 1 + 4k..4 + 4k.
+    // With `lightVertices` (this sample index's, light_paths.h), every vertex of the path is also
+    // connected to one of them; without, the path is unidirectional.
+    PathSample trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
+                     const LightVertices* lightVertices = nullptr) const;
+
+    // Whether any light emits light subpaths (the scene has point, spot or sun lights) and
+    // paths are long enough to use them (two scatterings or more).
+    bool tracesLightPaths() const { return lights_.emitsRays() && maxBounces_ >= 2; }
+    // Light subpath `sampler` (decision 0) into `out` (invalid when it found no usable
+    // surface); returns the rays it traced.
+    std::uint32_t traceLightPath(const PathSampler& sampler, LightVertex& out) const;
 
 private:
+    // How the path arrived at the current vertex, for weighting its delta-light samples against
+    // light-vertex connections from the vertex before: the area pdf of this vertex through the
+    // previous one's BSDF sample (0: no connection could have made this path).
+    struct Arrival {
+        float pdfArea = 0.0f;
+    };
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
     // u: the emitter point (x, y) and the emitter choice (z).
-    glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, std::uint32_t& rays) const;
+    glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, Arrival arrival,
+                           std::uint32_t& rays) const;
+    // Light after two more scatterings: the hit joined to light vertex u * size of `pool`, with
+    // MIS against reaching that vertex by this BSDF's sample.
+    glm::vec3 connect(const class Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,
+                      std::uint32_t& rays) const;
     // Whether anything lies between `from` (a ray origin, leavingPoint) and emitter point q
     // (normal nq).
     bool segmentOccluded(glm::vec3 from, glm::vec3 q, glm::vec3 nq) const;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 
+#include "gi/pathtrace/bsdf.h"
 #include "shaders/shared/constants.h"
 
 namespace voxgi::pt {
@@ -106,6 +108,24 @@ LightSampler::LightSampler(const Scene& scene) {
     for (const Light& l : scene.lights)
         if (l.type != LightType::Quad) deltas_.push_back(shading::packLight(l));  // quads are emissive geometry
 
+    std::vector<double> emitted;
+    for (const shading::PackedLight& l : deltas_) {
+        double measure = 4.0 * shading::kPiDouble;  // point: the sphere
+        if (l.kind.x == shading::kLightSpot) measure = 2.0 * shading::kPiDouble * (1.0 - double(l.shape.x));
+        if (l.kind.x == shading::kLightDirectional) measure = 0.0;
+        emitted.push_back(std::max(double(luminance(glm::vec3(l.emission))), 0.0) * std::max(measure, 0.0));
+    }
+    const double emittedTotal = std::accumulate(emitted.begin(), emitted.end(), 0.0);
+    if (emittedTotal > 0.0 && std::isfinite(emittedTotal)) {
+        double running = 0.0;
+        for (double p : emitted) {
+            running += p;
+            rayProbability_.push_back(float(p / emittedTotal));
+            rayCdf_.push_back(float(running / emittedTotal));
+        }
+        rayCdf_.back() = 1.0f;
+    }
+
     std::vector<double> power;
     meshRectangle_.assign(scene.meshes.size(), -1);
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -169,6 +189,45 @@ LightSample LightSampler::sampleDelta(std::size_t index, glm::vec3 p) const {
     s.distance = incident.distance;
     s.radiance = incident.irradiance;
     return s;
+}
+
+float LightSampler::emissionPdf(std::size_t index) const {
+    const shading::PackedLight& l = deltas_[index];
+    if (l.kind.x == shading::kLightSpot) return rayProbability_[index] / (2.0f * shading::kPi * (1.0f - l.shape.x));
+    return rayProbability_[index] / (4.0f * shading::kPi);
+}
+
+EmittedRay LightSampler::sampleEmission(glm::vec3 u) const {
+    EmittedRay ray;
+    if (rayCdf_.empty()) return ray;
+    const std::size_t i = std::min(std::size_t(std::lower_bound(rayCdf_.begin(), rayCdf_.end(), u.z) - rayCdf_.begin()),
+                                   deltas_.size() - 1);
+    if (!(rayProbability_[i] > 0.0f)) return ray;
+    const shading::PackedLight& l = deltas_[i];
+    const float phi = 2.0f * shading::kPi * u.y;
+    ray.origin = glm::vec3(l.position);
+    ray.intensity = glm::vec3(l.emission);
+    ray.pdf = emissionPdf(i);
+    if (l.kind.x == shading::kLightSpot) {
+        const glm::vec3 axis = glm::vec3(l.direction);
+        glm::vec3 t, b;
+        orthonormalBasis(axis, t, b);
+        const float cosT = 1.0f - u.x * (1.0f - l.shape.x), sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
+        ray.direction = sinT * (std::cos(phi) * t + std::sin(phi) * b) + cosT * axis;
+        ray.intensity *= shading::spotFalloff(l.shape.x, l.shape.y, cosT);
+        return ray;
+    }
+    const float z = 1.0f - 2.0f * u.x, s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    ray.direction = glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+    return ray;
+}
+
+float LightSampler::emissionPdfArea(std::size_t index, glm::vec3 toLight, float distance, float cosAtY) const {
+    if (rayProbability_.empty() || !(rayProbability_[index] > 0.0f)) return 0.0f;
+    // The spot emits into its outer cone only.
+    const shading::PackedLight& l = deltas_[index];
+    if (l.kind.x == shading::kLightSpot && glm::dot(-toLight, glm::vec3(l.direction)) < l.shape.x) return 0.0f;
+    return emissionPdf(index) * cosAtY / (distance * distance);
 }
 
 namespace {

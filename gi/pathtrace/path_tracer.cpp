@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <optional>
 
 #include <tbb/blocked_range.h>
@@ -18,6 +20,15 @@ namespace voxgi {
 namespace {
 
 constexpr int kTile = 16;
+// Light subpaths per sample index: one per pixel, up to this many (a 1024^2 image shares each
+// among 16 pixels, which costs correlation, not bias).
+constexpr int kMaxLightPaths = 1 << 16;
+// Sample indices rendered together: their light vertices are held at once.
+constexpr int kSamplesPerPass = 8;
+// Light vertices kept for samplePixel() callers.
+constexpr std::size_t kKeptPools = 16;
+// Light subpath j of sample s draws from the sampler of "pixel" kLightStream + j.
+constexpr std::uint64_t kLightStream = 0xFFFF000000000000ull;
 
 // Whether every quad light already has its emitting mesh (Scene::addQuadLightGeometry).
 bool hasQuadGeometry(const Scene& scene) {
@@ -53,6 +64,9 @@ struct PathTracer::Impl {
     std::vector<PixelSum> sums;
     int samples = 0;
     std::atomic<std::uint64_t> rays{0}, dropped{0};
+    int lightPaths = 0;  // per sample index; 0: unidirectional
+    std::mutex keptMutex;
+    std::map<std::uint64_t, std::shared_ptr<const pt::LightVertices>> kept;
 
     static const Scene& pick(const Scene& given, std::optional<Scene>& owned) {
         if (hasQuadGeometry(given)) return given;
@@ -70,19 +84,52 @@ struct PathTracer::Impl {
         requireMemory(double(width) * double(height) * double(sizeof(PixelSum) + 16 * sizeof(float)),
                       "path tracer: " + std::to_string(width) + "x" + std::to_string(height) + " accumulation and image buffers");
         sums.resize(std::size_t(width) * std::size_t(height));
+        if (options.lightPaths && integrator.tracesLightPaths()) {
+            lightPaths = int(std::min<std::int64_t>(std::int64_t(width) * height, kMaxLightPaths));
+            requireMemory(double(lightPaths) * kSamplesPerPass * sizeof(pt::LightVertex),
+                          "path tracer: " + std::to_string(lightPaths) + " light subpaths per sample");
+        }
     }
 
-    PathSample samplePixel(int x, int y, std::uint64_t index) const {
+    // The light vertices of sample `index` (parallel over subpaths; deterministic).
+    std::shared_ptr<const pt::LightVertices> traceLightPaths(std::uint64_t index) const {
+        auto pool = std::make_shared<pt::LightVertices>();
+        pool->vertices.resize(std::size_t(lightPaths));
+        std::atomic<std::uint64_t> traced{0};
+        tbb::parallel_for(tbb::blocked_range<int>(0, lightPaths, 256), [&](const tbb::blocked_range<int>& r) {
+            std::uint64_t local = 0;
+            for (int j = r.begin(); j != r.end(); ++j)
+                local += integrator.traceLightPath(pt::PathSampler(options.seed, kLightStream + std::uint64_t(j), index),
+                                                   pool->vertices[std::size_t(j)]);
+            traced += local;
+        });
+        pool->rays = traced.load();
+        return pool;
+    }
+
+    // For samplePixel(): the light vertices of `index`, traced on first use and kept for a while.
+    std::shared_ptr<const pt::LightVertices> keptLightPaths(std::uint64_t index) {
+        if (lightPaths == 0) return nullptr;
+        std::lock_guard<std::mutex> lock(keptMutex);
+        auto found = kept.find(index);
+        if (found != kept.end()) return found->second;
+        if (kept.size() >= kKeptPools) kept.erase(kept.begin());
+        return kept[index] = traceLightPaths(index);
+    }
+
+    PathSample samplePixel(int x, int y, std::uint64_t index, const pt::LightVertices* lightVertices) const {
         std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
         const pt::PathSampler sampler(options.seed, pixel, index);
         // Box filter: a uniform point in the pixel, as the rasterizer's jittered accumulation.
         const glm::vec2 jitter = sampler.get2D(0);
         float sx = (float(x) + jitter.x) / float(width);
         float sy = (float(y) + jitter.y) / float(height);
-        return integrator.trace(camera.eye, glm::normalize(camera.direction(sx, sy)), sampler);
+        return integrator.trace(camera.eye, glm::normalize(camera.direction(sx, sy)), sampler, lightVertices);
     }
 
-    void renderTile(int tile, int count) {
+    // Samples first .. first + count - 1 of every pixel of `tile`; pools[s] holds sample
+    // first + s's light vertices (null: unidirectional).
+    void renderTile(int tile, int first, int count, const std::vector<std::shared_ptr<const pt::LightVertices>>& pools) {
         int tilesX = (width + kTile - 1) / kTile;
         int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
         int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
@@ -91,7 +138,7 @@ struct PathTracer::Impl {
             for (int x = x0; x < x1; ++x) {
                 PixelSum& sum = sums[std::size_t(y) * std::size_t(width) + std::size_t(x)];
                 for (int s = 0; s < count; ++s) {
-                    PathSample p = samplePixel(x, y, std::uint64_t(samples + s));
+                    PathSample p = samplePixel(x, y, std::uint64_t(first + s), pools[std::size_t(s)].get());
                     tileRays += p.rays;
                     if (!finite(p.direct) || !finite(p.indirect) || !finite(p.albedo) || !finite(p.normal) ||
                         !std::isfinite(p.depth)) {
@@ -119,9 +166,19 @@ void PathTracer::render(int samples) {
     if (samples <= 0) return;
     Impl& m = *impl_;
     int tiles = ((m.width + kTile - 1) / kTile) * ((m.height + kTile - 1) / kTile);
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
-        for (int t = r.begin(); t != r.end(); ++t) m.renderTile(t, samples);
-    });
+    for (int done = 0; done < samples;) {
+        const int first = m.samples + done, count = std::min(kSamplesPerPass, samples - done);
+        auto pools = std::vector<std::shared_ptr<const pt::LightVertices>>(std::size_t(count));
+        if (m.lightPaths > 0)
+            for (int s = 0; s < count; ++s) {
+                pools[std::size_t(s)] = m.traceLightPaths(std::uint64_t(first + s));
+                m.rays += pools[std::size_t(s)]->rays;
+            }
+        tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
+            for (int t = r.begin(); t != r.end(); ++t) m.renderTile(t, first, count, pools);
+        });
+        done += count;
+    }
     m.samples += samples;
 }
 
@@ -159,7 +216,9 @@ int PathTracer::samplesPerPixel() const { return impl_->samples; }
 std::uint64_t PathTracer::raysTraced() const { return impl_->rays.load(); }
 std::uint64_t PathTracer::droppedSamples() const { return impl_->dropped.load(); }
 
-PathSample PathTracer::samplePixel(int x, int y, std::uint64_t index) const { return impl_->samplePixel(x, y, index); }
+PathSample PathTracer::samplePixel(int x, int y, std::uint64_t index) const {
+    return impl_->samplePixel(x, y, index, impl_->keptLightPaths(index).get());
+}
 
 const RayTracer& PathTracer::rayTracer() const { return impl_->tracer; }
 

@@ -25,6 +25,9 @@ struct PathTracerOptions {
     std::uint64_t seed = 0;
     int width = 0;              // 0 = the scene camera's resolution
     int height = 0;
+    // Light-vertex connections (gi/pathtrace/light_paths.h) for the light of point, spot and sun
+    // lights; false: unidirectional paths only (the same image in expectation, noisier).
+    bool lightPaths = true;
 };
 
 // What one camera path brought back, split the way the AOVs are.
@@ -60,11 +63,13 @@ public:
     // Samples that came out NaN or infinite, dropped before they reached the image.
     std::uint64_t droppedSamples() const;
 
-    // The path render() traces for pixel (x, y), sample `index` (box filter over the pixel).
+    // The path render() traces for pixel (x, y), sample `index` (box filter over the pixel),
+    // with the light subpaths of that index (traced again unless one of the last few indices
+    // asked for).
     PathSample samplePixel(int x, int y, std::uint64_t index) const;
     // The Embree scene the paths are traced in (benchmarks log and replay its rays).
     const RayTracer& rayTracer() const;
-    // A path along any ray; `stream` keys its random numbers.
+    // A unidirectional path along any ray; `stream` keys its random numbers.
     PathSample trace(glm::vec3 origin, glm::vec3 direction, std::uint64_t stream) const;
 
 private:
