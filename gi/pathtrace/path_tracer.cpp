@@ -9,6 +9,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "gi/pathtrace/integrator.h"
 #include "scenes/camera_rays.h"
@@ -96,12 +97,17 @@ struct PathTracer::Impl {
         auto pool = std::make_shared<pt::LightVertices>();
         pool->vertices.resize(std::size_t(lightPaths));
         std::atomic<std::uint64_t> traced{0};
-        tbb::parallel_for(tbb::blocked_range<int>(0, lightPaths, 256), [&](const tbb::blocked_range<int>& r) {
-            std::uint64_t local = 0;
-            for (int j = r.begin(); j != r.end(); ++j)
-                local += integrator.traceLightPath(pt::PathSampler(options.seed, kLightStream + std::uint64_t(j), index),
-                                                   pool->vertices[std::size_t(j)]);
-            traced += local;
+        // Isolated: samplePixel() callers trace these under a lock from inside their own
+        // parallel loops, and a thread waiting here must not pick up one of those (it would
+        // take the lock again).
+        tbb::this_task_arena::isolate([&] {
+            tbb::parallel_for(tbb::blocked_range<int>(0, lightPaths, 256), [&](const tbb::blocked_range<int>& r) {
+                std::uint64_t local = 0;
+                for (int j = r.begin(); j != r.end(); ++j)
+                    local += integrator.traceLightPath(
+                        pt::PathSampler(options.seed, kLightStream + std::uint64_t(j), index), pool->vertices[std::size_t(j)]);
+                traced += local;
+            });
         });
         pool->rays = traced.load();
         return pool;
