@@ -24,7 +24,7 @@ public:
     PathSample trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
                      const LightVertices* lightVertices = nullptr) const;
 
-    // Whether any light emits light subpaths (the scene has point, spot or sun lights) and
+    // Whether any light emits light subpaths (the scene has point or spot lights) and
     // paths are long enough to use them (two scatterings or more).
     bool tracesLightPaths() const { return lights_.emitsRays() && maxBounces_ >= 2; }
     // Light subpath `sampler` (decision 0) into `out` (invalid when it found no usable
