@@ -12,7 +12,6 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/ddgi/probe_states.h"
 #include "gi/raytrace/ray_tracer.h"
-#include "gl/context.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
@@ -23,7 +22,6 @@ using namespace voxgi;
 
 namespace {
 
-std::unique_ptr<gl::Context> g_context;
 
 // Per-probe mean irradiance after `frames` updates with the GL backend.
 std::vector<glm::vec3> converge(const Scene& scene, std::map<std::string, std::string> keys, int frames) {
@@ -52,9 +50,7 @@ double total(const std::vector<glm::vec3>& mean, const std::vector<int>& probes)
 
 class DdgiVolumeShade : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        if (!g_context) g_context = gl::Context::createHeadless();
-    }
+    static void SetUpTestSuite() { test::useHeadlessContext(); }
 };
 
 // The Cornell box's field from the volume against the triangles', probe by probe where the

@@ -12,7 +12,6 @@
 #include "gi/ddgi/volume_trace_gpu.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/sampling/sequences.h"
-#include "gl/context.h"
 #include "scenes/errors.h"
 #include "scenes/memory_limit.h"
 #include "scenes/scene_loader.h"
@@ -25,7 +24,6 @@ using namespace voxgi;
 
 namespace {
 
-std::unique_ptr<gl::Context> g_context;
 
 float percentile(std::vector<float> v, float q) {
     std::sort(v.begin(), v.end());
@@ -101,9 +99,7 @@ Agreement compare(const Scene& scene, const Bounds& box, float voxelSize) {
 
 class DdgiVolumeTrace : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        if (!g_context) g_context = gl::Context::createHeadless();
-    }
+    static void SetUpTestSuite() { test::useHeadlessContext(); }
 };
 
 TEST_F(DdgiVolumeTrace, CornellBoxRaysAgreeWithEmbree) {

@@ -62,7 +62,7 @@ float shadowRayEnd(float distance) {
 }
 }  // namespace
 
-glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, Arrival arrival,
+glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, float arrivalPdfArea,
                                    std::uint32_t& rays) const {
     const glm::vec3 p = hit.position;
     glm::vec3 sum(0.0f);
@@ -74,8 +74,8 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
         // The same path, previous vertex - this one - light, is also made by a light subpath
         // landing here and the previous vertex connecting to it.
         float weight = 1.0f;
-        if (arrival.pdfArea > 0.0f)
-            weight = powerHeuristic(arrival.pdfArea, lights_.emissionPdfArea(i, ls.direction, ls.distance,
+        if (arrivalPdfArea > 0.0f)
+            weight = powerHeuristic(arrivalPdfArea, lights_.emissionPdfArea(i, ls.direction, ls.distance,
                                                                             std::abs(glm::dot(hit.geometricNormal, ls.direction))));
         glm::vec3 o = leavingPoint(hit, ls.direction, sceneScale_);
         ++rays;
@@ -203,10 +203,10 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         if (bsdf.hasSmoothPart()) {
             // A light-vertex connection from the previous vertex could have made this path's
             // next-event samples of delta lights when that vertex sampled a smooth lobe.
-            Arrival arrival;
-            if (connecting && depth >= 1 && !previousDelta)
-                arrival.pdfArea = previousPdf * std::abs(glm::dot(hit.geometricNormal, direction)) / (hit.t * hit.t);
-            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), arrival, out.rays));
+            const float arrivalPdfArea = connecting && depth >= 1 && !previousDelta
+                                             ? previousPdf * std::abs(glm::dot(hit.geometricNormal, direction)) / (hit.t * hit.t)
+                                             : 0.0f;
+            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), arrivalPdfArea, out.rays));
             if (connecting && depth + 1 < maxBounces_)
                 deposit(depth + 2, throughput * connect(bsdf, hit, *lightVertices, sampler.get1D(decision + 3), out.rays));
         }

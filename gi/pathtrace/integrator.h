@@ -32,15 +32,11 @@ public:
     std::uint32_t traceLightPath(const PathSampler& sampler, LightVertex& out) const;
 
 private:
-    // How the path arrived at the current vertex, for weighting its delta-light samples against
-    // light-vertex connections from the vertex before: the area pdf of this vertex through the
-    // previous one's BSDF sample (0: no connection could have made this path).
-    struct Arrival {
-        float pdfArea = 0.0f;
-    };
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
-    // u: the emitter point (x, y) and the emitter choice (z).
-    glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, Arrival arrival,
+    // u: the emitter point (x, y) and the emitter choice (z). arrivalPdfArea: the area pdf of
+    // the hit through the previous vertex's BSDF sample, for weighting delta-light samples
+    // against light-vertex connections from that vertex (0: no connection could make the path).
+    glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, float arrivalPdfArea,
                            std::uint32_t& rays) const;
     // Light after two more scatterings: the hit joined to light vertex u * size of `pool`, with
     // MIS against reaching that vertex by this BSDF's sample.
