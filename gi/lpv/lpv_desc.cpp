@@ -24,7 +24,9 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
         .main();
     t.flag("occlusion", &D::occlusion, "attenuate by the blockers at the shared face");
     t.flag("bounces", &D::bounces, "extra bounces off blockers with their albedo");
-    t.flag("static_blockers", &D::staticBlockers, "blockers from the voxelized scene (cached .vdb), merged with the RSM and G-buffer ones");
+    t.flag("static_blockers", &D::staticBlockers, "blockers from the voxelized scene (cached .vdb), made once per cascade placement");
+    t.flag("surfel_blockers", &D::surfelBlockers,
+           "blockers from each update's RSM and G-buffer surfels too; false: the voxelized ones alone, kept with the cascades");
     t.integer("rsm_size", &D::rsmSize, 8, 4096, "reflective shadow map size per light face");
     t.integer("gbuffer_blocker_size", &D::gbufferBlockerSize, 0, 4096,
               "G-buffer blockers sampled on a grid this wide (0 = none)");

@@ -30,7 +30,13 @@ struct LpvDesc {
     Backend backend = Backend::Cpu;
     bool sparse = true;         // cpu: propagate only bricks holding light (dilated per step)
     bool reuse = true;          // skip the update while lights, geometry and placement are unchanged
-    bool staticBlockers = true; // blockers from the voxelized scene merged with the dynamic ones
+    bool staticBlockers = true; // blockers from the voxelized scene, made once per cascade placement
+    // Blockers from each update's RSM and G-buffer surfels, merged with the static ones (seed
+    // 000's only source). Off: the voxelized blockers alone, which stay the same while the
+    // cascades stay, so the CPU operator and the GL geometry volumes persist across updates
+    // (the surfels' blockers follow the G-buffer's jitter and every light move). See docs/lpv.md,
+    // "Surfel blockers", for what each choice does to the light.
+    bool surfelBlockers = true;
 };
 
 // The table of `lpv` (cascaded = false: one volume) or `clpv`.

@@ -29,20 +29,26 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
     const bool voxels = d.staticBlockers && scene.triangleCount() > 0;
     const std::string volumes = count(std::size_t(d.cascades), "cascade") + " of " + std::to_string(d.resolution) + "^3";
     p.updateIf(voxels, "lpv.static_blockers",
-               std::string("voxelized-scene blockers made (") + (gl ? "and uploaded) " : "") +
-                   "when a cascade moves, kept while it stays",
+               std::string("voxelized-scene blockers made") + (gl ? " and uploaded" : "") +
+                   " when a cascade moves, kept while it stays",
                d.staticBlockers ? "no triangles" : "lpv.static_blockers=false");
     p.update.push_back({"lpv.rsm", count(rsmFaceCount(scene), "reflective shadow map face") + " of " +
                                        std::to_string(d.rsmSize) + "^2 for " + count(scene.lights.size(), "light")});
+    const bool surfelBlockers = d.surfelBlockers;
     if (!gl)
-        p.updateIf(d.gbufferBlockerSize > 0, "lpv.gbuffer_readback",
+        p.updateIf(surfelBlockers && d.gbufferBlockerSize > 0, "lpv.gbuffer_readback",
                    "camera blockers: the G-buffer read back on a " + std::to_string(d.gbufferBlockerSize) + " grid",
-                   "lpv.gbuffer_blocker_size=0");
+                   !surfelBlockers ? "lpv.surfel_blockers=false" : "lpv.gbuffer_blocker_size=0");
     p.update.push_back({"lpv.inject", "RSM surfels as virtual point lights into " + volumes});
-    std::string sources = "the RSMs";
-    if (d.gbufferBlockerSize > 0) sources += ", the G-buffer";
-    if (voxels) sources += ", the voxelized scene";
-    p.update.push_back({"lpv.blockers", "blockers from " + sources});
+    std::vector<std::string> sources;
+    if (surfelBlockers) sources.push_back("the RSMs");
+    if (surfelBlockers && d.gbufferBlockerSize > 0) sources.push_back("the G-buffer");
+    if (voxels) sources.push_back("the voxelized scene");
+    std::string from;
+    for (std::size_t i = 0; i < sources.size(); ++i) from += (i == 0 ? "" : ", ") + sources[i];
+    p.updateIf(!sources.empty(), "lpv.blockers",
+               "blockers from " + from + (surfelBlockers ? "" : " (kept while the cascades stay)"),
+               "no blocker source: lpv.static_blockers=false and lpv.surfel_blockers=false");
     p.update.push_back({"lpv.propagate", std::to_string(propagationSteps(d)) + " steps in " + volumes + " on " +
                                              (gl ? "gl" : d.sparse ? "cpu (sparse)" : "cpu (dense)")});
     if (!gl) p.update.push_back({"lpv.upload", "light volumes to 3D textures"});

@@ -83,6 +83,7 @@ class LpvTechnique final : public GiTechnique {
     std::unique_ptr<GlInjector> glInjector;                 // gl back end: injection on the GPU
     std::vector<BlockerVolume> statics;                      // static blockers per cascade, kept
     std::vector<std::unique_ptr<GlBlockerVolume>> glStatic;  // the same on the GPU (gl back end)
+    std::vector<bool> staticsMerged;  // gl: the cascade's geometry volume holds its static blockers alone
     std::vector<gl::Handle> textures;  // 6 per cascade: ring r, g, b, inner r, g, b
     std::vector<glm::ivec3> lastOrigins;
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
@@ -173,6 +174,7 @@ public:
                     injectLight(surfels, offsets, placements, c, injected[c], injectedInner[c]);
                 });
                 injectMs += millisecondsSince(t0);
+                if (!desc.surfelBlockers) continue;
                 t0 = std::chrono::steady_clock::now();
                 for (std::size_t c = 0; c < placements.size(); ++c) injectBlockers(surfels, scratch[c], geometry[c]);
                 blockersMs += millisecondsSince(t0);
@@ -181,7 +183,7 @@ public:
         input.timers.addCpu("lpv.rsm", rsmMs);
 
         SurfelSource camera;
-        if (input.plan.runs("lpv.gbuffer_readback")) {
+        if (desc.surfelBlockers && input.plan.runs("lpv.gbuffer_readback")) {
             const auto t0 = std::chrono::steady_clock::now();
             camera = gbufferSurfels(g, scene.camera, desc.gbufferBlockerSize);
             input.timers.addCpu("lpv.gbuffer_readback", millisecondsSince(t0));
@@ -191,6 +193,12 @@ public:
         if (input.plan.runs("lpv.static_blockers")) refreshStatics(input);
         auto t0 = std::chrono::steady_clock::now();
         for (std::size_t c = 0; c < placements.size(); ++c) {
+            if (!desc.surfelBlockers) {
+                // The static blockers alone: the same volume while the placement stays, so the
+                // propagator keeps its operator.
+                if (c < statics.size()) geometry[c] = statics[c];
+                continue;
+            }
             injectBlockers(camera, scratch[c], geometry[c]);
             if (c < statics.size()) geometry[c].mergeMax(statics[c]);
         }
@@ -206,6 +214,7 @@ public:
                                          options, set == 0 ? accumulated[c] : accumulatedInner[c], desc.sparse);
                 const PropagationStats& st = propagators[c].stats();
                 last.operatorMs += st.operatorMs;
+                last.operatorBuilds += st.operatorBuilt ? 1 : 0;
                 last.stepsMs += st.stepsMs;
                 last.activeBricks += st.activeBricks;
                 last.totalBricks += st.totalBricks;
@@ -263,10 +272,12 @@ public:
     // rendered in batches that bound their texture memory (one batch unless the maps are large
     // or the lights many; each batch adds one sample to the rsm, inject and blockers timers).
     void updateOnGpu(const FrameInput& input, const GBufferView& g) {
+        staticsMerged.resize(placements.size(), false);
         if (input.plan.runs("lpv.static_blockers")) {
             const std::vector<bool> changed = refreshStatics(input);
             glStatic.resize(statics.size());
             for (std::size_t c = 0; c < statics.size(); ++c) {
+                if (changed[c]) staticsMerged[c] = false;
                 if (!changed[c] && glStatic[c]) continue;
                 if (!glStatic[c]) glStatic[c] = std::make_unique<GlBlockerVolume>(desc.resolution);
                 glStatic[c]->upload(statics[c]);
@@ -294,11 +305,16 @@ public:
             GBufferSampling sampling = GBufferSampling::of(g, scene.camera, desc.gbufferBlockerSize);
             for (std::size_t c = 0; c < placements.size(); ++c) {
                 GlCascadeTargets t = glTargets(c);
-                if (firstBatch) glInjector->clearGeometry(t);
-                for (const RsmFace& face : faces) glInjector->injectBlockers(face, t);
+                const bool surfels = desc.surfelBlockers;
+                // Static blockers alone stay in the geometry volume until the cascade moves.
+                if (!surfels && (!lastBatch || staticsMerged[c])) continue;
+                if (firstBatch || !surfels) glInjector->clearGeometry(t);
+                if (surfels)
+                    for (const RsmFace& face : faces) glInjector->injectBlockers(face, t);
                 if (!lastBatch) continue;
-                glInjector->injectBlockers(g, sampling, t);
+                if (surfels) glInjector->injectBlockers(g, sampling, t);
                 if (voxels && c < glStatic.size()) glInjector->mergeBlockers(*glStatic[c], t);
+                staticsMerged[c] = !surfels;
             }
             input.timers.end();
         }
@@ -377,6 +393,7 @@ public:
     std::vector<TechniqueStat> stats() const override {
         if (desc.backend != Backend::Cpu) return {};
         return {{"propagate_operator", last.operatorMs, "ms"},
+                {"operator_builds", double(last.operatorBuilds), "operators"},
                 {"propagate_steps", last.stepsMs, "ms"},
                 {"steps_run", double(last.stepsRun), "steps"},
                 {"active_bricks", double(last.activeBricks), "bricks"},
@@ -388,6 +405,7 @@ private:
     struct {
         double operatorMs = 0.0, stepsMs = 0.0;
         std::size_t activeBricks = 0, totalBricks = 0;
+        int operatorBuilds = 0;  // propagations whose operator was built, not kept from the last update
         int stepsRun = 0;  // the most any cascade took (propagation stops when no light is left)
     } last;
 

@@ -209,6 +209,7 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
                               w.operatorGeometry.grid.resolution == geometry.grid.resolution &&
                               w.op->layout == layout && w.operatorGeometry.blocker == geometry.blocker &&
                               w.operatorGeometry.albedo == geometry.albedo;
+    stats_.operatorBuilt = !sameGeometry;
     if (!sameGeometry) {
         w.op = std::make_unique<PropagationOperator>(geometry, grid, options);
         w.operatorGeometry = geometry;

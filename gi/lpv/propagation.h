@@ -65,6 +65,7 @@ struct PropagationStats {
     std::size_t activeBricks = 0;  // bricks processed in the last step (sparse mode)
     std::size_t totalBricks = 0;
     int stepsRun = 0;              // steps taken: fewer than asked once propagation converged
+    bool operatorBuilt = false;    // the operator was built for this call (else kept from the last)
     double operatorMs = 0.0;       // building the transfer matrices from the geometry volume
     double stepsMs = 0.0;          // the iterations
 };
