@@ -19,7 +19,21 @@ struct Vertex {
 };
 }  // namespace
 
-SceneGpu::SceneGpu(const Scene& scene) {
+gl::Handle uploadSkyTexture(const Sky& sky) {
+    const int w = sky.tabulated() ? sky.width : 1, h = sky.tabulated() ? sky.height : 1;
+    std::vector<glm::vec4> texels(std::size_t(w) * std::size_t(h), glm::vec4(0.0f));
+    if (sky.enabled) {
+        if (sky.tabulated())
+            for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = glm::vec4(sky.table[i], 0.0f);
+        else
+            texels[0] = glm::vec4(sky.radiance, 0.0f);
+    }
+    gl::Handle t = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
+    glTextureSubImage2D(t.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, texels.data());
+    return t;
+}
+
+SceneGpu::SceneGpu(const Scene& scene) : sky_(uploadSkyTexture(scene.sky)) {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
     std::vector<std::uint32_t> triMaterials;

@@ -12,6 +12,10 @@
 
 namespace voxgi {
 
+// The sky's radiance table as an RGBA32F texture (shaders/shared/sky.h; 1 x 1 for a constant
+// or no sky), read through shaders/common/sky.glsl.
+gl::Handle uploadSkyTexture(const Sky& sky);
+
 class SceneGpu {
 public:
     explicit SceneGpu(const Scene& scene);
@@ -27,6 +31,8 @@ public:
     void draw() const;
 
     std::size_t triangleCount() const { return triangles_; }
+    // The sky's table (uploadSkyTexture).
+    GLuint skyTexture() const { return sky_.id(); }
     static constexpr int kTextureSize = 512;  // albedo maps are resampled to this square size
 
 private:
@@ -34,6 +40,7 @@ private:
     std::size_t triangles_ = 0;
     std::vector<shading::PackedLight> packedLights_;  // what updateLights last uploaded
     gl::Handle lights_;
+    gl::Handle sky_;
 };
 
 }  // namespace voxgi

@@ -50,10 +50,22 @@ struct Light {
     glm::vec3 quadCenter() const { return position + 0.5f * (edgeU + edgeV); }
 };
 
-// Constant sky radiance in W/(m^2 sr), seen by rays that leave the scene.
+// What rays that leave the scene see: radiance in W/(m^2 sr) by direction. A constant sky is
+// `radiance` alone; atmosphere and environment-map skies are an equirectangular table
+// (shaders/shared/sky.h; filled by scenes/sky_model.h), whose mean over the sphere `radiance`
+// then holds.
+enum class SkyType { Constant, Atmosphere, Envmap };
+
 struct Sky {
     bool enabled = false;
+    SkyType type = SkyType::Constant;
     glm::vec3 radiance{0.0f};
+    int width = 0, height = 0;      // the table's size; 0 for a constant sky
+    std::vector<glm::vec3> table;   // width * height texels, row 0 at the zenith
+
+    bool tabulated() const { return !table.empty(); }
+    // The radiance arriving from unit direction `towardSky` (zero when disabled).
+    glm::vec3 radianceAt(glm::vec3 towardSky) const;
 };
 
 // An 8-bit texture stored as sRGB-encoded RGBA, rows top first.

@@ -15,6 +15,7 @@
 #include "scenes/errors.h"
 #include "scenes/mesh_import.h"
 #include "scenes/primitives.h"
+#include "scenes/sky_model.h"
 
 namespace voxgi {
 
@@ -188,6 +189,76 @@ Material readMaterial(const Reader& r, const std::string& name, const fs::path& 
         m.albedoTexture = int(scene.textures.size() - 1);
     }
     return m;
+}
+
+// A number of `r` at `key` in [lo, hi], or the fallback when absent.
+float numberIn(const Reader& r, const std::string& key, float fallback, float lo, float hi, const std::string& range) {
+    const float v = r.number(key, fallback);
+    if (!(v >= lo && v <= hi)) r.child(key).fail("must be in " + range);
+    return v;
+}
+
+void readSky(const Reader& sky, const fs::path& dir, Scene& scene) {
+    const std::string type = sky.string("type", "constant");
+    if (type == "constant") {
+        sky.requireObject({"type", "radiance"});
+        scene.sky.enabled = true;
+        scene.sky.radiance = sky.color("radiance", glm::vec3(1.0f));
+    } else if (type == "atmosphere") {
+        sky.requireObject({"type", "sun_direction", "sun_position", "turbidity", "ground_albedo", "sun_irradiance",
+                           "resolution", "sun_light"});
+        AtmosphereDesc a;
+        if (sky.has("sun_direction") == sky.has("sun_position"))
+            sky.fail("give one of 'sun_direction' (the way sunlight travels) and 'sun_position' (latitude, day, hour)");
+        std::string sunField = "sun_direction";
+        if (sky.has("sun_direction")) {
+            a.sunDirection = sky.child("sun_direction").vec3();
+            if (glm::length(a.sunDirection) <= 0.0f) sky.child("sun_direction").fail("must not be zero");
+            a.sunDirection = glm::normalize(a.sunDirection);
+        } else {
+            sunField = "sun_position";
+            const Reader p = sky.child("sun_position");
+            p.requireObject({"latitude", "day", "hour"});
+            for (const char* key : {"latitude", "day", "hour"})
+                if (!p.has(key)) p.fail(std::string("missing field '") + key + "'");
+            a.sunDirection = solarDirection(numberIn(p, "latitude", 0.0f, -90.0f, 90.0f, "[-90, 90] degrees"),
+                                            numberIn(p, "day", 1.0f, 1.0f, 366.0f, "[1, 366]"),
+                                            numberIn(p, "hour", 12.0f, 0.0f, 24.0f, "[0, 24] (solar time)"));
+        }
+        if (!(a.sunDirection.y < 0.0f)) sky.child(sunField).fail("the sun is not above the horizon");
+        a.turbidity = numberIn(sky, "turbidity", a.turbidity, kMinTurbidity, kMaxTurbidity, "[2, 10], the model's fitted range");
+        a.groundAlbedo = numberIn(sky, "ground_albedo", a.groundAlbedo, 0.0f, 1.0f, "[0, 1]");
+        a.sunIrradiance = sky.number("sun_irradiance", a.sunIrradiance);
+        if (!(a.sunIrradiance >= 0.0f)) sky.child("sun_irradiance").fail("must not be negative");
+        a.width = sky.integer("resolution", a.width);
+        if (a.width < 16 || a.width > 8192 || a.width % 2 != 0) sky.child("resolution").fail("must be an even number in [16, 8192]");
+        const AtmosphereSky atmosphere = makeAtmosphere(a);
+        scene.sky = atmosphere.sky;
+        const bool sunLight = !sky.has("sun_light") || sky.child("sun_light").raw() == true;
+        if (sky.has("sun_light") && !sky.child("sun_light").raw().is_boolean()) sky.child("sun_light").fail("expected true or false");
+        if (sunLight) {
+            // The sun as the scene's directional light: its irradiance is what the atmosphere lets through.
+            Light sun;
+            sun.type = LightType::Directional;
+            sun.name = "sun";
+            sun.direction = a.sunDirection;
+            sun.emission = atmosphere.sunIrradiance;
+            scene.lights.push_back(sun);
+        }
+    } else if (type == "envmap") {
+        sky.requireObject({"type", "path", "scale"});
+        if (!sky.has("path")) sky.fail("missing field 'path'");
+        const float scale = sky.number("scale", 1.0f);
+        if (!(scale >= 0.0f)) sky.child("scale").fail("must not be negative");
+        const std::string file = (dir / sky.child("path").string()).string();
+        try {
+            scene.sky = loadEnvmap(file, scale);
+        } catch (const InputError& e) {
+            sky.child("path").fail(e.what());
+        }
+    } else {
+        sky.child("type").fail("expected one of: constant, atmosphere, envmap");
+    }
 }
 
 Light readLight(const Reader& r) {
@@ -395,14 +466,7 @@ Scene parseSceneJson(const std::string& text, const std::string& path) {
         Reader lights = root.child("lights");
         for (std::size_t i = 0; i < lights.size(); ++i) scene.lights.push_back(readLight(lights.at(i)));
     }
-    if (root.has("sky")) {
-        Reader sky = root.child("sky");
-        sky.requireObject({"type", "radiance"});
-        std::string type = sky.string("type", "constant");
-        if (type != "constant") sky.child("type").fail("expected 'constant'");
-        scene.sky.enabled = true;
-        scene.sky.radiance = sky.color("radiance", glm::vec3(1.0f));
-    }
+    if (root.has("sky")) readSky(root.child("sky"), dir, scene);
     if (root.has("meshes")) {
         Reader meshes = root.child("meshes");
         for (std::size_t i = 0; i < meshes.size(); ++i) readMesh(meshes.at(i), dir, scene, materialIds);

@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -44,7 +45,12 @@ std::string sceneKey(const Scene& scene) {
         s << m.positions.size() << ':' << m.indices.size();
         for (const glm::vec3& p : m.positions) s << p.x << p.y << p.z;
     }
-    s << scene.sky.enabled << scene.sky.radiance.x << "|pt" << kPathTracerRevision;
+    s << scene.sky.enabled << scene.sky.radiance.x;
+    if (scene.sky.tabulated())
+        s << int(scene.sky.type) << scene.sky.width << 'x' << scene.sky.height << ':'
+          << std::hash<std::string_view>{}(std::string_view(reinterpret_cast<const char*>(scene.sky.table.data()),
+                                                             scene.sky.table.size() * sizeof(glm::vec3)));
+    s << "|pt" << kPathTracerRevision;
     std::ostringstream hex;
     hex << std::hex << std::hash<std::string>{}(s.str());
     return hex.str();

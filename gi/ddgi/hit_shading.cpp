@@ -245,7 +245,9 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
     const std::vector<PreparedLight> prepared = prepareLights(scene);
     const ShadeContext c{scene,  visibility, previous, rays, trace, probes, prepared, frame, desc.energyPreservation,
                          quadSamples};
-    const glm::vec3 sky = scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f);
+    // Misses see the sky along their ray (one lookup per blend direction, the same for every probe).
+    std::vector<glm::vec3> sky(std::size_t(rays.blendRays));
+    for (int i = 0; i < rays.blendRays; ++i) sky[std::size_t(i)] = scene.sky.radianceAt(rays.blendDirection(i));
     const std::size_t hits = probes.size() * std::size_t(rays.blendRays);
     out.raysPerJob = rays.blendRays;
     out.values.resize(hits);
@@ -286,7 +288,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 const ProbeSurfel& s = surfels[i];
                 glm::vec4& o = out.values[job * perJob + i];
                 if (s.distance >= kMissDistance) {
-                    o = glm::vec4(sky, kMissDistance);
+                    o = glm::vec4(sky[i], kMissDistance);
                     continue;
                 }
                 if (!shadedHit(s)) {

@@ -1,6 +1,7 @@
 #include "gi/ddgi/volume_shade_gpu.h"
 
 #include "gi/ddgi/hit_shading.h"
+#include "gl/scene_gpu.h"
 #include "scenes/scene.h"
 #include "shaders/shared/light_model.h"
 
@@ -16,7 +17,8 @@ void upload(gl::Handle& buffer, std::size_t& capacity, const void* data, std::si
 VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene)
     : scene_(scene),
       program_(gl::Program::compute("ddgi/volume_shade.comp")),
-      geometry_(geometry) {}
+      geometry_(geometry),
+      sky_(uploadSkyTexture(scene.sky)) {}
 
 void VolumeShadeGl::prepare(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
                             std::uint32_t frame) {
@@ -45,7 +47,8 @@ void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, std::size_t
     program_.set("uQuadSampleSets", quadLights_ ? kQuadSampleSets : 0);
     program_.set("uMissDistance", kMissDistance);
     program_.set("uEnergy", field.desc().energyPreservation);
-    program_.set("uSky", scene_.sky.enabled ? scene_.sky.radiance : glm::vec3(0.0f));
+    glBindTextureUnit(kSkyTextureUnit, sky_.id());
+    program_.set("uSkyTable", int(kSkyTextureUnit));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, quadSamples_.id());

@@ -37,7 +37,8 @@ private:
     const Scene& scene_;
     gl::Program program_;
     NanoGeometryGl geometry_;
-    gl::Handle origins_, lights_, quadSamples_;
+    gl::Handle origins_, lights_, quadSamples_, sky_;
+    static constexpr GLuint kSkyTextureUnit = 6;  // 4 and 5: the probe atlases (bindProbeField)
     std::size_t originsBytes_ = 0, lightsBytes_ = 0, quadBytes_ = 0;
     int lightCount_ = 0;
     bool quadLights_ = false;

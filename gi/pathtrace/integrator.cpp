@@ -29,8 +29,8 @@ glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, fl
 }
 
 Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces)
-    : scene_(scene), tracer_(tracer), lights_(scene), maxBounces_(maxBounces > 0 ? maxBounces : kBounceGuard),
-      sky_(scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f)) {
+    : scene_(scene), tracer_(tracer), lights_(scene), environment_(scene.sky),
+      maxBounces_(maxBounces > 0 ? maxBounces : kBounceGuard) {
     Bounds b = scene.bounds();
     sceneScale_ = b.valid() ? std::max(glm::length(b.extent()), 1e-6f) : 1.0f;
 }
@@ -81,19 +81,40 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
         ++rays;
         if (!tracer_.occluded(o, ls.direction, 0.0f, shadowRayEnd(ls.distance))) sum += f * ls.radiance * weight;
     }
-    if (lights_.hasEmitters()) {
-        LightSample ls = lights_.sampleEmitter(p, glm::vec2(u.x, u.y), u.z);
+    const float skyShare = environmentShare();
+    if (u.z < skyShare) {
+        const EnvironmentSampler::Sample es = environment_.sample(glm::vec2(u.x, u.y));
+        const float pdf = es.pdf * skyShare;
+        if (pdf > 0.0f) {
+            float bsdfPdf;
+            glm::vec3 f = bsdf.evalPdf(es.direction, &bsdfPdf);
+            if (maxComponent(f) > 0.0f) {
+                ++rays;
+                if (!tracer_.occluded(leavingPoint(hit, es.direction, sceneScale_), es.direction, 0.0f,
+                                      std::numeric_limits<float>::infinity()))
+                    sum += f * scene_.sky.radianceAt(es.direction) * (powerHeuristic(pdf, bsdfPdf) / pdf);
+            }
+        }
+    } else if (lights_.hasEmitters()) {
+        const float select = std::min((u.z - skyShare) / (1.0f - skyShare), 0.99999994f);
+        LightSample ls = lights_.sampleEmitter(p, glm::vec2(u.x, u.y), select);
+        ls.pdf *= 1.0f - skyShare;
         if (ls.pdf > 0.0f) {
             float bsdfPdf;
             glm::vec3 f = bsdf.evalPdf(ls.direction, &bsdfPdf);
             if (maxComponent(f) > 0.0f) {
                 ++rays;
                 if (!segmentOccluded(leavingPoint(hit, ls.direction, sceneScale_), ls.position, ls.normal))
-                    sum += f * ls.radiance * powerHeuristic(ls.pdf, bsdfPdf);
+                    sum += f * (ls.radiance / (1.0f - skyShare)) * powerHeuristic(ls.pdf, bsdfPdf);
             }
         }
     }
     return sum;
+}
+
+float Integrator::environmentShare() const {
+    if (!environment_.active()) return 0.0f;
+    return lights_.hasEmitters() ? 0.5f : 1.0f;
 }
 
 std::uint32_t Integrator::traceLightPath(const PathSampler& sampler, LightVertex& out) const {
@@ -173,8 +194,11 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         RayHit hit = tracer_.intersect(origin, direction);
         ++out.rays;
         if (!hit.hit) {
-            // The constant sky is reached only by BSDF sampling: it takes full weight.
-            deposit(depth, throughput * sky_);
+            // A tabulated sky is also sampled by next-event estimation; a constant one only
+            // by the BSDF, where it takes full weight.
+            float weight = 1.0f;
+            if (!previousDelta && environment_.active()) weight = powerHeuristic(previousPdf, environmentShare() * environment_.pdf(direction));
+            deposit(depth, throughput * scene_.sky.radianceAt(direction) * weight);
             break;
         }
         const Material& material = scene_.materials[hit.material];
@@ -188,7 +212,8 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         if (hit.frontFace && material.isEmissive()) {
             float weight = 1.0f;
             if (!previousDelta) {
-                float lightPdf = lights_.emitterPdf(hit.mesh, hit.triangle, previousPosition, hit.position,
+                float lightPdf = (1.0f - environmentShare()) *
+                                 lights_.emitterPdf(hit.mesh, hit.triangle, previousPosition, hit.position,
                                                     -glm::dot(hit.geometricNormal, direction));
                 weight = powerHeuristic(previousPdf, lightPdf);
             }

@@ -2,6 +2,7 @@
 // pixels, tiles and accumulation (gi/pathtrace/path_tracer.cpp).
 #pragma once
 
+#include "gi/pathtrace/environment.h"
 #include "gi/pathtrace/light_paths.h"
 #include "gi/pathtrace/lights.h"
 #include "gi/pathtrace/path_tracer.h"
@@ -33,7 +34,7 @@ public:
 
 private:
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
-    // u: the emitter point (x, y) and the emitter choice (z). arrivalPdfArea: the area pdf of
+    // u: the emitter point or sky direction (x, y) and the choice between them (z). arrivalPdfArea: the area pdf of
     // the hit through the previous vertex's BSDF sample, for weighting delta-light samples
     // against light-vertex connections from that vertex (0: no connection could make the path).
     glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, float arrivalPdfArea,
@@ -48,9 +49,12 @@ private:
 
     const Scene& scene_;
     const RayTracer& tracer_;
+    // The probability that a next-event sample goes to the sky rather than an emitter.
+    float environmentShare() const;
+
     LightSampler lights_;
+    EnvironmentSampler environment_;
     int maxBounces_;
-    glm::vec3 sky_;
     float sceneScale_;
 };
 

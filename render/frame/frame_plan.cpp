@@ -50,7 +50,7 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     const bool emitters = hasEmission(scene), sky = scene.sky.enabled;
     if (emitters || sky)
         add("emission_sky", std::string(emitters ? "emitters" : "") + (emitters && sky ? " and " : "") +
-                                (sky ? "the constant sky behind the scene" : ""));
+                                (sky ? "the sky behind the scene" : ""));
     else skip("emission_sky", "no emitters and no sky");
     plan.passes.insert(plan.passes.end(), plan.technique.apply.begin(), plan.technique.apply.end());
     plan.skipped.insert(plan.skipped.end(), plan.technique.skipped.begin(), plan.technique.skipped.end());

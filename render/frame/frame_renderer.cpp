@@ -107,6 +107,7 @@ struct FrameRenderer::Impl {
     }
 
     glm::mat4 lastViewProjection{1.0f};
+    bool viewProjectionSet = false;  // by a G-buffer pass; without one the sky pass makes its own
 
     GBufferView gbufferView() const {
         GBufferView v;
@@ -145,6 +146,7 @@ struct FrameRenderer::Impl {
         glDisable(GL_BLEND);
         gbufferProgram.use();
         lastViewProjection = cameraViewProjection(jitter);
+        viewProjectionSet = true;
         gbufferProgram.set("uViewProjection", lastViewProjection);
         gbufferProgram.set("uEye", scene.camera.eye);
         gbufferProgram.set("uTextures", 0);
@@ -282,7 +284,12 @@ struct FrameRenderer::Impl {
         glBindTextureUnit(3, gEmission.id());
         emissionProgram.set("uPosition", 0);
         emissionProgram.set("uEmission", 3);
-        emissionProgram.set("uSky", scene.sky.enabled ? scene.sky.radiance : glm::vec3(0.0f));
+        glBindTextureUnit(4, gpu.skyTexture());
+        emissionProgram.set("uSkyTable", 4);
+        const glm::mat4 viewProjection = viewProjectionSet ? lastViewProjection : cameraViewProjection(glm::vec2(0.0f));
+        emissionProgram.set("uInverseViewProjection", glm::inverse(viewProjection));
+        emissionProgram.set("uEye", scene.camera.eye);
+        emissionProgram.set("uViewport", glm::vec2(float(width), float(height)));
         glBindVertexArray(emptyVao.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
         timers.end();

@@ -8,6 +8,7 @@
 // first occupied voxel (its mean normal and surface offset), within that voxel.
 #define NANO_GEOMETRY_BINDING 3
 #include "common/nano_geometry.glsl"
+#include "common/sky.glsl"
 #include "ddgi/blend_common.glsl"
 #include "ddgi/sampling.glsl"
 #include "shared/constants.h"
@@ -25,7 +26,6 @@ uniform int uLightCount;
 uniform int uQuadSampleSets;  // kQuadSampleSets, or 0 without quad lights (the sample is then the centre)
 uniform float uMissDistance;
 uniform float uEnergy;
-uniform vec3 uSky;
 // Shadow rays leave this many voxels off the hit along its normal, and stop short of the light:
 // a point or spot light may sit anywhere in an occupied voxel (a lamp's), which the ray enters
 // up to a voxel diagonal before it; a quad light lies on a voxelized surface (a ceiling) whose
@@ -44,7 +44,7 @@ void main() {
     float t;
     ivec3 voxel;
     if (!nanoFirstHit(origin, dir, 0.0, uMissDistance, t, voxel)) {
-        rayValues[out_] = vec4(uSky, uMissDistance);
+        rayValues[out_] = vec4(skyRadiance(dir), uMissDistance);
         return;
     }
     pnanovdb_readaccessor_t normals = nanoAccessor(uNanoNormalGrid);

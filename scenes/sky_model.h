@@ -1,0 +1,59 @@
+// Skies as tables of radiance (shaders/shared/sky.h): a clear-sky atmosphere from Preetham,
+// Shirley and Smits' analytic model (SIGGRAPH 1999, "A Practical Analytic Model for
+// Daylight"), with the sun's colour and irradiance from the same atmosphere's transmittance,
+// and equirectangular environment maps read from EXR. See docs/sky.md.
+#pragma once
+
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scenes/scene.h"
+
+namespace voxgi {
+
+// The model's fitted range: turbidity 2 (very clear) to 10 (hazy), sun above the horizon.
+constexpr float kMinTurbidity = 2.0f;
+constexpr float kMaxTurbidity = 10.0f;
+// Illuminance of the sun outside the atmosphere (lux): the scale between the model's
+// luminances and the scene's sun irradiance above the atmosphere.
+constexpr double kSolarIlluminanceLux = 128000.0;
+
+struct AtmosphereDesc {
+    glm::vec3 sunDirection{0.0f, -1.0f, 0.0f};  // unit, the way sunlight travels (downward)
+    float turbidity = 3.0f;
+    float groundAlbedo = 0.3f;   // the ground below the horizon, lit by the sun and the sky
+    float sunIrradiance = 10.0f; // W/m^2 on a surface facing the sun above the atmosphere
+    int width = 512;             // table columns (rows: half as many)
+};
+
+struct AtmosphereSky {
+    Sky sky;
+    glm::vec3 sunIrradiance{0.0f};  // at the ground, on a surface facing the sun (W/m^2)
+};
+
+// The sky's table and the sun at the ground. Throws InputError when the sun is not above the
+// horizon or the turbidity is outside the model's range.
+AtmosphereSky makeAtmosphere(const AtmosphereDesc& desc);
+
+// Radiance of the clear sky (no ground, no sun disc) arriving from unit direction `towardSky`
+// above the horizon, in W/(m^2 sr) for the desc's sun irradiance.
+glm::vec3 atmosphereRadiance(const AtmosphereDesc& desc, glm::vec3 towardSky);
+
+// Direct transmittance of the atmosphere (Rayleigh and aerosol extinction) for the sun at
+// zenith angle `zenith` (radians), at the red, green and blue wavelengths 612, 549 and 465 nm.
+glm::vec3 sunTransmittance(float zenith, float turbidity);
+
+// The direction sunlight travels at solar time `hour` (0..24) of day `day` (1..365) at
+// `latitudeDeg` (north positive); +y is up, +x east and -z north. The sun may be below the
+// horizon (y > 0).
+glm::vec3 solarDirection(float latitudeDeg, float day, float hour);
+
+// An equirectangular EXR (its RGB layer; u = 0 toward +x, v = 0 at the zenith) times `scale`.
+// Throws InputError naming the file.
+Sky loadEnvmap(const std::string& path, float scale);
+
+// Sets sky.radiance to the table's mean over the sphere (solid-angle weighted).
+void computeMeanRadiance(Sky& sky);
+
+}  // namespace voxgi
