@@ -7,6 +7,8 @@
 #include <map>
 
 #include <ImfChannelList.h>
+#include <ImfFloatAttribute.h>
+#include <ImfStringAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
@@ -16,6 +18,7 @@
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/memory_limit.h"
+#include "shaders/shared/tone_map.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
@@ -75,6 +78,10 @@ void writeExr(const std::string& path, const Image& image) {
                                        xStride * std::size_t(l.channels) * std::size_t(image.width())));
         }
     }
+    if (image.display.set) {
+        header.insert("voxgiExposureStops", Imf::FloatAttribute(image.display.exposureStops));
+        header.insert("voxgiToneCurve", Imf::StringAttribute(toneCurveName(image.display.toneCurve)));
+    }
     writeFileAtomically(path, [&](const std::string& temporary) {
         Imf::OutputFile file(temporary.c_str(), header);
         file.setFrameBuffer(fb);
@@ -128,6 +135,12 @@ Image readExr(const std::string& path) {
         }
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
+        if (const auto* e = file.header().findTypedAttribute<Imf::FloatAttribute>("voxgiExposureStops")) {
+            image.display.set = true;
+            image.display.exposureStops = e->value();
+            if (const auto* c = file.header().findTypedAttribute<Imf::StringAttribute>("voxgiToneCurve"))
+                image.display.toneCurve = std::max(toneCurveFromName(c->value()), 0);
+        }
         return image;
     } catch (const InputError&) {
         throw;
@@ -136,16 +149,39 @@ Image readExr(const std::string& path) {
     }
 }
 
-glm::vec3 toneMapToSrgb(glm::vec3 x, float exposureStops) {
-    x = glm::max(x, glm::vec3(0.0f)) * std::exp2(exposureStops);
-    for (int c = 0; c < 3; ++c) {
-        float v = x[c];
-        if (!std::isfinite(v)) v = 0.0f;
-        v = (v * (2.51f * v + 0.03f)) / (v * (2.43f * v + 0.59f) + 0.14f);
-        v = std::clamp(v, 0.0f, 1.0f);
-        x[c] = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+glm::vec3 toneMapToSrgb(glm::vec3 x, float exposureStops, int toneCurve) {
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(x[c])) x[c] = 0.0f;
+    return shading::displaySrgb(x, std::exp2(exposureStops), toneCurve);
+}
+
+float autoExposureStops(const Image& image, const std::string& layer) {
+    const ImageLayer* l = image.find(layer);
+    if (!l || l->channels != 3) return 0.0f;
+    double logSum = 0.0;
+    std::size_t lit = 0;
+    for (std::size_t i = 0; i + 2 < l->data.size(); i += 3) {
+        const float y = shading::luminanceRec709(glm::vec3(l->data[i], l->data[i + 1], l->data[i + 2]));
+        if (!(y > 0.0f) || !std::isfinite(y)) continue;
+        logSum += std::log(double(y));
+        ++lit;
     }
-    return x;
+    if (lit == 0) return 0.0f;
+    const double stops = std::log2(double(shading::kExposureKey)) - logSum / double(lit) / std::log(2.0);
+    return float(std::clamp(stops, -30.0, 30.0));
+}
+
+float adaptExposure(float current, float target, float dtSeconds, float tauSeconds) {
+    if (!(tauSeconds > 0.0f)) return target;
+    return target + (current - target) * std::exp(-std::max(dtSeconds, 0.0f) / tauSeconds);
+}
+
+const char* toneCurveName(int toneCurve) { return toneCurve == shading::kToneReinhard ? "reinhard" : "filmic"; }
+
+int toneCurveFromName(const std::string& name) {
+    if (name == "filmic") return shading::kToneFilmic;
+    if (name == "reinhard") return shading::kToneReinhard;
+    return -1;
 }
 
 void writePngRgb8(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
@@ -155,12 +191,12 @@ void writePngRgb8(const std::string& path, int width, int height, const std::vec
     });
 }
 
-void writePng(const std::string& path, const Image& image, const std::string& layer, float exposureStops) {
+void writePng(const std::string& path, const Image& image, const std::string& layer, float exposureStops, int toneCurve) {
     if (!image.find(layer)) throw InputError(path + ": image has no layer '" + layer + "'");
     std::vector<std::uint8_t> rgb(image.pixelCount() * 3);
     for (int y = 0; y < image.height(); ++y)
         for (int x = 0; x < image.width(); ++x) {
-            glm::vec3 c = toneMapToSrgb(image.rgb(layer, x, y), exposureStops);
+            glm::vec3 c = toneMapToSrgb(image.rgb(layer, x, y), exposureStops, toneCurve);
             std::size_t i = (std::size_t(y) * std::size_t(image.width()) + std::size_t(x)) * 3;
             for (int k = 0; k < 3; ++k) rgb[i + std::size_t(k)] = std::uint8_t(std::lround(c[k] * 255.0f));
         }

@@ -9,6 +9,7 @@
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "tools/commands.h"
+#include "tools/display_args.h"
 #include "tools/scene_arg.h"
 
 namespace voxgi::cli {
@@ -17,10 +18,10 @@ namespace {
 
 const char* kUsage =
     "voxgi reference SCENE (--spp N | --time SECONDS) -o OUT.exr [--max-bounces B] [--seed S] [--unidirectional]\n"
-    "       [--width W --height H] [--png OUT.png] [--exposure STOPS] [--set section.key=value]...\n"
+    "       [--width W --height H] [--png OUT.png] [--exposure auto|STOPS] [--tonemap filmic|reinhard] [--set section.key=value]...\n"
     "  --max-bounces: scattering events per path (1 = direct light only; default unlimited, Russian roulette)\n"
     "  --unidirectional: camera paths only, without connections to light subpaths from point and spot\n"
-    "  lights (the same image in expectation, noisier; docs/reference.md)";
+    "  lights (the same image in expectation, noisier; docs/reference.md)" VOXGI_DISPLAY_USAGE;
 
 using Clock = std::chrono::steady_clock;
 
@@ -34,7 +35,7 @@ void printProgress(double fraction, double elapsed, int spp) {
 }
 
 int runReference(const std::vector<std::string>& argv) {
-    Args args(argv, {"--spp", "--time", "-o", "--max-bounces", "--seed", "--width", "--height", "--png", "--exposure", "--set"},
+    Args args(argv, {"--spp", "--time", "-o", "--max-bounces", "--seed", "--width", "--height", "--png", "--exposure", "--tonemap", "--set"},
               {"--quiet", "--unidirectional"}, {"--set"});
     args.requirePositional(1, kUsage);
     if (args.has("--spp") == args.has("--time")) throw InputError("give exactly one of --spp N or --time SECONDS");
@@ -43,7 +44,7 @@ int runReference(const std::vector<std::string>& argv) {
     requireOutputs(args, {"-o", "--png"});
     const int spp = args.integer("--spp", 0, 1, 1 << 24);
     const double seconds = args.number("--time", 0.0, 1e-3, 1e7);
-    const float exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
+    const DisplayArgs display = displayArguments(args);
     PathTracerOptions options;
     options.maxBounces = args.integer("--max-bounces", 0, 0, 1 << 20);
     options.seed = std::uint64_t(args.number("--seed", 0.0, 0.0, 9007199254740992.0));
@@ -97,8 +98,10 @@ int runReference(const std::vector<std::string>& argv) {
             throw InputError(args.positional()[0] + ": " + std::to_string(bad) + " values of the " + layer +
                              " layer overflow float: lights or emission too bright");
     }
+    image.display = resolveDisplay(display, image);
     writeExr(*out, image);
-    if (auto png = args.value("--png")) writePng(*png, image, "beauty", exposure);
+    if (auto png = args.value("--png"))
+        writePng(*png, image, "beauty", image.display.exposureStops, image.display.toneCurve);
     double raysPerSecond = renderTime > 0.0 ? double(tracer.raysTraced()) / renderTime : 0.0;
     std::printf("path traced %s: %dx%d, %d spp, max bounces %s, seed %llu\n", args.positional()[0].c_str(),
                 tracer.width(), tracer.height(), tracer.samplesPerPixel(),

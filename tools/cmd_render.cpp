@@ -13,6 +13,7 @@
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "tools/commands.h"
+#include "tools/display_args.h"
 #include "tools/method_help.h"
 #include "tools/scene_arg.h"
 
@@ -22,18 +23,18 @@ namespace {
 
 const char* kUsage =
     "voxgi render SCENE [--method NAME] -o OUT.exr [--png OUT.png] [--width W --height H] [--frames N]\n"
-    "       [--timings T.json] [--exposure STOPS] [--backend cpu|gl] [--set section.key=value]... [--plan]\n"
+    "       [--timings T.json] [--exposure auto|STOPS] [--tonemap filmic|reinhard] [--backend cpu|gl] [--set section.key=value]... [--plan]\n"
     "  SCENE: a scene .json, a mesh file, or a built-in scene name (cornell-box)\n"
-    "  --frames: frames accumulated (default 64 with area lights, else 1)";
+    "  --frames: frames accumulated (default 64 with area lights, else 1)" VOXGI_DISPLAY_USAGE;
 
 int runRender(const std::vector<std::string>& argv) {
-    Args args(argv, {"--method", "-o", "--png", "--width", "--height", "--frames", "--timings", "--exposure", "--set", "--backend"},
+    Args args(argv, {"--method", "-o", "--png", "--width", "--height", "--frames", "--timings", "--exposure", "--tonemap", "--set", "--backend"},
               {"--plan"}, {"--set"});
     args.requirePositional(1, kUsage);
     auto out = args.value("-o");
     if (!out && !args.flag("--plan")) throw InputError("-o OUT.exr is required; usage: " + usageLine(kUsage));
     requireOutputs(args, {"-o", "--png", "--timings"});
-    float exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
+    const DisplayArgs display = displayArguments(args);
 
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
@@ -54,8 +55,10 @@ int runRender(const std::vector<std::string>& argv) {
     Image image = renderer.resolve();
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+    image.display = resolveDisplay(display, image);
     writeExr(*out, image);
-    if (auto png = args.value("--png")) writePng(*png, image, "beauty", exposure);
+    if (auto png = args.value("--png"))
+        writePng(*png, image, "beauty", image.display.exposureStops, image.display.toneCurve);
     if (auto t = args.value("--timings")) {
         // Per-stage times, and what the technique reports about its last frame (steps taken,
         // rays traced...) under "technique".

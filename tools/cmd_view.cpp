@@ -6,6 +6,7 @@
 #include "render/view/viewer.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
+#include "tools/display_args.h"
 #include "tools/method_help.h"
 #include "tools/scene_arg.h"
 
@@ -14,16 +15,16 @@ namespace voxgi::cli {
 namespace {
 
 const char* kUsage =
-    "voxgi view SCENE [--method NAME] [--width W --height H] [--window WxH] [--exposure STOPS]\n"
+    "voxgi view SCENE [--method NAME] [--width W --height H] [--window WxH] [--exposure auto|STOPS] [--tonemap filmic|reinhard]\n"
     "       [--frames N --screenshot SHOT.png] [--script CAMERA.json] [--out-dir DIR] [--no-panel]\n"
     "       [--capture-window WINDOW.png] [--backend cpu|gl]\n"
     "       [--set section.key=value]...\n"
     "  opens a window (needs a display; without one use `voxgi render`). Controls: docs/viewer.md\n"
     "  --frames N: render N frames then close; --screenshot writes SHOT.png and SHOT.exr at the end;\n"
-    "  --capture-window: PNG of what the window shows on the last frame (panel included)";
+    "  --capture-window: PNG of what the window shows on the last frame (panel included)" VOXGI_DISPLAY_USAGE;
 
 int runView(const std::vector<std::string>& argv) {
-    Args args(argv, {"--method", "--width", "--height", "--window", "--exposure", "--frames", "--screenshot", "--script",
+    Args args(argv, {"--method", "--width", "--height", "--window", "--exposure", "--tonemap", "--frames", "--screenshot", "--script",
                      "--out-dir", "--set", "--backend", "--capture-window"},
               {"--no-panel"}, {"--set"});
     args.requirePositional(1, kUsage);
@@ -34,7 +35,10 @@ int runView(const std::vector<std::string>& argv) {
     }
     view::ViewerOptions options;
     options.frames = args.integer("--frames", 0, 1, 1 << 20);
-    options.exposure = float(args.number("--exposure", 0.0, -30.0, 30.0));
+    const DisplayArgs display = displayArguments(args);
+    options.autoExposure = display.autoExposure;
+    options.exposure = display.exposureStops;
+    options.toneCurve = display.toneCurve;
     options.panel = !args.flag("--no-panel");
     if (auto shot = args.value("--screenshot")) {
         requireWritable(*shot, "--screenshot");

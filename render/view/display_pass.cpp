@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared/tone_map.h"
+
 namespace voxgi::view {
 
 const char* displayModeName(DisplayMode mode) {
@@ -13,9 +15,32 @@ const char* displayModeName(DisplayMode mode) {
 }
 
 DisplayPass::DisplayPass()
-    : program_(gl::Program::graphics("frame/fullscreen.vert", "view/display.frag")), vao_(gl::createVertexArray()) {}
+    : program_(gl::Program::graphics("frame/fullscreen.vert", "view/display.frag")),
+      logLuminance_(gl::Program::compute("view/log_luminance.comp")),
+      result_(gl::createBuffer(2 * sizeof(float), nullptr, GL_DYNAMIC_STORAGE_BIT)),
+      vao_(gl::createVertexArray()) {}
 
-void DisplayPass::draw(FrameRenderer& renderer, DisplayMode mode, float exposureStops, int windowWidth,
+std::optional<float> DisplayPass::autoExposureStops(FrameRenderer& renderer, DisplayMode mode) {
+    if (mode != DisplayMode::Beauty && mode != DisplayMode::Direct && mode != DisplayMode::Indirect) return std::nullopt;
+    const int frames = renderer.framesAccumulated();
+    if (frames <= 0) return std::nullopt;
+    FrameRenderer::Textures t = renderer.textures();
+    glBindTextureUnit(0, t.direct);
+    glBindTextureUnit(1, t.indirect);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, result_.id());
+    logLuminance_.use();
+    logLuminance_.set("uInvFrames", 1.0f / float(frames));
+    logLuminance_.set("uMode", int(mode));
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    float sums[2] = {0.0f, 0.0f};
+    glGetNamedBufferSubData(result_.id(), 0, sizeof sums, sums);
+    if (!(sums[1] > 0.0f)) return std::nullopt;
+    const float stops = std::log2(shading::kExposureKey) - sums[0] / sums[1] / std::log(2.0f);
+    return std::clamp(stops, -30.0f, 30.0f);
+}
+
+void DisplayPass::draw(FrameRenderer& renderer, DisplayMode mode, float exposureStops, int toneCurve, int windowWidth,
                        int windowHeight) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDisable(GL_DEPTH_TEST);
@@ -36,6 +61,7 @@ void DisplayPass::draw(FrameRenderer& renderer, DisplayMode mode, float exposure
     program_.set("uInvFrames", frames > 0 ? 1.0f / float(frames) : 0.0f);
     program_.set("uExposureScale", std::exp2(exposureStops));
     program_.set("uMode", int(mode));
+    program_.set("uToneCurve", toneCurve);
     glBindVertexArray(vao_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glViewport(0, 0, windowWidth, windowHeight);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <set>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -27,6 +28,9 @@
 namespace voxgi::view {
 
 namespace {
+
+// Auto exposure's time constant: a new view's exposure is 86 % there after two of them.
+constexpr float kEyeAdaptationSeconds = 0.5f;
 
 float radiusOf(const Scene& scene) {
     Bounds b = scene.bounds();
@@ -53,8 +57,9 @@ void switchMethod(ViewerState& s) {
 
 void saveScreenshot(ViewerState& s, const std::string& png) {
     Image image = s.renderer->resolve();
+    image.display = {true, s.exposure, s.toneCurve};
     writeExr(exrPathFor(png), image);
-    writePng(png, image, "beauty", s.exposure);
+    writePng(png, image, "beauty", s.exposure, s.toneCurve);
     s.status = "wrote " + png + " and " + exrPathFor(png);
     std::printf("%s\n", s.status.c_str());
     std::fflush(stdout);
@@ -198,7 +203,8 @@ void runEvent(ViewerState& s, const ScriptEvent& e) {
 
 ViewerState::ViewerState(Scene& s, const ViewerOptions& o)
     : scene(s), options(o), camera(s.camera), animator(s.lights, s.camera.up, radiusOf(s)),
-      sceneRadius(radiusOf(s)), method(o.method), exposure(o.exposure), showPanel(o.panel) {
+      sceneRadius(radiusOf(s)), method(o.method), exposure(o.exposure), autoExposure(o.autoExposure),
+      toneCurve(o.toneCurve), showPanel(o.panel) {
     speed = 0.5f * sceneRadius;
     debug.lights = o.panel;  // --no-panel: the bare picture
 }
@@ -345,7 +351,17 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
 
         int fbw, fbh;
         glfwGetFramebufferSize(window, &fbw, &fbh);
-        s.display->draw(*s.renderer, s.mode, s.exposure, fbw, fbh);
+        if (s.autoExposure) {
+            // Eye adaptation: the exposure follows the picture with a time constant, so turning
+            // the view does not make it flicker (fixed steps in --frames runs, as above).
+            if (const std::optional<float> target = s.display->autoExposureStops(*s.renderer, s.mode)) {
+                s.exposure = s.exposureMeasured ? adaptExposure(s.exposure, *target, options.frames > 0 ? 1.0f / 30.0f : seconds,
+                                                                kEyeAdaptationSeconds)
+                                                : *target;
+                s.exposureMeasured = true;
+            }
+        }
+        s.display->draw(*s.renderer, s.mode, s.exposure, s.toneCurve, fbw, fbh);
         s.overlay->draw(scene, s.debug, letterbox(s.renderer->width(), s.renderer->height(), fbw, fbh),
                         methodDrawings(s), s.renderer->textures().position);
 

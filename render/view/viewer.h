@@ -16,7 +16,9 @@ struct ViewerOptions {
     std::string script;        // camera path JSON (view_script.h)
     std::string windowCapture; // PNG of the last frame's window contents (panel included)
     std::string outputDir = ".";  // where the screenshot and dump keys write
-    float exposure = 0.0f;     // stops
+    float exposure = 0.0f;     // stops, when not autoExposure
+    bool autoExposure = true;  // the shown layer's log-average luminance, adapted over time
+    int toneCurve = 0;         // shading::kToneFilmic or kToneReinhard
     int windowWidth = 0;       // 0: the render size, at least 1280 x 720
     int windowHeight = 0;
     bool panel = true;

@@ -106,7 +106,12 @@ void drawPanel(ViewerState& s) {
     timings(s);
     ImGui::Separator();
     methodSettings(s);
-    ImGui::SliderFloat("exposure (stops)", &s.exposure, -10.0f, 10.0f, "%.1f");
+    ImGui::Checkbox("auto exposure", &s.autoExposure);
+    ImGui::SameLine();
+    if (s.autoExposure) ImGui::Text("%.1f stops", double(s.exposure));
+    else ImGui::SliderFloat("exposure (stops)", &s.exposure, -10.0f, 10.0f, "%.1f");
+    const char* curves[2] = {"filmic", "reinhard"};
+    ImGui::Combo("tone curve", &s.toneCurve, curves, 2);
     int mode = int(s.mode);
     const char* modes[kDisplayModeCount];
     for (int i = 0; i < kDisplayModeCount; ++i) modes[i] = displayModeName(DisplayMode(i));

@@ -45,7 +45,10 @@ struct ViewerState {
     DisplayMode mode = DisplayMode::Beauty;
     DebugViews debug;
     float speed = 1.0f;        // world units per second
-    float exposure = 0.0f;
+    float exposure = 0.0f;     // stops: what the window and screenshots show
+    bool autoExposure = true;  // exposure follows the picture (eye adaptation, docs/display.md)
+    bool exposureMeasured = false;  // auto exposure has a first value (no adaptation from 0)
+    int toneCurve = 0;
     bool animateLights = false;
     double animationTime = 0.0;
     bool showPanel = true;

@@ -1,7 +1,7 @@
 #version 450 core
-// The viewer's picture: the accumulated HDR frame (or one AOV) tone-mapped with the same ACES
-// fit and sRGB curve as the PNG writer (scenes/image.cpp toneMapToSrgb), so what is on screen is
-// what a screenshot's PNG holds. The default framebuffer is not sRGB: the curve is applied here.
+// The viewer's picture: the accumulated HDR frame (or one AOV) through the display transform the
+// PNG writer uses (shaders/shared/tone_map.h), so what is on screen is what a screenshot's PNG
+// holds. The default framebuffer is not sRGB: the curve is applied here.
 in vec2 vUv;
 out vec4 outColor;
 
@@ -19,9 +19,9 @@ void main() {
     vec3 direct = texture(uDirect, vUv).rgb * uInvFrames;
     vec3 indirect = texture(uIndirect, vUv).rgb * uInvFrames;
     vec3 c;
-    if (uMode == 0) c = acesSrgb(uExposureScale * (direct + indirect));
-    else if (uMode == 1) c = acesSrgb(uExposureScale * direct);
-    else if (uMode == 2) c = acesSrgb(uExposureScale * indirect);
+    if (uMode == 0) c = toDisplay(uExposureScale * (direct + indirect));
+    else if (uMode == 1) c = toDisplay(uExposureScale * direct);
+    else if (uMode == 2) c = toDisplay(uExposureScale * indirect);
     else if (uMode == 3) c = texture(uAlbedo, vUv).rgb;  // reflectance: shown as stored
     else c = texture(uNormal, vUv).xyz * 0.5 + 0.5;
     outColor = vec4(c, 1.0);

@@ -37,5 +37,5 @@ void main() {
     // Basis order (Y00, Y1-1, Y10, Y11) as volumes/geometry_volume.h and gi/sh/sh.h.
     vec4 y = vec4(0.282094792, -0.488602512 * n.y, 0.488602512 * n.z, -0.488602512 * n.x);
     vec3 c = vec3(dot(s.r, y), dot(s.g, y), dot(s.b, y));
-    outColor = vec4(acesSrgb(c * uScale), 1.0);
+    outColor = vec4(toDisplay(c * uScale), 1.0);
 }
