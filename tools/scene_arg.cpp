@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gi/methods.h"
+#include "gi/sky/sky_volume.h"
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
@@ -44,10 +45,19 @@ void requireDeclaredSetting(const std::string& assignment) {
     // for clpv): the value must suit at least one of them; the method that runs checks it again.
     std::string refused;
     bool accepted = false;
-    for (const MethodInfo& m : methods()) {
-        if (m.section.empty()) continue;
-        sections.insert(m.section);
-        for (const SettingInfo& info : m.settings) {
+    // Every method's settings, and the frame's own components' (the sky-lighting volume).
+    struct Owner {
+        std::string name, section;
+        std::vector<SettingInfo> settings;
+    };
+    std::vector<Owner> owners;
+    for (const MethodInfo& m : methods())
+        if (!m.section.empty()) owners.push_back({m.name, m.section, m.settings});
+    owners.push_back({"sky volume", "sky", skyVolumeSettings().info()});
+    for (const Owner& o : owners) {
+        const std::string& owner = o.name;
+        sections.insert(o.section);
+        for (const SettingInfo& info : o.settings) {
             keys.insert(info.key);
             if (info.key != key) continue;
             try {
@@ -55,7 +65,7 @@ void requireDeclaredSetting(const std::string& assignment) {
                 accepted = true;
             } catch (const InputError& e) {
                 // Every method's refusal, so the range of the method meant is among them.
-                refused += (refused.empty() ? "" : "; ") + m.name + ": " + e.what();
+                refused += (refused.empty() ? "" : "; ") + owner + ": " + e.what();
             }
         }
     }

@@ -73,6 +73,7 @@ std::vector<StressCase> ddgiStressCases() {
 MethodInfo ddgiMethod() {
     MethodInfo m;
     m.name = "ddgi";
+    m.skyInIndirect = true;
     m.summary = "dynamic diffuse GI: probe fields traced with Embree, blended on the GPU (seed 004, RTXGI)";
     declareSettings(m, ddgiSettings());
     m.memoryBytes = [](const GiSettings& gi) {

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "gi/methods.h"
+#include "gi/sky/sky_volume.h"
 
 namespace voxgi {
 
@@ -48,6 +49,14 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     if (!scene.lights.empty()) add("direct_light", "Lambert + GGX in physical units, one light at a time after its shadow");
     else skip("direct_light", "no lights");
     const bool emitters = hasEmission(scene), sky = scene.sky.enabled;
+    if (!sky) skip("sky_light", "no sky");
+    else if (scene.triangleCount() == 0) skip("sky_light", "no triangles");
+    else if (info.skyInIndirect) skip("sky_light", method + "'s indirect light holds the sky it sees");
+    else if (const SkyVolumeDesc d = readSkyVolumeDesc(scene.gi); !d.light) skip("sky_light", "sky.light=false");
+    else {
+        add("sky_light", "sky irradiance (3-band SH, " + std::to_string(d.rays) + " Embree rays a cell, " +
+                             std::to_string(d.resolution) + " cells along the longest side) on every surface");
+    }
     if (emitters || sky)
         add("emission_sky", std::string(emitters ? "emitters" : "") + (emitters && sky ? " and " : "") +
                                 (sky ? "the sky behind the scene" : ""));

@@ -4,7 +4,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <chrono>
+
 #include "gi/methods.h"
+#include "gi/raytrace/ray_tracer.h"
+#include "gi/sky/sky_volume.h"
 #include "gi/sampling/sequences.h"
 #include "gl/scene_gpu.h"
 #include "gl/context.h"
@@ -46,7 +50,12 @@ struct FrameRenderer::Impl {
     FramePlan plan;
     std::unique_ptr<GiTechnique> technique;
 
-    gl::Program gbufferProgram, shadowDepthProgram, shadowDistanceProgram, lightProgram, emissionProgram;
+    gl::Program gbufferProgram, shadowDepthProgram, shadowDistanceProgram, lightProgram, emissionProgram, skyLightProgram;
+    // The sky-lighting volume, built the first time a plan has the sky_light pass: Embree traces
+    // it on the CPU, then its cells go to one 3D texture (7 texels per cell along x).
+    std::unique_ptr<RayTracer> skyTracer;
+    std::unique_ptr<SkyVolume> skyVolume;
+    gl::Handle skyVolumeTexture;
     gl::Handle gbufferFbo, gPosition, gNormal, gAlbedo, gEmission, gDepth;
     gl::Handle accumFbo, accum, indirectFbo, indirectAccum;
     gl::Handle shadowFbo, shadowDepth;
@@ -66,6 +75,7 @@ struct FrameRenderer::Impl {
         shadowDistanceProgram = gl::Program::graphics("frame/shadow.vert", "frame/shadow_distance.frag");
         lightProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/direct_light.frag");
         emissionProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/emission.frag");
+        skyLightProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/sky_light.frag");
         emptyVao = gl::createVertexArray();
 
         gPosition = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
@@ -295,6 +305,43 @@ struct FrameRenderer::Impl {
         timers.end();
     }
 
+    void buildSkyVolume() {
+        const auto t0 = std::chrono::steady_clock::now();
+        skyTracer = std::make_unique<RayTracer>(scene);
+        skyVolume = std::make_unique<SkyVolume>(*skyTracer, readSkyVolumeDesc(scene.gi));
+        skyVolume->update();  // the whole volume: nothing changes the sky or the geometry later
+        const glm::ivec3 d = skyVolume->dims();
+        skyVolumeTexture = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, SkyVolume::kVec4PerCell * d.x, d.y, d.z);
+        glTextureSubImage3D(skyVolumeTexture.id(), 0, 0, 0, 0, SkyVolume::kVec4PerCell * d.x, d.y, d.z, GL_RGBA, GL_FLOAT,
+                            skyVolume->packed().data());
+        timers.addCpu("sky_volume", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+
+    void renderSkyLight() {
+        if (!skyVolume) buildSkyVolume();
+        timers.begin("sky_light");
+        glBindFramebuffer(GL_FRAMEBUFFER, accumFbo.id());
+        glViewport(0, 0, width, height);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+        skyLightProgram.use();
+        const char* names[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
+        const GLuint gbuffer[4] = {gPosition.id(), gNormal.id(), gAlbedo.id(), gEmission.id()};
+        for (int i = 0; i < 4; ++i) {
+            glBindTextureUnit(GLuint(i), gbuffer[i]);
+            skyLightProgram.set(names[i], i);
+        }
+        glBindTextureUnit(4, skyVolumeTexture.id());
+        skyLightProgram.set("uSkyVolume", 4);
+        skyLightProgram.set("uOrigin", skyVolume->origin());
+        skyLightProgram.set("uCellSize", skyVolume->cellSize());
+        skyLightProgram.set("uDims", skyVolume->dims());
+        glBindVertexArray(emptyVao.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        timers.end();
+    }
+
     void renderFrame() {
         gpu.updateLights(scene.lights);
         if (plan.runs("gbuffer")) renderGBuffer();
@@ -303,6 +350,7 @@ struct FrameRenderer::Impl {
         if (technique) technique->update(input, view);
         if (plan.runs("direct_light"))
             for (std::size_t i = 0; i < scene.lights.size(); ++i) renderLight(scene.lights[i], i);
+        if (plan.runs("sky_light")) renderSkyLight();
         if (plan.runs("emission_sky")) renderEmission();
         if (technique) {
             glBindFramebuffer(GL_FRAMEBUFFER, indirectFbo.id());

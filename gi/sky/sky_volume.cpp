@@ -1,0 +1,106 @@
+#include "gi/sky/sky_volume.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "gi/raytrace/ray_tracer.h"
+#include "gi/sampling/sequences.h"
+#include "gi/sh/sh.h"
+#include "shaders/shared/sky_volume.h"
+
+namespace voxgi {
+
+const SettingsTable<SkyVolumeDesc>& skyVolumeSettings() {
+    static const SettingsTable<SkyVolumeDesc> table = [] {
+        using D = SkyVolumeDesc;
+        SettingsTable<D> t("sky");
+        t.flag("light", &D::light, "the frame lights surfaces with the sky-lighting volume (sky_light pass)");
+        t.integer("resolution", &D::resolution, 2, 512, "sky-lighting volume: cells along the scene's longest side");
+        t.integer("rays", &D::rays, 8, 4096, "sky-lighting volume: rays per cell");
+        return t;
+    }();
+    return table;
+}
+
+SkyVolumeDesc readSkyVolumeDesc(const GiSettings& gi) { return skyVolumeSettings().read(gi); }
+
+SkyVolume::SkyVolume(const RayTracer& tracer, const SkyVolumeDesc& desc)
+    : tracer_(tracer), scene_(tracer.scene()), desc_(desc) {
+    const Bounds b = scene_.bounds();
+    const glm::vec3 extent = b.valid() ? b.extent() : glm::vec3(1.0f);
+    cellSize_ = std::max(std::max(extent.x, std::max(extent.y, extent.z)), 1e-6f) / float(desc.resolution);
+    // Cell centres from the low corner to the high one, so every surface lies between centres.
+    dims_ = glm::ivec3(glm::ceil(extent / cellSize_)) + 1;
+    origin_ = (b.valid() ? b.min : glm::vec3(0.0f)) - 0.5f * (glm::vec3(dims_ - 1) * cellSize_ - extent);
+    for (int i = 0; i < desc.rays; ++i) directions_.push_back(sphericalFibonacci(i, desc.rays));
+    packed_.assign(cellCount() * kVec4PerCell, glm::vec4(0.0f));
+}
+
+void SkyVolume::traceCell(std::size_t cell) {
+    const glm::ivec3 c(int(cell % std::size_t(dims_.x)), int(cell / std::size_t(dims_.x) % std::size_t(dims_.y)),
+                       int(cell / (std::size_t(dims_.x) * std::size_t(dims_.y))));
+    const glm::vec3 p = origin_ + glm::vec3(c) * cellSize_;
+    std::vector<RayHit> hits(directions_.size());
+    tracer_.intersectFan(p, directions_.data(), int(directions_.size()), hits.data());
+    // Radiance SH of what the cell sees of the sky, by Monte Carlo over the uniform directions.
+    float coefficients[3][9] = {};
+    int backfaces = 0;
+    const float weight = 4.0f * shading::kPi / float(directions_.size());
+    for (std::size_t i = 0; i < directions_.size(); ++i) {
+        if (hits[i].hit) {
+            backfaces += hits[i].frontFace ? 0 : 1;
+            continue;
+        }
+        const glm::vec3 l = scene_.sky.radianceAt(directions_[i]) * weight;
+        const sh::Sh9 y = sh::basis9(directions_[i]);
+        for (int k = 0; k < 9; ++k)
+            for (int col = 0; col < 3; ++col) coefficients[col][k] += l[col] * y.c[std::size_t(k)];
+    }
+    // Inside closed geometry: most rays see the inside of some surface.
+    const bool open = float(backfaces) <= 0.25f * float(directions_.size());
+    const float lobe[9] = {sh::kCosLobe0, sh::kCosLobe1, sh::kCosLobe1, sh::kCosLobe1, sh::kCosLobe2,
+                           sh::kCosLobe2, sh::kCosLobe2, sh::kCosLobe2, sh::kCosLobe2};
+    float flat[28] = {};
+    for (int col = 0; col < 3; ++col)
+        for (int k = 0; k < 9; ++k) flat[col * 9 + k] = open ? lobe[k] * coefficients[col][k] : 0.0f;
+    flat[27] = open ? 1.0f : 0.0f;
+    for (int v = 0; v < kVec4PerCell; ++v)
+        packed_[cell * kVec4PerCell + std::size_t(v)] = glm::vec4(flat[4 * v], flat[4 * v + 1], flat[4 * v + 2], flat[4 * v + 3]);
+}
+
+bool SkyVolume::update(double budgetMs) {
+    const auto start = std::chrono::steady_clock::now();
+    // Slices of cells in parallel until the budget is spent.
+    const std::size_t slice = std::max<std::size_t>(std::size_t(dims_.x) * std::size_t(dims_.y), 1);
+    while (!complete()) {
+        const std::size_t end = std::min(cellCount(), next_ + slice);
+        tbb::parallel_for(next_, end, [&](std::size_t cell) { traceCell(cell); });
+        next_ = end;
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (budgetMs > 0.0 && ms >= budgetMs) break;
+    }
+    buildMs_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return complete();
+}
+
+glm::vec3 SkyVolume::sampleIrradiance(glm::vec3 p, glm::vec3 n) const {
+    const shading::SkyVolumeTaps t = shading::skyVolumeTaps(p + n * (0.5f * cellSize_), origin_, cellSize_);
+    glm::vec3 sum(0.0f);
+    float weights = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::ivec3 o(corner & 1, (corner >> 1) & 1, corner >> 2);
+        const glm::ivec3 c = glm::clamp(t.base + o, glm::ivec3(0), dims_ - 1);
+        const glm::vec4* v = &packed_[index(c) * kVec4PerCell];
+        const glm::vec3 w3 = glm::mix(glm::vec3(1.0f) - t.fraction, t.fraction, glm::vec3(o));
+        const float w = w3.x * w3.y * w3.z * v[6].w;
+        if (!(w > 0.0f)) continue;
+        sum += w * shading::skyCellIrradiance(v[0], v[1], v[2], v[3], v[4], v[5], v[6], n);
+        weights += w;
+    }
+    return weights > 0.0f ? sum / weights : glm::vec3(0.0f);
+}
+
+}  // namespace voxgi
