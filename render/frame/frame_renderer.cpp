@@ -207,12 +207,17 @@ struct FrameRenderer::Impl {
         return bias * viewProjection;
     }
 
-    void beginLightPass() {
-        glBindFramebuffer(GL_FRAMEBUFFER, accumFbo.id());
+    // A full-screen pass that adds into `framebuffer` (an accumulation target).
+    void beginAdditivePass(GLuint framebuffer) {
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
         glViewport(0, 0, width, height);
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
+    }
+
+    void beginLightPass() {
+        beginAdditivePass(accumFbo.id());
         lightProgram.use();
         glBindTextureUnit(0, gPosition.id());
         glBindTextureUnit(1, gNormal.id());
@@ -284,11 +289,7 @@ struct FrameRenderer::Impl {
 
     void renderEmission() {
         timers.begin("emission_sky");
-        glBindFramebuffer(GL_FRAMEBUFFER, accumFbo.id());
-        glViewport(0, 0, width, height);
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
+        beginAdditivePass(accumFbo.id());
         emissionProgram.use();
         glBindTextureUnit(0, gPosition.id());
         glBindTextureUnit(3, gEmission.id());
@@ -320,11 +321,7 @@ struct FrameRenderer::Impl {
     void renderSkyLight() {
         if (!skyVolume) buildSkyVolume();
         timers.begin("sky_light");
-        glBindFramebuffer(GL_FRAMEBUFFER, accumFbo.id());
-        glViewport(0, 0, width, height);
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_ONE, GL_ONE);
+        beginAdditivePass(accumFbo.id());
         skyLightProgram.use();
         const char* names[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
         const GLuint gbuffer[4] = {gPosition.id(), gNormal.id(), gAlbedo.id(), gEmission.id()};
@@ -353,11 +350,7 @@ struct FrameRenderer::Impl {
         if (plan.runs("sky_light")) renderSkyLight();
         if (plan.runs("emission_sky")) renderEmission();
         if (technique) {
-            glBindFramebuffer(GL_FRAMEBUFFER, indirectFbo.id());
-            glViewport(0, 0, width, height);
-            glDisable(GL_DEPTH_TEST);
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
+            beginAdditivePass(indirectFbo.id());
             glBindVertexArray(emptyVao.id());
             technique->applyIndirect(input, view);
         }
