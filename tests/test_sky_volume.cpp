@@ -73,7 +73,7 @@ TEST(SkyVolume, ABudgetedBuildEqualsAWholeOne) {
     whole.update();
     int calls = 0;
     while (!budgeted.update(1e-6)) ++calls;
-    EXPECT_GT(calls, 2);  // one slice of cells per call at this budget
+    EXPECT_GT(calls, 2);  // one batch of cells per call at this budget
     EXPECT_EQ(whole.packed(), budgeted.packed());
 }
 

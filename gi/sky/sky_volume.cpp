@@ -73,8 +73,10 @@ void SkyVolume::traceCell(std::size_t cell) {
 
 bool SkyVolume::update(double budgetMs) {
     const auto start = std::chrono::steady_clock::now();
-    // Slices of cells in parallel until the budget is spent.
-    const std::size_t slice = std::max<std::size_t>(std::size_t(dims_.x) * std::size_t(dims_.y), 1);
+    // Batches of cells in parallel until the budget is spent: 32 cells of 128 rays are about a
+    // millisecond on 2 cores, so a budget of a few milliseconds is kept to within one batch.
+    constexpr std::size_t kBatch = 32;
+    const std::size_t slice = kBatch;
     while (!complete()) {
         const std::size_t end = std::min(cellCount(), next_ + slice);
         tbb::parallel_for(next_, end, [&](std::size_t cell) { traceCell(cell); });

@@ -33,8 +33,8 @@ public:
     // Sizes the grid (nothing traced yet); `tracer` (and its scene) must outlive the volume.
     SkyVolume(const RayTracer& tracer, const SkyVolumeDesc& desc);
 
-    // Traces cells until all are done or `budgetMs` has passed (at least one cell per call; a
-    // budget of 0 or less does every cell). Returns true once the volume is complete. The sky
+    // Traces cells until all are done or `budgetMs` has passed (at least one batch of 32 cells
+    // per call; a budget of 0 or less does every cell). Returns true once the volume is complete. The sky
     // or the geometry changing is a new volume.
     bool update(double budgetMs = 0.0);
     bool complete() const { return next_ == cellCount(); }

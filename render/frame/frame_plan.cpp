@@ -54,8 +54,9 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     else if (info.skyInIndirect) skip("sky_light", method + "'s indirect light holds the sky it sees");
     else if (const SkyVolumeDesc d = readSkyVolumeDesc(scene.gi); !d.light) skip("sky_light", "sky.light=false");
     else {
-        add("sky_light", "sky irradiance (3-band SH, " + std::to_string(d.rays) + " Embree rays a cell, " +
-                             std::to_string(d.resolution) + " cells along the longest side) on every surface");
+        add("sky_volume", "the sky's irradiance as 3-band SH, " + std::to_string(d.rays) + " Embree rays a cell, " +
+                              std::to_string(d.resolution) + " cells along the longest side (the first frame)");
+        add("sky_light", "that irradiance on every surface");
     }
     if (emitters || sky)
         add("emission_sky", std::string(emitters ? "emitters" : "") + (emitters && sky ? " and " : "") +
