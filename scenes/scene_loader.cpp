@@ -430,7 +430,35 @@ Region readRegion(const Reader& r, const std::vector<Region>& earlier) {
 
 }  // namespace
 
-Scene parseSceneJson(const std::string& text, const std::string& path) {
+namespace {
+json parseJsonText(const std::string& text, const std::string& path);
+
+// `"extends": "base.json"`: the base scene (a file in the same folder, so relative mesh paths
+// mean the same in both) with this file's top-level fields replacing the base's. Chains of
+// bases end within 8 files.
+json resolveExtends(json doc, const std::string& path, int depth, std::string& label) {
+    if (!doc.is_object() || !doc.contains("extends")) return doc;
+    const json& name = doc.at("extends");
+    if (!name.is_string()) throw InputError(path + ": /extends: expected a file name");
+    const fs::path base = fs::path(path).parent_path() / name.get<std::string>();
+    if (fs::path(name.get<std::string>()).has_parent_path())
+        throw InputError(path + ": /extends: the base scene must be in the same folder (a file name, no path)");
+    if (depth >= 8) throw InputError(path + ": /extends: more than 8 scenes extend one another (a cycle?)");
+    std::ifstream in(base, std::ios::binary);
+    if (!in) throw InputError(path + ": /extends: cannot open " + base.string());
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    json merged = resolveExtends(parseJsonText(buffer.str(), base.string()), base.string(), depth + 1, label);
+    if (!merged.is_object()) throw InputError(base.string() + ": expected a scene object");
+    for (auto it = doc.begin(); it != doc.end(); ++it)
+        if (it.key() != "extends") merged[it.key()] = it.value();
+    label += " (extending " + base.string() + ")";
+    return merged;
+}
+}  // namespace
+
+namespace {
+json parseJsonText(const std::string& text, const std::string& path) {
     json doc;
     try {
         doc = json::parse(text);
@@ -445,7 +473,14 @@ Scene parseSceneJson(const std::string& text, const std::string& path) {
         auto pos = what.find("] ");
         throw InputError(path + ": malformed JSON (" + (pos == std::string::npos ? what : what.substr(pos + 2)) + ")");
     }
-    Reader root(path, doc, "");
+    return doc;
+}
+}  // namespace
+
+Scene parseSceneJson(const std::string& text, const std::string& path) {
+    std::string label = path;
+    json doc = resolveExtends(parseJsonText(text, path), path, 0, label);
+    Reader root(label, doc, "");
     root.requireObject({"camera", "lights", "sky", "materials", "meshes", "gi", "regions", "description"});
     Scene scene;
     scene.sourcePath = path;

@@ -326,3 +326,24 @@ TEST(SkyPathTracing, PlaneUnderATabulatedSkyGetsItsIrradiance) {
                     << "sky type " << int(sky.type) << (emitter ? " with an emitter" : "") << " channel " << k;
         }
 }
+
+TEST(SkySceneFormat, ASceneCanExtendAnotherInItsFolder) {
+    const std::string dir = test::makeTempDir("scene-extends");
+    std::ofstream(dir + "/base.json") << skyScene(R"({"type": "constant", "radiance": 0.5})");
+    std::ofstream(dir + "/noon.json")
+        << R"({"extends": "base.json", "sky": {"type": "atmosphere", "sun_direction": [0.2, -1, 0.1]}})";
+    const Scene noon = loadSceneFile(dir + "/noon.json");
+    EXPECT_EQ(noon.sky.type, SkyType::Atmosphere);  // replaced
+    EXPECT_EQ(noon.meshes.size(), 1u);               // kept from the base
+    EXPECT_EQ(noon.lights.size(), 1u);               // the atmosphere's sun
+    std::ofstream(dir + "/loop.json") << R"({"extends": "loop.json"})";
+    std::ofstream(dir + "/elsewhere.json") << R"({"extends": "../base.json"})";
+    for (const char* name : {"loop.json", "elsewhere.json"}) {
+        try {
+            loadSceneFile(dir + "/" + name);
+            ADD_FAILURE() << name << " loaded";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("/extends:"), std::string::npos) << e.what();
+        }
+    }
+}
