@@ -4,6 +4,8 @@
 // counted elsewhere or absent.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gi/raytrace/ray_tracer.h"
@@ -115,4 +117,27 @@ TEST(SkyLightPlan, LeftOutWithoutSkyForDdgiAndWhenTurnedOff) {
     s.gi = GiSettings{};
     s.sky.enabled = false;
     EXPECT_FALSE(planFrame(s, "direct", 1).runs("sky_light"));
+}
+
+TEST(SkyVolumeDump, GridsEveryToolReads) {
+    const std::string dir = test::makeTempDir("sky-dump");
+    auto r = test::runVoxgi("dump " + test::sourcePath("scenes/outdoor.json") + " --sky --set sky.resolution=16 -o " + dir +
+                            "/sky.vdb");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runVoxgi("inspect " + dir + "/sky.vdb");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("27 grid(s)"), std::string::npos) << r.output;
+    for (const char* grid : {"sky_sh_r_0", "sky_sh_g_4", "sky_sh_b_8"}) EXPECT_NE(r.output.find(grid), std::string::npos) << grid;
+    const std::string python = test::pythonWith("pyopenvdb");
+    if (!python.empty()) {
+        const int status = std::system((python + " -c \"import pyopenvdb as v; g = v.readAll('" + dir +
+                                        "/sky.vdb')[0]; assert len(g) == 27, len(g)\"")
+                                           .c_str());
+        EXPECT_EQ(status, 0) << "pyopenvdb.readAll";
+    }
+    // A scene without a sky has nothing to dump.
+    r = test::runVoxgi("dump cornell-box --sky -o " + dir + "/none.vdb");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.output.find("--sky: cornell-box has no sky"), std::string::npos) << r.output;
+    EXPECT_FALSE(test::fileExists(dir + "/none.vdb"));
 }
