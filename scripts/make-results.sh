@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates docs/results/: `voxgi eval` on the built-in Cornell box and, when ../shared/scenes
-# is present, Sibenik and Sponza (every built method x low/medium/high against a path-traced
-# reference), plus the stability suite. Path-traced references are cached outside the docs
+# is present, Sibenik, Sponza and Sponza under the atmosphere (every built method x
+# low/medium/high against a path-traced reference), plus the stability suite. Path-traced references are cached outside the docs
 # (VOXGI_EVAL_CACHE, default out/eval-cache) so a re-run only re-renders the real-time methods.
 # Uses ./build/tools/voxgi unless VOXGI is set. See docs/eval.md.
 set -euo pipefail
@@ -21,14 +21,18 @@ rm -rf "$out"
 mkdir -p "$out"
 
 # The Cornell box at 256^2 (1024 spp reference, 8 warm-up + 32 frames: its area light is sampled
-# once per frame) in docs/results/, then Sibenik and Sponza, when their meshes are beside the
-# checkout, in one report at 128^2 (llvmpipe on 2 cores) with 512 spp and 4 warm-up + 8 frames in
-# docs/results/large-scenes/.
+# once per frame) in docs/results/, then Sibenik, Sponza and Sponza at noon under the atmosphere,
+# when their meshes are beside the checkout, in one report at 128^2 (llvmpipe on 2 cores) with
+# 512 spp and 4 warm-up + 8 frames in docs/results/large-scenes/.
 "$voxgi" eval cornell-box "${methods[@]}" --presets low,medium,high --width 256 --height 256 \
   --spp 1024 --frames 40 --warmup 8 --cache "$cache" -o "$out"
 big=()
-for scene in sibenik sponza; do
-  mesh=$(grep -o '"path": *"[^"]*"' "scenes/$scene.json" | head -1 | sed 's/.*"\(.*\)"$/\1/')
+# sponza-noon is Sponza under the atmosphere (it extends sponza.json, whose mesh it needs).
+for scene in sibenik sponza sponza-noon; do
+  file="scenes/$scene.json"
+  base=$(grep -o '"extends": *"[^"]*"' "$file" | head -1 | sed 's/.*"\(.*\)"$/\1/' || true)
+  [ -n "$base" ] && file="scenes/$base"
+  mesh=$(grep -o '"path": *"[^"]*"' "$file" | head -1 | sed 's/.*"\(.*\)"$/\1/')
   if [ -f "scenes/$mesh" ]; then
     big+=("scenes/$scene.json")
   else
@@ -51,7 +55,7 @@ elapsed=$(( $(date +%s) - start ))
   echo
   echo "- [Cornell box: error against time, all methods and presets](report.md)"
   if [ ${#big[@]} -gt 0 ]; then
-    echo "- [Sibenik and Sponza](large-scenes/report.md)"
+    echo "- [Sibenik, Sponza, and Sponza at noon under the atmosphere](large-scenes/report.md)"
   else
     echo "- Sibenik and Sponza: not run (../shared/scenes absent)"
   fi
