@@ -234,9 +234,8 @@ void readSky(const Reader& sky, const fs::path& dir, Scene& scene) {
         if (a.width < 16 || a.width > 8192 || a.width % 2 != 0) sky.child("resolution").fail("must be an even number in [16, 8192]");
         const AtmosphereSky atmosphere = makeAtmosphere(a);
         scene.sky = atmosphere.sky;
-        const bool sunLight = !sky.has("sun_light") || sky.child("sun_light").raw() == true;
         if (sky.has("sun_light") && !sky.child("sun_light").raw().is_boolean()) sky.child("sun_light").fail("expected true or false");
-        if (sunLight) {
+        if (!sky.has("sun_light") || sky.child("sun_light").raw().get<bool>()) {
             // The sun as the scene's directional light: its irradiance is what the atmosphere lets through.
             Light sun;
             sun.type = LightType::Directional;

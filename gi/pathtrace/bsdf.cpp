@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared/color.h"
 #include "shaders/shared/constants.h"
 #include "shaders/shared/material.h"
 
@@ -10,7 +11,7 @@ namespace voxgi::pt {
 
 namespace {
 
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+using shading::luminanceRec709;
 
 float ggxD(float nh, float a2) {
     float d = nh * nh * (a2 - 1.0f) + 1.0f;
@@ -73,8 +74,8 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
     eta_ = frontFace ? 1.0f / m.ior : m.ior;
 
     float nv = std::max(glm::dot(n_, wo_), 0.0f);
-    float ws = std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f ? luminance(fresnelSchlick(f0_, nv)) : 0.0f;
-    float wd = luminance(diffuse_);
+    float ws = std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f ? luminanceRec709(fresnelSchlick(f0_, nv)) : 0.0f;
+    float wd = luminanceRec709(diffuse_);
     specularProbability_ = ws + wd > 0.0f ? ws / (ws + wd) : 0.0f;
 }
 

@@ -3,13 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared/color.h"
 #include "shaders/shared/sky.h"
 
 namespace voxgi::pt {
-
-namespace {
-float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-}  // namespace
 
 EnvironmentSampler::EnvironmentSampler(const Sky& sky) {
     if (!sky.enabled || !sky.tabulated()) return;
@@ -22,7 +19,7 @@ EnvironmentSampler::EnvironmentSampler(const Sky& sky) {
         // The texel's solid angle is proportional to the sine at its centre row.
         const double s = std::sin((double(y) + 0.5) * shading::kPiDouble / double(h));
         for (std::size_t x = 0; x < w; ++x) {
-            const double v = std::max(double(luminance(sky.table[y * w + x])), 0.0) * s;
+            const double v = std::max(double(shading::luminanceRec709(sky.table[y * w + x])), 0.0) * s;
             weight[y * w + x] = v;
             rowSum[y] += v;
         }

@@ -6,12 +6,13 @@
 #include <optional>
 
 #include "gi/pathtrace/bsdf.h"
+#include "shaders/shared/color.h"
 #include "shaders/shared/constants.h"
 
 namespace voxgi::pt {
 
 namespace {
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+using shading::luminanceRec709;
 
 // Below this solid angle (sr) a rectangle is sampled by area too: the spherical mapping's
 // cancellations (an angle excess of four angles near pi/2) lose precision there even in double,
@@ -113,7 +114,7 @@ LightSampler::LightSampler(const Scene& scene) {
         double measure = 4.0 * shading::kPiDouble;  // point: the sphere
         if (l.kind.x == shading::kLightSpot) measure = 2.0 * shading::kPiDouble * (1.0 - double(l.shape.x));
         if (l.kind.x == shading::kLightDirectional) measure = 0.0;
-        emitted.push_back(std::max(double(luminance(glm::vec3(l.emission))), 0.0) * std::max(measure, 0.0));
+        emitted.push_back(std::max(double(luminanceRec709(glm::vec3(l.emission))), 0.0) * std::max(measure, 0.0));
     }
     const double emittedTotal = std::accumulate(emitted.begin(), emitted.end(), 0.0);
     if (emittedTotal > 0.0 && std::isfinite(emittedTotal)) {
@@ -136,11 +137,11 @@ LightSampler::LightSampler(const Scene& scene) {
         if (!(w > 0.0f && h > 0.0f) || std::abs(glm::dot(l.edgeU, l.edgeV)) > 1e-4f * w * h) continue;
         const std::string name = scene.quadLightMeshName(i);
         auto mesh = std::find_if(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) { return m.name == name; });
-        if (mesh == scene.meshes.end() || luminance(l.emission) <= 0.0f) continue;
+        if (mesh == scene.meshes.end() || luminanceRec709(l.emission) <= 0.0f) continue;
         meshRectangle_[std::size_t(mesh - scene.meshes.begin())] = std::int32_t(rectangles_.size());
         rectangles_.push_back({l.position, l.edgeU / w, l.edgeV / h, l.quadNormal(), w, h, l.emission});
         emitters_.push_back({true, std::uint32_t(rectangles_.size() - 1), 0.0f});
-        power.push_back(double(w) * double(h) * double(luminance(l.emission)));
+        power.push_back(double(w) * double(h) * double(luminanceRec709(l.emission)));
     }
 
     std::size_t global = 0;
@@ -159,7 +160,7 @@ LightSampler::LightSampler(const Scene& scene) {
             if (!(area > 0.0f) || !std::isfinite(area)) continue;
             triangles_.push_back({a, b - a, c - a, glm::normalize(cr), material.emission, area});
             emitters_.push_back({false, std::uint32_t(triangles_.size() - 1), 0.0f});
-            power.push_back(double(area) * double(std::max(luminance(material.emission), 1e-6f)));
+            power.push_back(double(area) * double(std::max(luminanceRec709(material.emission), 1e-6f)));
             triangleGlobal.push_back(global);
         }
     }

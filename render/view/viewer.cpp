@@ -323,6 +323,8 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         auto now = std::chrono::steady_clock::now();
         float seconds = std::chrono::duration<float>(now - last).count();
         last = now;
+        // Fixed steps in --frames runs, so scripted captures and tests repeat exactly.
+        const double step = options.frames > 0 ? 1.0 / 30.0 : double(seconds);
         s.frameMs = 1000.0 * double(seconds);
 
         if (script) {
@@ -337,8 +339,7 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
             handleInput(window, s, seconds);
         }
         if (s.animateLights) {
-            // Fixed steps in --frames runs, so scripted captures and tests repeat exactly.
-            s.animationTime += options.frames > 0 ? 1.0 / 30.0 : double(seconds);
+            s.animationTime += step;
             s.animator.apply(s.animationTime, scene.lights);
             s.viewChanged = true;
         }
@@ -353,10 +354,9 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
         glfwGetFramebufferSize(window, &fbw, &fbh);
         if (s.autoExposure) {
             // Eye adaptation: the exposure follows the picture with a time constant, so turning
-            // the view does not make it flicker (fixed steps in --frames runs, as above).
+            // the view does not make it flicker.
             if (const std::optional<float> target = s.display->autoExposureStops(*s.renderer, s.mode)) {
-                s.exposure = s.exposureMeasured ? adaptExposure(s.exposure, *target, options.frames > 0 ? 1.0f / 30.0f : seconds,
-                                                                kEyeAdaptationSeconds)
+                s.exposure = s.exposureMeasured ? adaptExposure(s.exposure, *target, float(step), kEyeAdaptationSeconds)
                                                 : *target;
                 s.exposureMeasured = true;
             }

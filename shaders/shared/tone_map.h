@@ -6,6 +6,7 @@
 #ifndef VOXGI_SHARED_TONE_MAP_H
 #define VOXGI_SHARED_TONE_MAP_H
 
+#include "color.h"
 #include "language.h"
 
 #ifdef __cplusplus
@@ -17,8 +18,6 @@ constexpr int kToneFilmic = 0;
 constexpr int kToneReinhard = 1;
 // Middle grey: auto exposure maps the image's log-average luminance to it (Reinhard et al. 2002).
 constexpr float kExposureKey = 0.18f;
-
-inline float luminanceRec709(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
 
 inline float srgbEncode(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * pow(v, 1.0f / 2.4f) - 0.055f; }
 
