@@ -185,4 +185,8 @@ void Program::set(const char* name, const glm::mat4& m) const {
     glProgramUniformMatrix4fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(m));
 }
 
+void Program::set(const char* name, const glm::mat3& m) const {
+    glProgramUniformMatrix3fv(id_, location(name), 1, GL_FALSE, glm::value_ptr(m));
+}
+
 }  // namespace voxgi::gl

@@ -41,6 +41,12 @@ Handle createVertexArray() {
     return Handle(id, [](GLuint i) { glDeleteVertexArrays(1, &i); });
 }
 
+Handle createSampler() {
+    GLuint id = 0;
+    glCreateSamplers(1, &id);
+    return Handle(id, [](GLuint i) { glDeleteSamplers(1, &i); });
+}
+
 Handle createTimerQuery() {
     GLuint id = 0;
     glCreateQueries(GL_TIME_ELAPSED, 1, &id);

@@ -48,6 +48,8 @@ Handle createBuffer(std::size_t bytes, const void* data = nullptr, GLbitfield fl
 void ensureBuffer(Handle& buffer, std::size_t& capacity, std::size_t bytes);
 Handle createFramebuffer();
 Handle createVertexArray();
+// A sampler object: bound to a unit, its filtering and comparison override the texture's.
+Handle createSampler();
 // A GL_TIME_ELAPSED query object.
 Handle createTimerQuery();
 // Its result in milliseconds; waits for it (call after the bracketed work is finished).

@@ -28,9 +28,13 @@ PackedLight packLight(const Light& light) {
             p.shape.x = std::cos(radians(light.outerConeDegrees));
             p.shape.y = std::cos(radians(light.innerConeDegrees));
             break;
-        case LightType::Directional:
+        case LightType::Directional: {
             p.direction = vec4(normalize(light.direction), 0.0f);
+            // 1 - cos(alpha) = 2 sin^2(alpha / 2), exact in float however small alpha is.
+            const double s = std::sin(0.5 * 0.5 * double(light.angularDiameterDegrees) * kPiDouble / 180.0);
+            p.shape.w = float(2.0 * s * s);
             break;
+        }
         case LightType::Quad:
             p.direction = vec4(light.quadNormal(), 0.0f);
             p.edgeU = vec4(light.edgeU, 0.0f);

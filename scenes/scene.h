@@ -41,6 +41,7 @@ struct Light {
     glm::vec3 emission{1.0f};   // intensity (W/sr), irradiance (W/m^2) or radiance (W/(m^2 sr)), per the type
     float innerConeDegrees = 20.0f;  // spot: full intensity inside this half-angle
     float outerConeDegrees = 30.0f;  // spot: zero outside this half-angle
+    float angularDiameterDegrees = 0.0f;  // directional: the disc the light comes from; 0 = one direction
     glm::vec3 edgeU{0.0f};      // quad: corner + s*edgeU + t*edgeV, s,t in [0,1]
     glm::vec3 edgeV{0.0f};
 

@@ -18,6 +18,9 @@ constexpr float kMaxTurbidity = 10.0f;
 // Illuminance of the sun outside the atmosphere (lux): the scale between the model's
 // luminances and the scene's sun irradiance above the atmosphere.
 constexpr double kSolarIlluminanceLux = 128000.0;
+// The sun's apparent diameter seen from the Earth (degrees, the yearly mean): the disc of the
+// atmosphere's sun light, whose shadows it softens.
+constexpr float kSunAngularDiameterDegrees = 0.53f;
 
 struct AtmosphereDesc {
     glm::vec3 sunDirection{0.0f, -1.0f, 0.0f};  // unit, the way sunlight travels (downward)

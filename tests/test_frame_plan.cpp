@@ -91,7 +91,8 @@ TEST_F(FramePlanTest, FramePassesFollowTheScene) {
     const Case cases[] = {
         {"a point light", box({pointLight()}, false, false), {"gbuffer", "shadow_cube", "direct_light"}},
         {"a sun and a spot", box({sunAndSpot(LightType::Directional), sunAndSpot(LightType::Spot)}, false, false),
-         {"gbuffer", "shadow_map", "direct_light"}},
+         {"gbuffer", "shadow_map", "shadow_sun", "direct_light"}},
+        {"a sun", box({sunAndSpot(LightType::Directional)}, false, false), {"gbuffer", "shadow_sun", "direct_light"}},
         {"sky and an emitter, no lights", box({}, true, true), {"gbuffer", "sky_volume", "sky_light", "emission_sky"}},
         {"nothing but a sky", [] {
              Scene s = box({}, true, false);

@@ -48,6 +48,13 @@ Light sunLight() {
     return l;
 }
 
+// A sun with a wide disc (the real sun's is 0.53 degrees), so that its directions differ measurably.
+Light discSunLight() {
+    Light l = sunLight();
+    l.angularDiameterDegrees = 8.0f;
+    return l;
+}
+
 Light quadLight(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV) {
     Light l;
     l.type = LightType::Quad;
@@ -63,6 +70,7 @@ std::vector<Light> testLights() {
             spotLight(20.0f, 35.0f),
             spotLight(25.0f, 25.0f),  // no soft band: a hard edge
             sunLight(),
+            discSunLight(),
             quadLight({-0.5f, 2.5f, -0.5f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f}),   // facing down
             quadLight({1.0f, 0.5f, -1.0f}, {0.0f, 0.6f, 0.3f}, {0.2f, 0.0f, 0.9f})};  // tilted
 }
@@ -183,6 +191,36 @@ TEST(LightModel, AnalyticValues) {
     EXPECT_NEAR(i.irradiance.x, 10.0f * 1.0f * cosine / d2, 1e-5f);
     EXPECT_NEAR(i.distance, std::sqrt(d2), 1e-6f);
     EXPECT_EQ(evaluateLight(packLight(quad), q + glm::vec3(0.0f, 1.0f, 0.0f), glm::vec2(0.25f, 0.75f)).falloff, 0.0f);
+}
+
+TEST(LightModel, SunDiscDirectionsFillTheConeEvenly) {
+    const Light sun = discSunLight();
+    const shading::PackedLight packed = shading::packLight(sun);
+    const glm::vec3 axis = -glm::normalize(sun.direction);
+    const double alpha = glm::radians(0.5 * double(sun.angularDiameterDegrees));
+    EXPECT_NEAR(double(packed.shape.w), 1.0 - std::cos(alpha), 1e-7);
+    EXPECT_EQ(shading::packLight(sunLight()).shape.w, 0.0f);  // no disc: one direction
+    // u.x = 0 is the axis.
+    EXPECT_NEAR(glm::dot(shading::evaluateLight(packed, glm::vec3(0.0f), glm::vec2(0.0f, 0.3f)).direction, axis), 1.0f, 1e-6f);
+    // Over a grid of u: every direction inside the cone, their mean on the axis, and half of them
+    // inside the cone of half the solid angle (uniform in solid angle).
+    const int n = 64;
+    glm::dvec3 sum(0.0);
+    int inner = 0;
+    const double halfCos = 1.0 - 0.5 * (1.0 - std::cos(alpha));
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const glm::vec2 u((float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n));
+            const shading::IncidentLight incident = shading::evaluateLight(packed, glm::vec3(0.0f), u);
+            EXPECT_EQ(incident.irradiance, sun.emission);
+            const double c = glm::dot(glm::dvec3(incident.direction), glm::dvec3(axis));
+            EXPECT_GE(c, std::cos(alpha) - 1e-6);
+            inner += c > halfCos ? 1 : 0;
+            sum += glm::dvec3(incident.direction);
+        }
+    const glm::dvec3 mean = sum / double(n * n);
+    EXPECT_NEAR(glm::length(glm::cross(mean, glm::dvec3(axis))), 0.0, 1e-4);
+    EXPECT_NEAR(double(inner) / double(n * n), 0.5, 0.02);
 }
 
 TEST(LightModel, GlslAgreesWithCpp) {

@@ -54,7 +54,7 @@ TEST(Scene, ParsesEveryLightKindAndPrimitive) {
           {"type": "point", "position": [0, 1, 0], "intensity": 5},
           {"type": "spot", "position": [0, 2, 0], "direction": [0, -1, 0], "intensity": [1, 2, 3],
            "inner_angle": 10, "outer_angle": 20},
-          {"type": "directional", "direction": [0, -2, 0], "irradiance": 3},
+          {"type": "directional", "direction": [0, -2, 0], "irradiance": 3, "angular_diameter": 0.53},
           {"type": "quad", "corner": [0, 1, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "radiance": 2}],
         "meshes": [
           {"type": "box", "material": "white", "transform": {"translate": [1, 0, 0], "scale": 2}},
@@ -66,6 +66,7 @@ TEST(Scene, ParsesEveryLightKindAndPrimitive) {
     ASSERT_EQ(s.lights.size(), 4u);
     EXPECT_EQ(s.lights[1].emission, glm::vec3(1, 2, 3));
     EXPECT_NEAR(glm::length(s.lights[2].direction), 1.0f, 1e-6f);  // normalized
+    EXPECT_FLOAT_EQ(s.lights[2].angularDiameterDegrees, 0.53f);
     EXPECT_TRUE(s.sky.enabled);
     // box 12 + sphere + quad 2 + triangle 1 + the quad light's own geometry 2
     EXPECT_EQ(s.meshes.size(), 5u);
@@ -106,6 +107,9 @@ TEST(Scene, WrongTypesAreNamed) {
     EXPECT_NE(errorOf(minimal(R"(, "meshes": [{"type": "box", "material": "gold"}])")).find("unknown material 'gold'"),
               std::string::npos);
     EXPECT_NE(errorOf(minimal(R"(, "lights": [{"type": "laser"}])")).find("/lights/0/type"), std::string::npos);
+    EXPECT_NE(errorOf(minimal(R"(, "lights": [{"type": "directional", "direction": [0, -1, 0], "angular_diameter": 30}])"))
+                  .find("/lights/0/angular_diameter"),
+              std::string::npos);
     EXPECT_NE(errorOf(R"({"camera": {"eye": [0,0,0], "target": [0,0,0]}})").find("must differ from eye"),
               std::string::npos);
     EXPECT_NE(errorOf(R"({"materials": {}})").find("missing field 'camera'"), std::string::npos);

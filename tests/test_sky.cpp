@@ -226,6 +226,7 @@ TEST(SkySceneFormat, AtmosphereAddsItsSunAndRefusesWhatTheModelCannotDo) {
     EXPECT_EQ(s.sky.type, SkyType::Atmosphere);
     ASSERT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.lights[0].type, LightType::Directional);
+    EXPECT_EQ(s.lights[0].angularDiameterDegrees, kSunAngularDiameterDegrees);  // the sun's disc: soft shadows
     EXPECT_LT(s.lights[0].direction.y, 0.0f);
     EXPECT_GT(s.lights[0].emission.r, s.lights[0].emission.b);
     const Scene noSun = parseSceneJson(

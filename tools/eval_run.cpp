@@ -38,7 +38,7 @@ std::string sceneKey(const Scene& scene) {
       << c.height << '|';
     for (const Light& l : scene.lights)
         s << int(l.type) << l.position.x << l.position.y << l.position.z << l.emission.x << l.emission.y << l.emission.z
-          << l.direction.x << l.direction.y << l.direction.z << '|';
+          << l.direction.x << l.direction.y << l.direction.z << l.angularDiameterDegrees << '|';
     for (const Material& m : scene.materials)
         s << m.albedo.x << m.albedo.y << m.albedo.z << m.emission.x << m.roughness << m.metallic << m.specular << '|';
     for (const Mesh& m : scene.meshes) {

@@ -62,12 +62,12 @@ float shadowRayEnd(float distance) {
 }
 }  // namespace
 
-glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, float arrivalPdfArea,
-                                   std::uint32_t& rays) const {
+glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, glm::vec2 uDisc,
+                                   float arrivalPdfArea, std::uint32_t& rays) const {
     const glm::vec3 p = hit.position;
     glm::vec3 sum(0.0f);
     for (std::size_t i = 0; i < lights_.deltaCount(); ++i) {
-        LightSample ls = lights_.sampleDelta(i, p);
+        LightSample ls = lights_.sampleDelta(i, p, uDisc);
         if (maxComponent(ls.radiance) <= 0.0f) continue;
         glm::vec3 f = bsdf.eval(ls.direction);
         if (maxComponent(f) <= 0.0f) continue;
@@ -223,15 +223,17 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
 
         glm::vec3 wo = -direction;
         Bsdf bsdf(material, albedo, wo, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
-        // The bounce's decisions: light sample, BSDF sample, roulette (gi/pathtrace/sampler.h).
-        const std::uint32_t decision = 1 + 4 * std::uint32_t(std::min(depth, 1 << 20));
+        // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
+        // direction in a sun's disc (gi/pathtrace/sampler.h).
+        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
         if (bsdf.hasSmoothPart()) {
             // A light-vertex connection from the previous vertex could have made this path's
             // next-event samples of delta lights when that vertex sampled a smooth lobe.
             const float arrivalPdfArea = connecting && depth >= 1 && !previousDelta
                                              ? previousPdf * std::abs(glm::dot(hit.geometricNormal, direction)) / (hit.t * hit.t)
                                              : 0.0f;
-            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), arrivalPdfArea, out.rays));
+            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), sampler.get2D(decision + 4),
+                                                                arrivalPdfArea, out.rays));
             if (connecting && depth + 1 < maxBounces_)
                 deposit(depth + 2, throughput * connect(bsdf, hit, *lightVertices, sampler.get1D(decision + 3), out.rays));
         }

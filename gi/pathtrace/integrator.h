@@ -19,7 +19,7 @@ constexpr int kBounceGuard = 10000;
 class Integrator {
 public:
     Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces);
-    // Decision 0 of `sampler` is the caller's (the pixel position); bounce k uses 1 + 4k..4 + 4k.
+    // Decision 0 of `sampler` is the caller's (the pixel position); bounce k uses 1 + 5k..5 + 5k.
     // With `lightVertices` (this sample index's, light_paths.h), every vertex of the path is also
     // connected to one of them; without, the path is unidirectional.
     PathSample trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
@@ -34,11 +34,12 @@ public:
 
 private:
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
-    // u: the emitter point or sky direction (x, y) and the choice between them (z). arrivalPdfArea: the area pdf of
+    // u: the emitter point or sky direction (x, y) and the choice between them (z); uDisc: the
+    // direction in a sun's disc. arrivalPdfArea: the area pdf of
     // the hit through the previous vertex's BSDF sample, for weighting delta-light samples
     // against light-vertex connections from that vertex (0: no connection could make the path).
-    glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, float arrivalPdfArea,
-                           std::uint32_t& rays) const;
+    glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, glm::vec2 uDisc,
+                           float arrivalPdfArea, std::uint32_t& rays) const;
     // Light after two more scatterings: the hit joined to light vertex u * size of `pool`, with
     // MIS against reaching that vertex by this BSDF's sample.
     glm::vec3 connect(const class Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,

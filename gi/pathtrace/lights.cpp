@@ -182,9 +182,9 @@ LightSampler::LightSampler(const Scene& scene) {
     if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
 
-LightSample LightSampler::sampleDelta(std::size_t index, glm::vec3 p) const {
-    // Deltas are never quads: the quad sample point is unused.
-    const shading::IncidentLight incident = shading::evaluateLight(deltas_[index], p, glm::vec2(0.0f));
+LightSample LightSampler::sampleDelta(std::size_t index, glm::vec3 p, glm::vec2 u) const {
+    // Deltas are never quads: u picks a direction of a sun's disc only.
+    const shading::IncidentLight incident = shading::evaluateLight(deltas_[index], p, u);
     LightSample s;
     s.direction = incident.direction;
     s.distance = incident.distance;

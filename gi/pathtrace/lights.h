@@ -48,8 +48,9 @@ public:
     // Delta lights are evaluated exhaustively: index in [0, deltaCount()).
     std::size_t deltaCount() const { return deltas_.size(); }
     // Incident light from delta light `index` (unoccluded) at `p`: its irradiance at normal
-    // incidence (pdf 0).
-    LightSample sampleDelta(std::size_t index, glm::vec3 p) const;
+    // incidence (pdf 0). A sun with a disc comes from the direction of its disc that u in
+    // [0,1)^2 picks: it is sampled here only, never found by BSDF rays (docs/reference.md).
+    LightSample sampleDelta(std::size_t index, glm::vec3 p, glm::vec2 u) const;
 
     // Light subpaths leave point and spot lights only: the sun lights whole floors and
     // facades, which BSDF sampling finds anyway, and its rays would have to start on a disc

@@ -17,8 +17,9 @@ namespace voxgi {
 
 // Changes whenever what the path tracer converges to changes (a bias fixed, a shading
 // convention): cached references are keyed by it (tools/eval_run.cpp). 2: shadow segments that
-// miss the light's own plane; 3: the shading normal alone decides what is above a surface.
-constexpr int kPathTracerRevision = 3;
+// miss the light's own plane; 3: the shading normal alone decides what is above a surface;
+// 4: a directional light's angular_diameter (the atmosphere's sun: a 0.53 degree disc).
+constexpr int kPathTracerRevision = 4;
 
 struct PathTracerOptions {
     int maxBounces = 0;         // scattering events per path; 0 = unlimited (roulette ends paths)

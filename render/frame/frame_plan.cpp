@@ -40,12 +40,15 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     else skip("gbuffer", "no triangles: every pixel sees the sky");
     plan.passes.insert(plan.passes.end(), plan.technique.update.begin(), plan.technique.update.end());
 
-    int cube = 0, maps = 0;
-    for (const Light& l : scene.lights) (l.type == LightType::Point || l.type == LightType::Quad ? cube : maps) += 1;
+    int cube = 0, maps = 0, suns = 0;
+    for (const Light& l : scene.lights)
+        (l.type == LightType::Point || l.type == LightType::Quad ? cube : l.type == LightType::Spot ? maps : suns) += 1;
     if (cube) add("shadow_cube", lightCount(cube, "point or area") + ": a distance cube map each per frame");
     else skip("shadow_cube", "no point or area lights");
-    if (maps) add("shadow_map", lightCount(maps, "spot or directional") + ": a depth map each");
-    else skip("shadow_map", "no spot or directional lights");
+    if (maps) add("shadow_map", lightCount(maps, "spot") + ": a depth map each");
+    else skip("shadow_map", "no spot lights");
+    if (suns) add("shadow_sun", lightCount(suns, "directional") + ": cascaded depth maps over the view each, soft by the sun's disc");
+    else skip("shadow_sun", "no directional lights");
     if (!scene.lights.empty()) add("direct_light", "Lambert + GGX in physical units, one light at a time after its shadow");
     else skip("direct_light", "no lights");
     const bool emitters = hasEmission(scene), sky = scene.sky.enabled;

@@ -1,6 +1,8 @@
 #include "render/frame/frame_renderer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -10,6 +12,9 @@
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/sky/sky_volume.h"
 #include "gi/sampling/sequences.h"
+#include "render/frame/sun_cascades.h"
+#include "scenes/errors.h"
+#include "shaders/shared/sun_shadow.h"
 #include "gl/scene_gpu.h"
 #include "gl/context.h"
 #include "gl/program.h"
@@ -59,6 +64,10 @@ struct FrameRenderer::Impl {
     gl::Handle gbufferFbo, gPosition, gNormal, gAlbedo, gEmission, gDepth;
     gl::Handle accumFbo, accum, indirectFbo, indirectAccum;
     gl::Handle shadowFbo, shadowDepth;
+    // The sun's cascades: one depth layer each, read through two samplers (compare for PCF, raw
+    // depths for the blocker search).
+    gl::Handle sunFbo, sunDepth, sunCompareSampler, sunDepthSampler, sunTileDepth;
+    gl::Program sunTileProgram;
     gl::Handle cubeFbo, cubeDistance, cubeDepth;
     gl::Handle emptyVao;
 
@@ -104,6 +113,36 @@ struct FrameRenderer::Impl {
         glTextureParameteri(shadowDepth.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
         glTextureParameteri(shadowDepth.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
         shadowFbo = gl::createFramebuffer({}, shadowDepth.id(), "shadow map");
+
+        if (options.sunCascades < 1 || options.sunCascades > shading::kMaxSunCascades)
+            throw InputError("sun cascades: " + std::to_string(options.sunCascades) + " is outside [1, " +
+                             std::to_string(shading::kMaxSunCascades) + "]");
+        if (options.sunMapSize < shading::kSunTileTexels || options.sunMapSize % shading::kSunTileTexels != 0)
+            throw InputError("sun map size: " + std::to_string(options.sunMapSize) + " is not a multiple of " +
+                             std::to_string(shading::kSunTileTexels));
+        if (std::any_of(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.type == LightType::Directional; })) {
+            const int tiles = options.sunMapSize / shading::kSunTileTexels;
+            sunTileDepth = gl::createTexture(GL_TEXTURE_2D_ARRAY, GL_R32F, tiles, tiles, options.sunCascades);
+            glTextureParameteri(sunTileDepth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(sunTileDepth.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            sunTileProgram = gl::Program::compute("frame/sun_tile_depth.comp");
+            sunDepth = gl::createTexture(GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, options.sunMapSize, options.sunMapSize,
+                                         options.sunCascades);
+            sunFbo = gl::createFramebuffer();
+            sunCompareSampler = gl::createSampler();
+            sunDepthSampler = gl::createSampler();
+            for (GLuint sampler : {sunCompareSampler.id(), sunDepthSampler.id()}) {
+                glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+                glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            }
+            glSamplerParameteri(sunCompareSampler.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            glSamplerParameteri(sunCompareSampler.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glSamplerParameteri(sunCompareSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+            glSamplerParameteri(sunCompareSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+            glSamplerParameteri(sunDepthSampler.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glSamplerParameteri(sunDepthSampler.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glSamplerParameteri(sunDepthSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
+        }
 
         cubeDistance = gl::createTexture(GL_TEXTURE_CUBE_MAP, GL_R32F, options.cubeShadowSize, options.cubeShadowSize);
         glTextureParameteri(cubeDistance.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -207,6 +246,54 @@ struct FrameRenderer::Impl {
         return bias * viewProjection;
     }
 
+    // What the sun's maps were last drawn for: the geometry does not move, so while the camera
+    // and the sun stand still (frames that accumulate) the maps are kept.
+    std::vector<float> sunMapsKey;
+
+    // The cascades of the sun travelling along `direction`, drawn into their layers.
+    SunCascades renderSunCascades(glm::vec3 direction) {
+        timers.begin("shadow_sun");
+        Camera camera = scene.camera;
+        camera.width = width;
+        camera.height = height;
+        SunCascades fit = fitSunCascades(camera, direction, scene.bounds(), options.sunMapSize, options.sunCascades);
+        std::vector<float> key = {direction.x, direction.y, direction.z};
+        for (const SunCascade& c : fit.cascades) key.insert(key.end(), &c.worldToMap[0][0], &c.worldToMap[0][0] + 16);
+        if (key == sunMapsKey) {
+            timers.end();
+            return fit;
+        }
+        sunMapsKey = std::move(key);
+        glBindFramebuffer(GL_FRAMEBUFFER, sunFbo.id());
+        glViewport(0, 0, options.sunMapSize, options.sunMapSize);
+        glEnable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(1.5f, 2.0f);
+        shadowDepthProgram.use();
+        for (std::size_t c = 0; c < fit.cascades.size(); ++c) {
+            glNamedFramebufferTextureLayer(sunFbo.id(), GL_DEPTH_ATTACHMENT, sunDepth.id(), 0, GLint(c));
+            glClear(GL_DEPTH_BUFFER_BIT);
+            // The maps' xy are [0, 1]: undo the bias into clip space for drawing.
+            const glm::mat4 unbias = glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)) *
+                                     glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f));
+            shadowDepthProgram.set("uViewProjection", unbias * fit.cascades[c].worldToMap);
+            gpu.draw();
+        }
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        sunTileProgram.use();
+        glBindTextureUnit(0, sunDepth.id());
+        sunTileProgram.set("uSunDepth", 0);
+        glBindImageTexture(0, sunTileDepth.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+        const GLuint tiles = GLuint(options.sunMapSize / shading::kSunTileTexels);
+        glDispatchCompute(tiles, tiles, GLuint(fit.cascades.size()));
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        timers.end();
+        return fit;
+    }
+
     // A full-screen pass that adds into `framebuffer` (an accumulation target).
     void beginAdditivePass(GLuint framebuffer) {
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
@@ -225,8 +312,15 @@ struct FrameRenderer::Impl {
         glBindTextureUnit(3, gEmission.id());
         glBindTextureUnit(4, cubeDistance.id());
         glBindTextureUnit(5, shadowDepth.id());
-        const char* names[6] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uShadowCube", "uShadow2D"};
-        for (int i = 0; i < 6; ++i) lightProgram.set(names[i], i);
+        glBindTextureUnit(6, sunDepth.id());
+        glBindSampler(6, sunCompareSampler.id());
+        glBindTextureUnit(7, sunDepth.id());
+        glBindSampler(7, sunDepthSampler.id());
+        glBindTextureUnit(8, sunTileDepth.id());
+        const char* names[9] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uShadowCube", "uShadow2D",
+                                "uSunShadow", "uSunDepth", "uSunTileDepth"};
+        for (int i = 0; i < 9; ++i) lightProgram.set(names[i], i);
+        lightProgram.set("uFrame", frames);
         lightProgram.set("uEye", scene.camera.eye);
         gpu.bindLights();
         glBindVertexArray(emptyVao.id());
@@ -244,6 +338,8 @@ struct FrameRenderer::Impl {
         lightProgram.set("uShadowMatrix", shadowMatrix);
         lightProgram.set("uShadowTexel", shadowTexel);
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindSampler(6, 0);  // the units go back to their textures' own sampling
+        glBindSampler(7, 0);
         timers.end();
     }
 
@@ -276,12 +372,17 @@ struct FrameRenderer::Impl {
                 break;
             }
             case LightType::Directional: {
-                glm::vec3 eye = sceneCenter - light.direction * (2.0f * sceneRadius);
-                glm::mat4 view = glm::lookAt(eye, sceneCenter, anyPerpendicular(light.direction));
-                glm::mat4 proj = glm::ortho(-sceneRadius, sceneRadius, -sceneRadius, sceneRadius, 0.0f, 4.0f * sceneRadius);
-                glm::mat4 shadow = renderMapShadow(proj * view);
-                drawLight(index, glm::vec2(0.0f), glm::vec3(0.0f), shadow,
-                          2.0f * sceneRadius / float(options.shadowMapSize));
+                const SunCascades fit = renderSunCascades(light.direction);
+                lightProgram.set("uCascadeCount", int(fit.cascades.size()));
+                for (std::size_t c = 0; c < fit.cascades.size(); ++c) {
+                    const std::string at = "[" + std::to_string(c) + "]";
+                    lightProgram.set(("uCascadeMatrix" + at).c_str(), fit.cascades[c].worldToMap);
+                    lightProgram.set(("uCascadeTexel" + at).c_str(), fit.cascades[c].texelWorld);
+                }
+                lightProgram.set("uWorldToLight", fit.worldToLight);
+                lightProgram.set("uDepthRange", fit.depthRange);
+                lightProgram.set("uSunTan", std::tan(0.5f * glm::radians(light.angularDiameterDegrees)));
+                drawLight(index, glm::vec2(0.0f), glm::vec3(0.0f), glm::mat4(1.0f), 0.0f);
                 break;
             }
         }

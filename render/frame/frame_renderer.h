@@ -16,7 +16,9 @@ namespace voxgi {
 struct FrameOptions {
     int width = 0;    // 0 = the scene camera's resolution
     int height = 0;
-    int shadowMapSize = 2048;     // directional and spot maps
+    int shadowMapSize = 2048;     // spot maps
+    int sunMapSize = 2048;        // each cascade of a directional light (render/frame/sun_cascades.h)
+    int sunCascades = 4;          // 1..shading::kMaxSunCascades
     int cubeShadowSize = 512;     // point lights and quad-light samples, per face
     bool jitter = true;           // sub-pixel jitter from the second frame on (antialiasing)
 };

@@ -1,10 +1,12 @@
 #version 450 core
 // Adds one light sample's reflected radiance (W/(m^2 sr)) to the accumulation target. The light
 // is lights[uLight], evaluated by the shared light model (shaders/shared/light_model.h); its
-// shadow is the cube map for point and quad lights, the 2D map for spot and directional ones.
+// shadow is the cube map for point and quad lights, the 2D map for spot lights and the cascades
+// (frame/sun_shadow.glsl) for directional ones.
 #include "common/brdf.glsl"
 #include "common/scene_data.glsl"
 #include "common/gbuffer_textures.glsl"
+#include "frame/sun_shadow.glsl"
 
 uniform samplerCube uShadowCube;
 uniform sampler2DShadow uShadow2D;
@@ -13,7 +15,7 @@ uniform int uLight;
 uniform vec2 uQuadSample;       // quad lights: this frame's point of the quad, in [0,1)^2
 uniform vec3 uEye;
 uniform vec3 uShadowEye;        // the cube map's centre (point light; quad sample lifted off the quad)
-uniform mat4 uShadowMatrix;     // world -> shadow texture space (2D maps)
+uniform mat4 uShadowMatrix;     // world -> shadow texture space (spot maps)
 uniform float uShadowTexel;     // world size of one shadow texel at unit distance (normal offset)
 
 layout(location = 0) out vec4 outColor;
@@ -57,7 +59,7 @@ void main() {
     if (nl <= 0.0) { outColor = vec4(0.0); return; }
     int kind = light.kind.x;
     float vis;
-    if (kind == kLightDirectional) vis = mapVisibility(p, n, 1.0);  // orthographic: texels do not grow
+    if (kind == kLightDirectional) vis = sunVisibility(p, n, pixel);
     else if (kind == kLightSpot) vis = mapVisibility(p, n, incident.distance);
     else vis = cubeVisibility(p, n);
     outColor = vec4(evalBrdf(s, n, v, l) * incident.irradiance * vis * nl, 1.0);
