@@ -21,6 +21,7 @@
 namespace voxgi {
 
 class SceneGpu;
+class SkyVolumeTexture;
 
 // The G-buffer of the current frame (textures owned by the frame renderer), encoded as
 // shaders/shared/gbuffer.h says (encodeGBuffer / decodeGBuffer, for C++ and GLSL).
@@ -49,6 +50,8 @@ struct FrameInput {
     int frameIndex = 0;        // 0 for the first frame after init
     gl::StageTimers& timers;   // bracket each pass: timers.begin(pass) ... end()
     const TechniquePlan& plan; // the passes to run (their names are the timer stages)
+    // The sky-lighting volume when the frame plan has it (sky_volume), else null.
+    const SkyVolumeTexture* sky = nullptr;
 };
 
 class GiTechnique {

@@ -130,7 +130,10 @@ TEST_F(FramePlanTest, EveryMethodRunsItsPlan) {
     noCamera.gi.set("lpv.gbuffer_blocker_size", "0");
     EXPECT_FALSE(planFrame(noCamera, "lpv", 1).runs("lpv.gbuffer_readback"));
     expectPlanRuns(noCamera, "lpv", "no G-buffer blockers");
-    EXPECT_FALSE(planFrame(dark, "lpv", 1).runs("lpv.propagate")) << "no lights: nothing to propagate";
+    EXPECT_TRUE(planFrame(dark, "lpv", 1).runs("lpv.sky_bounce")) << "no lights, a sky: its bounce is the light";
+    EXPECT_FALSE(planFrame(dark, "lpv", 1).runs("lpv.rsm"));
+    const Scene pitch = box({}, false, true);
+    EXPECT_FALSE(planFrame(pitch, "lpv", 1).runs("lpv.propagate")) << "no lights, no sky: nothing to propagate";
     Scene ambient = lit;
     EXPECT_FALSE(planFrame(ambient, "ambient", 1).runs("ambient.apply"));
     ambient.gi.set("ambient.irradiance", "0.5");

@@ -65,6 +65,9 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
     FrameOptions options;
     options.width = settings.width;
     options.height = settings.height;
+    // Timed frames do all their work, as lpv.reuse=false makes the LPV's: a still camera would
+    // keep the sun's maps and time a frame no moving camera gets.
+    options.keepSunMaps = false;
     FrameRenderer renderer(scene, options, method);
     MethodRun run;
     const int warmup = std::min(settings.warmup, settings.frames - 1);

@@ -28,6 +28,8 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
     t.flag("surfel_blockers", &D::surfelBlockers,
            "blockers from each update's RSM and G-buffer surfels too; false: the voxelized ones alone, kept with the cascades");
     t.integer("rsm_size", &D::rsmSize, 8, 4096, "reflective shadow map size per light face");
+    t.integer("sky_bounce_size", &D::skyBounceSize, 0, 4096,
+              "sky bounce: surfaces the camera sees, lit by the sky volume, injected as VPLs from a grid this wide (0 = none)");
     t.integer("gbuffer_blocker_size", &D::gbufferBlockerSize, 0, 4096,
               "G-buffer blockers sampled on a grid this wide (0 = none)");
     t.number("inject_normal_offset", &D::injectNormalOffset, 0.0, 4.0, "VPL shift along the surfel normal, in cells");

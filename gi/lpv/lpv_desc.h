@@ -20,6 +20,9 @@ struct LpvDesc {
     bool bounces = true;        // extra bounces off blockers with their albedo (seed 000 eq. 3.7)
     int rsmSize = 256;          // reflective shadow map resolution per light (face)
     int gbufferBlockerSize = 128;  // G-buffer blockers injected after downsampling to this
+    // The sky's bounce (gi/lpv/sky_bounce.h): the G-buffer sampled on a grid this wide, every
+    // sample a VPL of the sky light it reflects; 0 = none. Runs only with the sky volume.
+    int skyBounceSize = 256;
     float injectNormalOffset = 0.5f;  // VPL shift along the surfel normal, in cells
     float injectLightOffset = 0.25f;  // VPL shift toward the light, in cells
     float applyNormalOffset = 0.5f;   // lookup shift along the shading normal, in cells

@@ -8,6 +8,7 @@
 #include "gi/lpv/lpv_technique.h"
 #include "gi/lpv/rsm.h"
 #include "gi/method.h"
+#include "gi/sky/sky_volume.h"
 
 namespace voxgi {
 
@@ -20,9 +21,16 @@ std::string count(std::size_t n, const std::string& what) {
 TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
     const LpvDesc d = readLpvDesc(scene.gi, cascaded);
     TechniquePlan p;
-    if (scene.lights.empty()) {
-        for (const char* pass : {"lpv.rsm", "lpv.inject", "lpv.blockers", "lpv.propagate", "lpv.apply"})
-            p.skipped.push_back({pass, "no lights: nothing to inject"});
+    // The sky bounce needs the frame's sky volume (render/frame/frame_plan.cpp: a sky, triangles
+    // and sky.light).
+    std::string noSkyBounce;
+    if (!scene.sky.enabled) noSkyBounce = "no sky";
+    else if (scene.triangleCount() == 0) noSkyBounce = "no triangles";
+    else if (!readSkyVolumeDesc(scene.gi).light) noSkyBounce = "sky.light=false";
+    else if (d.skyBounceSize <= 0) noSkyBounce = "lpv.sky_bounce_size=0";
+    if (scene.lights.empty() && !noSkyBounce.empty()) {
+        for (const char* pass : {"lpv.rsm", "lpv.sky_bounce", "lpv.inject", "lpv.blockers", "lpv.propagate", "lpv.apply"})
+            p.skipped.push_back({pass, "no lights and no sky bounce (" + noSkyBounce + "): nothing to inject"});
         return p;
     }
     const bool gl = d.backend == Backend::Gl;
@@ -32,14 +40,21 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
                std::string("voxelized-scene blockers made") + (gl ? " and uploaded" : "") +
                    " when a cascade moves, kept while it stays",
                d.staticBlockers ? "no triangles" : "lpv.static_blockers=false");
-    p.update.push_back({"lpv.rsm", count(rsmFaceCount(scene), "reflective shadow map face") + " of " +
-                                       std::to_string(d.rsmSize) + "^2 for " + count(scene.lights.size(), "light")});
+    p.updateIf(!scene.lights.empty(), "lpv.rsm",
+               count(rsmFaceCount(scene), "reflective shadow map face") + " of " + std::to_string(d.rsmSize) + "^2 for " +
+                   count(scene.lights.size(), "light"),
+               "no lights");
+    p.updateIf(noSkyBounce.empty(), "lpv.sky_bounce",
+               "the G-buffer on a " + std::to_string(d.skyBounceSize) +
+                   "^2 grid, lit by the sky volume, as VPLs (surfaces on screen only)",
+               noSkyBounce);
     const bool surfelBlockers = d.surfelBlockers;
     if (!gl)
         p.updateIf(surfelBlockers && d.gbufferBlockerSize > 0, "lpv.gbuffer_readback",
                    "camera blockers: the G-buffer read back on a " + std::to_string(d.gbufferBlockerSize) + " grid",
                    !surfelBlockers ? "lpv.surfel_blockers=false" : "lpv.gbuffer_blocker_size=0");
-    p.update.push_back({"lpv.inject", "RSM surfels as virtual point lights into " + volumes});
+    p.update.push_back({"lpv.inject", std::string(scene.lights.empty() ? "sky-bounce" : "RSM") +
+                                          " surfels as virtual point lights into " + volumes});
     std::vector<std::string> sources;
     if (surfelBlockers) sources.push_back("the RSMs");
     if (surfelBlockers && d.gbufferBlockerSize > 0) sources.push_back("the G-buffer");

@@ -16,6 +16,7 @@
 #include "gi/lpv/lpv_dump.h"
 #include "gi/lpv/propagation.h"
 #include "gi/lpv/rsm.h"
+#include "gi/lpv/sky_bounce.h"
 #include "gi/lpv/static_blockers.h"
 #include "gl/program.h"
 #include "gl/resources.h"
@@ -87,6 +88,8 @@ class LpvTechnique final : public GiTechnique {
     std::vector<gl::Handle> textures;  // 6 per cascade: ring r, g, b, inner r, g, b
     std::vector<glm::ivec3> lastOrigins;
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
+    std::unique_ptr<SkyBounceFace> skyBounce;      // made on the first update that runs lpv.sky_bounce
+    glm::vec3 skyBounceEye{0.0f}, skyBounceForward{0.0f};  // the view the sky bounce was injected from
     bool valid = false;
 
 public:
@@ -138,8 +141,15 @@ public:
         // Without lights there is nothing to inject: the plan runs no pass at all.
         if (!input.plan.runs("lpv.propagate")) return;
         place(g);
+        // The sky bounce comes from the surfaces on screen: a new view is new light (the
+        // sub-pixel jitter of accumulating frames is not).
+        const bool bounceSky = input.plan.runs("lpv.sky_bounce") && input.sky;
+        const glm::vec3 forward = viewForward(g.viewProjection);
+        const bool viewChanged = bounceSky && (g.eye != skyBounceEye || forward != skyBounceForward);
         // Static scene, lights and placement: the propagated light is still valid.
-        if (desc.reuse && valid && !placementChanged()) return;
+        if (desc.reuse && valid && !placementChanged() && !viewChanged) return;
+        skyBounceEye = g.eye;
+        skyBounceForward = forward;
         lastOrigins.clear();
         for (const auto& p : placements) lastOrigins.push_back(p.grid.origin);
         if (glInjector) {
@@ -180,7 +190,15 @@ public:
                 blockersMs += millisecondsSince(t0);
             }
         }
-        input.timers.addCpu("lpv.rsm", rsmMs);
+        if (faceCount > 0) input.timers.addCpu("lpv.rsm", rsmMs);
+        if (bounceSky) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const SurfelSource surfels = readSurfels(skyBounceFace().render(g, scene.camera, *input.sky));
+            tbb::parallel_for(std::size_t(0), placements.size(), [&](std::size_t c) {
+                injectLight(surfels, offsets, placements, c, injected[c], injectedInner[c]);
+            });
+            input.timers.addCpu("lpv.sky_bounce", millisecondsSince(t0));
+        }
 
         SurfelSource camera;
         if (desc.surfelBlockers && input.plan.runs("lpv.gbuffer_readback")) {
@@ -246,6 +264,11 @@ public:
         return t;
     }
 
+    SkyBounceFace& skyBounceFace() {
+        if (!skyBounce) skyBounce = std::make_unique<SkyBounceFace>(desc.skyBounceSize);
+        return *skyBounce;
+    }
+
     // The voxelized static blockers of each cascade: made once per placement (for `lpv` once;
     // for `clpv` when a cascade's snapped origin moves) and kept, so an update only redoes the
     // dynamic blockers (RSM and G-buffer). Returns which cascades changed.
@@ -285,18 +308,30 @@ public:
         }
         const InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
         const std::size_t faceCount = rsmFaceCount(scene), batch = rsm.facesPerBatch();
+        const bool bounceSky = input.plan.runs("lpv.sky_bounce") && input.sky;
+        static const std::vector<RsmFace> noFaces;
         for (std::size_t first = 0; first == 0 || first < faceCount; first += batch) {
             const bool firstBatch = first == 0, lastBatch = first + batch >= faceCount;
-            input.timers.begin("lpv.rsm");
-            const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu, first, batch);
-            input.timers.end();
+            const std::vector<RsmFace>* faces = &noFaces;
+            if (faceCount > 0) {
+                input.timers.begin("lpv.rsm");
+                faces = &rsm.renderToTextures(scene, input.sceneGpu, first, batch);
+                input.timers.end();
+            }
+            const RsmFace* skyFace = nullptr;
+            if (bounceSky && lastBatch) {
+                input.timers.begin("lpv.sky_bounce");
+                skyFace = &skyBounceFace().render(g, scene.camera, *input.sky);
+                input.timers.end();
+            }
 
             input.timers.begin("lpv.inject");
             for (std::size_t c = 0; c < placements.size(); ++c)
                 for (int set = 0; set < glPropagators[c]->lightSets(); ++set) {
                     GlCascadeTargets t = glTargets(c, set);
                     if (firstBatch) glInjector->clearLight(t);
-                    for (const RsmFace& face : faces) glInjector->injectLight(face, offsets, t, placements, c, set == 1);
+                    for (const RsmFace& face : *faces) glInjector->injectLight(face, offsets, t, placements, c, set == 1);
+                    if (skyFace) glInjector->injectLight(*skyFace, offsets, t, placements, c, set == 1);
                 }
             input.timers.end();
 
@@ -310,7 +345,7 @@ public:
                 if (!surfels && (!lastBatch || staticsMerged[c])) continue;
                 if (firstBatch || !surfels) glInjector->clearGeometry(t);
                 if (surfels)
-                    for (const RsmFace& face : faces) glInjector->injectBlockers(face, t);
+                    for (const RsmFace& face : *faces) glInjector->injectBlockers(face, t);
                 if (!lastBatch) continue;
                 if (surfels) glInjector->injectBlockers(g, sampling, t);
                 if (voxels && c < glStatic.size()) glInjector->mergeBlockers(*glStatic[c], t);

@@ -60,22 +60,16 @@ std::vector<FaceView> faceViews(const Scene& scene, const Light& light, int size
     return views;
 }
 
-// The render targets of one face.
-struct FaceTargets {
-    gl::Handle fbo, position, normal, flux, albedo, depth;
-
-    explicit FaceTargets(int size) {
-        position = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        normal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        flux = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        albedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
-        depth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size);
-        fbo = gl::createFramebuffer({position.id(), normal.id(), flux.id(), albedo.id()}, depth.id(),
-                                    "reflective shadow map");
-    }
-};
-
 }  // namespace
+
+RsmTargets::RsmTargets(int size) {
+    position = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+    normal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+    flux = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+    albedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size, size);
+    depth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size, size);
+    fbo = gl::createFramebuffer({position.id(), normal.id(), flux.id(), albedo.id()}, depth.id(), "reflective shadow map");
+}
 
 SurfelSource readSurfels(const RsmFace& face) {
     const int size = face.size;
@@ -105,15 +99,15 @@ SurfelSource readSurfels(const RsmFace& face) {
 struct RsmRenderer::Impl {
     int size;
     gl::Program program;
-    std::vector<std::unique_ptr<FaceTargets>> targets;  // grown to the most faces seen in one frame
+    std::vector<std::unique_ptr<RsmTargets>> targets;  // grown to the most faces seen in one frame
     std::vector<RsmFace> faces;
 
     explicit Impl(int s) : size(s) { program = gl::Program::graphics("lpv/rsm.vert", "lpv/rsm.frag"); }
 
     RsmFace renderFace(std::size_t slot, const Scene& scene, const SceneGpu& gpu, const FaceView& v,
                        std::size_t lightIndex) {
-        while (targets.size() <= slot) targets.push_back(std::make_unique<FaceTargets>(size));
-        const FaceTargets& t = *targets[slot];
+        while (targets.size() <= slot) targets.push_back(std::make_unique<RsmTargets>(size));
+        const RsmTargets& t = *targets[slot];
         glBindFramebuffer(GL_FRAMEBUFFER, t.fbo.id());
         glViewport(0, 0, size, size);
         const float zero[4] = {0, 0, 0, 0};

@@ -10,6 +10,7 @@
 #include <epoxy/gl.h>
 
 #include "gi/lpv/surfels.h"
+#include "gl/resources.h"
 #include "scenes/scene.h"
 
 namespace voxgi {
@@ -24,6 +25,12 @@ struct RsmFace {
     bool orthographic = false;   // a sun's map: every surfel's direction to the light is toLight
     glm::vec3 origin{0.0f};      // perspective maps: the light position the surfels look at
     glm::vec3 toLight{0.0f};     // orthographic maps: minus the light's travel direction
+};
+
+// The render targets of one face (and its depth buffer).
+struct RsmTargets {
+    gl::Handle fbo, position, normal, flux, albedo, depth;
+    explicit RsmTargets(int size);
 };
 
 // How many faces the RSM renders for the scene's lights (a point light six, a sun or spot one, a

@@ -11,6 +11,7 @@
 #include "gi/methods.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/sky/sky_volume.h"
+#include "gi/sky/sky_volume_texture.h"
 #include "gi/sampling/sequences.h"
 #include "render/frame/sun_cascades.h"
 #include "scenes/errors.h"
@@ -56,11 +57,12 @@ struct FrameRenderer::Impl {
     std::unique_ptr<GiTechnique> technique;
 
     gl::Program gbufferProgram, shadowDepthProgram, shadowDistanceProgram, lightProgram, emissionProgram, skyLightProgram;
-    // The sky-lighting volume, built the first time a plan has the sky_light pass: Embree traces
-    // it on the CPU, then its cells go to one 3D texture (7 texels per cell along x).
+    // The sky-lighting volume, built the first time a plan has the sky_volume pass: Embree
+    // traces it on the CPU, then its cells go to one 3D texture that the sky_light pass and the
+    // techniques read.
     std::unique_ptr<RayTracer> skyTracer;
     std::unique_ptr<SkyVolume> skyVolume;
-    gl::Handle skyVolumeTexture;
+    std::unique_ptr<SkyVolumeTexture> skyTexture;
     gl::Handle gbufferFbo, gPosition, gNormal, gAlbedo, gEmission, gDepth;
     gl::Handle accumFbo, accum, indirectFbo, indirectAccum;
     gl::Handle shadowFbo, shadowDepth;
@@ -247,7 +249,7 @@ struct FrameRenderer::Impl {
     }
 
     // What the sun's maps were last drawn for: the geometry does not move, so while the camera
-    // and the sun stand still (frames that accumulate) the maps are kept.
+    // and the sun stand still (frames that accumulate) the maps are kept (FrameOptions::keepSunMaps).
     std::vector<float> sunMapsKey;
 
     // The cascades of the sun travelling along `direction`, drawn into their layers.
@@ -259,7 +261,7 @@ struct FrameRenderer::Impl {
         SunCascades fit = fitSunCascades(camera, direction, scene.bounds(), options.sunMapSize, options.sunCascades);
         std::vector<float> key = {direction.x, direction.y, direction.z};
         for (const SunCascade& c : fit.cascades) key.insert(key.end(), &c.worldToMap[0][0], &c.worldToMap[0][0] + 16);
-        if (key == sunMapsKey) {
+        if (options.keepSunMaps && key == sunMapsKey) {
             timers.end();
             return fit;
         }
@@ -412,15 +414,11 @@ struct FrameRenderer::Impl {
         skyTracer = std::make_unique<RayTracer>(scene);
         skyVolume = std::make_unique<SkyVolume>(*skyTracer, readSkyVolumeDesc(scene.gi));
         skyVolume->update();  // the whole volume: nothing changes the sky or the geometry later
-        const glm::ivec3 d = skyVolume->dims();
-        skyVolumeTexture = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, SkyVolume::kVec4PerCell * d.x, d.y, d.z);
-        glTextureSubImage3D(skyVolumeTexture.id(), 0, 0, 0, 0, SkyVolume::kVec4PerCell * d.x, d.y, d.z, GL_RGBA, GL_FLOAT,
-                            skyVolume->packed().data());
+        skyTexture = std::make_unique<SkyVolumeTexture>(*skyVolume);
         timers.addCpu("sky_volume", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
 
     void renderSkyLight() {
-        if (!skyVolume) buildSkyVolume();
         timers.begin("sky_light");
         beginAdditivePass(accumFbo.id());
         skyLightProgram.use();
@@ -430,11 +428,7 @@ struct FrameRenderer::Impl {
             glBindTextureUnit(GLuint(i), gbuffer[i]);
             skyLightProgram.set(names[i], i);
         }
-        glBindTextureUnit(4, skyVolumeTexture.id());
-        skyLightProgram.set("uSkyVolume", 4);
-        skyLightProgram.set("uOrigin", skyVolume->origin());
-        skyLightProgram.set("uCellSize", skyVolume->cellSize());
-        skyLightProgram.set("uDims", skyVolume->dims());
+        skyTexture->bind(skyLightProgram, 4);
         glBindVertexArray(emptyVao.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
         timers.end();
@@ -443,7 +437,8 @@ struct FrameRenderer::Impl {
     void renderFrame() {
         gpu.updateLights(scene.lights);
         if (plan.runs("gbuffer")) renderGBuffer();
-        FrameInput input{scene, gpu, frames, timers, plan.technique};
+        if (plan.runs("sky_volume") && !skyTexture) buildSkyVolume();
+        FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get()};
         GBufferView view = gbufferView();
         if (technique) technique->update(input, view);
         if (plan.runs("direct_light"))

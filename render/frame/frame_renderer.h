@@ -19,6 +19,9 @@ struct FrameOptions {
     int shadowMapSize = 2048;     // spot maps
     int sunMapSize = 2048;        // each cascade of a directional light (render/frame/sun_cascades.h)
     int sunCascades = 4;          // 1..shading::kMaxSunCascades
+    // Keep the sun's maps while the camera and the sun stand still (frames that accumulate);
+    // false draws them every frame, what a moving camera costs (eval times frames so).
+    bool keepSunMaps = true;
     int cubeShadowSize = 512;     // point lights and quad-light samples, per face
     bool jitter = true;           // sub-pixel jitter from the second frame on (antialiasing)
 };

@@ -1,0 +1,32 @@
+// The sky-lighting volume (gi/sky/sky_volume.h) on the GPU, as deferred passes read it through
+// shaders/common/sky_volume.glsl: one 3D texture of 7 texels per cell along x, and the grid.
+// The frame renderer makes it once the volume is complete and hands it to the techniques
+// (FrameInput::sky), so the sky_light pass and the LPV's sky bounce read the same texels.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "gl/resources.h"
+
+namespace voxgi {
+
+namespace gl {
+class Program;
+}
+class SkyVolume;
+
+class SkyVolumeTexture {
+public:
+    // Uploads every cell of `volume` (call once it is complete). Needs a current GL context.
+    explicit SkyVolumeTexture(const SkyVolume& volume);
+    // Binds the texture to `unit` and sets shaders/common/sky_volume.glsl's uniforms in `program`.
+    void bind(const gl::Program& program, int unit) const;
+
+private:
+    gl::Handle texture_;
+    glm::vec3 origin_{0.0f};
+    float cellSize_ = 1.0f;
+    glm::ivec3 dims_{0};
+};
+
+}  // namespace voxgi
