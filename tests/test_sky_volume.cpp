@@ -1,7 +1,7 @@
 // The sky-lighting volume (gi/sky/sky_volume.h) and the frame's sky_light pass: an open ground
 // under a constant sky gets pi L (and the pass shows albedo L), the inside of a closed box gets
 // nothing, a budgeted build equals a whole one, and the plan leaves the pass out where the sky is
-// counted elsewhere or absent.
+// counted elsewhere or absent, and only the bricks a surface's lookup reaches are stored.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -77,6 +77,46 @@ TEST(SkyVolume, ABudgetedBuildEqualsAWholeOne) {
     while (!budgeted.update(1e-6)) ++calls;
     EXPECT_GT(calls, 2);  // one batch of cells per call at this budget
     EXPECT_EQ(whole.packed(), budgeted.packed());
+}
+
+TEST(SkyVolume, StoresOnlyTheBricksASurfaceLookupReaches) {
+    // A 20 m ground and a 16 m tower: most of the grid is air no surface's lookup reads.
+    Scene s = groundUnderSky();
+    s.meshes.push_back(makeBox(glm::translate(glm::mat4(1.0f), glm::vec3(-6, 8, 6)) * glm::scale(glm::mat4(1.0f), glm::vec3(1, 16, 1)), 0));
+    RayTracer tracer(s);
+    SkyVolumeDesc d;
+    d.resolution = 40;
+    SkyVolume volume(tracer, d);
+    ASSERT_TRUE(volume.update());
+    const glm::ivec3 b = volume.brickDims();
+    const std::size_t bricks = std::size_t(b.x) * std::size_t(b.y) * std::size_t(b.z);
+    EXPECT_LT(volume.activeBricks(), bricks / 3) << volume.activeBricks() << " of " << bricks;
+    EXPECT_EQ(volume.packed().size(), std::size_t(volume.atlasSize().x) * std::size_t(volume.atlasSize().y) *
+                                          std::size_t(volume.atlasSize().z));
+    // Every cell a lookup on any triangle reads is stored (and the one far above is not).
+    int checked = 0;
+    for (const Mesh& m : s.meshes)
+        for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+            const glm::vec3 a = m.positions[m.indices[3 * t]], e1 = m.positions[m.indices[3 * t + 1]] - a,
+                            e2 = m.positions[m.indices[3 * t + 2]] - a;
+            const glm::vec3 n = glm::normalize(glm::cross(e1, e2));
+            for (int i = 0; i <= 12; ++i)
+                for (int j = 0; i + j <= 12; ++j)
+                    for (float side : {1.0f, -1.0f}) {
+                        const glm::vec3 p = a + e1 * (float(i) / 12.0f) + e2 * (float(j) / 12.0f);
+                        const shading::SkyVolumeTaps taps =
+                            shading::skyVolumeTaps(p + side * n * (0.5f * volume.cellSize()), volume.origin(), volume.cellSize());
+                        for (int corner = 0; corner < 8; ++corner) {
+                            const glm::ivec3 c = glm::clamp(taps.base + glm::ivec3(corner & 1, (corner >> 1) & 1, corner >> 2),
+                                                            glm::ivec3(0), volume.dims() - 1);
+                            EXPECT_NE(volume.cell(c), nullptr) << c.x << " " << c.y << " " << c.z;
+                            ++checked;
+                        }
+                    }
+        }
+    EXPECT_GT(checked, 10000);
+    const glm::vec3 high = (glm::vec3(6, 15, -6) - volume.origin()) / volume.cellSize();
+    EXPECT_EQ(volume.cell(glm::ivec3(high)), nullptr);
 }
 
 namespace {

@@ -40,9 +40,12 @@ int runDump(const std::vector<std::string>& argv) {
         SkyVolume volume(tracer, readSkyVolumeDesc(scene.gi));
         volume.update();
         writeSkyVolumeVdb(*out, volume);
-        const glm::ivec3 d = volume.dims();
-        std::printf("wrote %s (sky-lighting volume, %dx%dx%d cells of %g m, %.0f ms)\n", out->c_str(), d.x, d.y, d.z,
-                    double(volume.cellSize()), volume.buildMs());
+        const glm::ivec3 d = volume.dims(), b = volume.brickDims();
+        std::printf("wrote %s (sky-lighting volume, %dx%dx%d cells of %g m; %zu of %d bricks of %d^3 cells stored, "
+                    "%.2f MiB; %.0f ms)\n",
+                    out->c_str(), d.x, d.y, d.z, double(volume.cellSize()), volume.activeBricks(), b.x * b.y * b.z,
+                    SkyVolume::kBrickCells, double(volume.packed().size() * sizeof(glm::vec4)) / (1024.0 * 1024.0),
+                    volume.buildMs());
         return kOk;
     }
     if (!args.has("--method") && scene.gi.getString("method", "").empty())

@@ -15,7 +15,6 @@ void writeSkyVolumeVdb(const std::string& path, const SkyVolume& volume) {
     const glm::vec3 o = volume.origin();
     xform->postTranslate(openvdb::Vec3d(double(o.x), double(o.y), double(o.z)));
     const glm::ivec3 d = volume.dims();
-    const std::vector<glm::vec4>& packed = volume.packed();
     openvdb::GridPtrVec grids;
     const char* colours[3] = {"r", "g", "b"};
     for (int c = 0; c < 3; ++c)
@@ -33,8 +32,8 @@ void writeSkyVolumeVdb(const std::string& path, const SkyVolume& volume) {
             for (int z = 0; z < d.z; ++z)
                 for (int y = 0; y < d.y; ++y)
                     for (int x = 0; x < d.x; ++x) {
-                        const glm::vec4* cell = &packed[volume.index({x, y, z}) * SkyVolume::kVec4PerCell];
-                        if (cell[6].w <= 0.0f) continue;
+                        const glm::vec4* cell = volume.cell({x, y, z});
+                        if (!cell || cell[6].w <= 0.0f) continue;
                         acc.setValue(openvdb::Coord(x, y, z), cell[flat / 4][flat % 4]);
                     }
             grids.push_back(grid);

@@ -229,17 +229,22 @@ struct FrameRenderer::Impl {
         timers.end();
     }
 
-    glm::mat4 renderMapShadow(const glm::mat4& viewProjection) {
-        timers.begin("shadow_map");
-        glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo.id());
-        glViewport(0, 0, options.shadowMapSize, options.shadowMapSize);
+    // Depth-only drawing into `framebuffer` (size^2) with the slope-scaled offset shadow maps use.
+    void beginDepthMapPass(GLuint framebuffer, int size) {
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(0, 0, size, size);
         glEnable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
-        glClear(GL_DEPTH_BUFFER_BIT);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(1.5f, 2.0f);
         shadowDepthProgram.use();
+    }
+
+    glm::mat4 renderMapShadow(const glm::mat4& viewProjection) {
+        timers.begin("shadow_map");
+        beginDepthMapPass(shadowFbo.id(), options.shadowMapSize);
+        glClear(GL_DEPTH_BUFFER_BIT);
         shadowDepthProgram.set("uViewProjection", viewProjection);
         gpu.draw();
         glDisable(GL_POLYGON_OFFSET_FILL);
@@ -266,14 +271,7 @@ struct FrameRenderer::Impl {
             return fit;
         }
         sunMapsKey = std::move(key);
-        glBindFramebuffer(GL_FRAMEBUFFER, sunFbo.id());
-        glViewport(0, 0, options.sunMapSize, options.sunMapSize);
-        glEnable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(1.5f, 2.0f);
-        shadowDepthProgram.use();
+        beginDepthMapPass(sunFbo.id(), options.sunMapSize);
         for (std::size_t c = 0; c < fit.cascades.size(); ++c) {
             glNamedFramebufferTextureLayer(sunFbo.id(), GL_DEPTH_ATTACHMENT, sunDepth.id(), 0, GLint(c));
             glClear(GL_DEPTH_BUFFER_BIT);

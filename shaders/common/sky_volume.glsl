@@ -1,17 +1,29 @@
 // The sky-lighting volume (gi/sky/sky_volume.h) as deferred passes read it: irradiance on a
 // surface at p with normal n from the cells around p + n * cell / 2, trilinear over the cells
-// in open space (SkyVolume::sampleIrradiance is the same on the CPU). Bound by
+// in open space, through the brick index (SkyVolume::sampleIrradiance is the same on the CPU).
+// Bound by
 // SkyVolumeTexture::bind (gi/sky/sky_volume_texture.h).
 #ifndef VOXGI_SKY_VOLUME_GLSL
 #define VOXGI_SKY_VOLUME_GLSL
 #include "shared/sky_volume.h"
 
-uniform sampler3D uSkyVolume;  // 7 texels per cell along x
-uniform vec3 uSkyOrigin;       // centre of cell (0, 0, 0)
+uniform sampler3D uSkyVolume;   // the stored bricks' atlas, 7 texels per cell along x
+uniform isampler3D uSkyBricks;  // every brick's slot in the atlas, -1 where it is empty
+uniform vec3 uSkyOrigin;        // centre of cell (0, 0, 0)
 uniform float uSkyCellSize;
 uniform ivec3 uSkyDims;
+uniform int uSkyAtlasColumns;   // bricks per atlas row
 
-vec4 skyCellTexel(ivec3 c, int v) { return texelFetch(uSkyVolume, ivec3(7 * c.x + v, c.y, c.z), 0); }
+// Texel v of cell c's 7; zero (no light, not valid) in an empty brick.
+vec4 skyCellTexel(ivec3 c, int v) {
+    ivec3 brick = c / kSkyBrickCells;
+    int slot = texelFetch(uSkyBricks, brick, 0).r;
+    if (slot < 0) return vec4(0.0);
+    ivec3 local = c - brick * kSkyBrickCells;
+    ivec3 at = ivec3(7 * (kSkyBrickCells * (slot % uSkyAtlasColumns) + local.x) + v, local.y,
+                     kSkyBrickCells * (slot / uSkyAtlasColumns) + local.z);
+    return texelFetch(uSkyVolume, at, 0);
+}
 
 // W/m^2 from the sky on a surface at p facing n.
 vec3 skyVolumeIrradiance(vec3 p, vec3 n) {

@@ -12,6 +12,9 @@ namespace voxgi::shading {
 using namespace glm;
 #endif
 
+// The side of a brick, in cells: the sparse volume stores whole bricks (SkyVolume::kBrickCells).
+constexpr int kSkyBrickCells = 4;
+
 // Irradiance (the 9 pre-convolved coefficients per colour dotted with the 3-band basis at n;
 // gi/sh/sh.h's order and signs). Negative ringing is clamped.
 inline vec3 skyCellIrradiance(vec4 a, vec4 b, vec4 c, vec4 d, vec4 e, vec4 f, vec4 g, vec3 n) {
