@@ -8,7 +8,7 @@
 namespace voxgi {
 
 // Each method folder's description (gi/<method>/<method>_method.cpp).
-MethodInfo directMethod(), ambientMethod(), lpvMethod(), clpvMethod(), ddgiMethod();
+MethodInfo directMethod(), ambientMethod(), lpvMethod(), clpvMethod(), ddgiMethod(), isrMethod();
 
 namespace {
 
@@ -31,7 +31,7 @@ const std::vector<MethodInfo>& methods() {
         clpvMethod(),
         planned("ilpv", "incremental LPV: 26-neighbour stochastic transfer, reuse of earlier frames (seed 001)"),
         ddgiMethod(),
-        planned("isr", "image-space radiosity: one bounce and AO in screen space (seed 003)"),
+        isrMethod(),
         planned("hybrid", "atmospheric sky, sky-lighting volume, ray-traced reflections and refractions (seed 002)"),
     };
     return all;

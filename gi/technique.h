@@ -34,6 +34,10 @@ struct GBufferView {
     int height = 0;
     glm::vec3 eye{0.0f};
     glm::mat4 viewProjection{1.0f};
+    // For applyIndirect only: the direct layer summed over `directFrames` frames, this one
+    // included (RGBA32F; radiance toward the camera, W/(m^2 sr), times directFrames).
+    GLuint directSum = 0;
+    int directFrames = 0;
 };
 
 // The camera's forward direction (unit, world space) from a perspective view-projection: the

@@ -51,6 +51,7 @@ public:
     void set(const char* name, glm::vec2 v) const { glProgramUniform2f(id_, location(name), v.x, v.y); }
     void set(const char* name, glm::vec3 v) const { glProgramUniform3f(id_, location(name), v.x, v.y, v.z); }
     void set(const char* name, glm::vec4 v) const { glProgramUniform4f(id_, location(name), v.x, v.y, v.z, v.w); }
+    void set(const char* name, glm::ivec2 v) const { glProgramUniform2i(id_, location(name), v.x, v.y); }
     void set(const char* name, glm::ivec3 v) const { glProgramUniform3i(id_, location(name), v.x, v.y, v.z); }
     void set(const char* name, const glm::mat4& m) const;
     void set(const char* name, const glm::mat3& m) const;

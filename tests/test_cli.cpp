@@ -35,7 +35,7 @@ TEST(Cli, UnknownCommandAndOptionAreBadInput) {
 
 TEST(Cli, PlannedMethodSaysNotImplemented) {
     std::string dir = makeTempDir("cli-method");
-    auto r = runVoxgi("render cornell-box --method isr -o " + dir + "/x.exr");
+    auto r = runVoxgi("render cornell-box --method ilpv -o " + dir + "/x.exr");
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("not implemented yet"), std::string::npos) << r.output;
     EXPECT_FALSE(fileExists(dir + "/x.exr"));

@@ -133,7 +133,7 @@ TEST(Eval, BadOptionsAreOneLineErrors) {
     std::string dir = makeTempDir("eval-bad");
     EXPECT_EQ(runVoxgi("eval cornell-box --methods direct --presets ultra -o " + dir).exitCode, 2);
     EXPECT_EQ(runVoxgi("eval cornell-box --methods magic -o " + dir).exitCode, 2);
-    EXPECT_EQ(runVoxgi("eval cornell-box --methods isr -o " + dir).exitCode, 3);
+    EXPECT_EQ(runVoxgi("eval cornell-box --methods ilpv -o " + dir).exitCode, 3);
     EXPECT_EQ(runVoxgi("eval cornell-box --methods direct").exitCode, 2);
     EXPECT_EQ(runVoxgi("eval cornell-box --methods ddgi --converge 2 -o " + dir).exitCode, 2);
     EXPECT_EQ(runVoxgi("eval --stability --cases no-such-case -o " + dir).exitCode, 2);

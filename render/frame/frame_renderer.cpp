@@ -444,6 +444,8 @@ struct FrameRenderer::Impl {
         if (plan.runs("sky_light")) renderSkyLight();
         if (plan.runs("emission_sky")) renderEmission();
         if (technique) {
+            view.directSum = accum.id();
+            view.directFrames = frames + 1;
             beginAdditivePass(indirectFbo.id());
             glBindVertexArray(emptyVao.id());
             technique->applyIndirect(input, view);

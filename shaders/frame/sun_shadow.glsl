@@ -1,13 +1,13 @@
 // The sun's visibility from its cascaded shadow maps (render/frame/sun_cascades.h), filtered by
 // percentage-closer soft shadows: a blocker search finds how far above the receiver the casters
 // are, the sun's angular radius turns that gap into the penumbra's width, and a PCF kernel of
-// that width gives the visibility. Both kernels turn per pixel and per frame, so frames that
-// accumulate average to a smooth penumbra. Depths are compared against the receiver's plane
+// that width gives the visibility. Both kernels turn per pixel and per frame
+// (shared/disc_samples.h), so frames that accumulate average to a smooth penumbra. Depths are compared against the receiver's plane
 // (from its normal), not its centre, so wide kernels on sloped surfaces do not shadow
 // themselves.
 #ifndef VOXGI_SUN_SHADOW_GLSL
 #define VOXGI_SUN_SHADOW_GLSL
-#include "shared/constants.h"
+#include "shared/disc_samples.h"
 #include "shared/sun_shadow.h"
 
 uniform sampler2DArrayShadow uSunShadow;  // the cascades, compared with depth (bilinear PCF)
@@ -30,21 +30,12 @@ const float kNormalOffsetTexels = 1.5;  // the receiver is moved off its surface
 const float kDepthBiasTexels = 1.0;     // and compared this much (in depth) in front of itself
 const float kMaxReceiverSlope = 8.0;    // depth change per unit across the map, beyond: grazing
 
-// Point i of n on the unit disc, spread evenly (Vogel's spiral), turned by `rotation`.
-vec2 vogelDisc(int i, int n, float rotation) {
-    float r = sqrt((float(i) + 0.5) / float(n));
-    float theta = float(i) * 2.39996323 + rotation;
-    return r * vec2(cos(theta), sin(theta));
-}
-
 // 1 where the sun reaches p (surface normal n), 0 in full shadow.
 float sunVisibility(vec3 p, vec3 n, ivec2 pixel) {
     vec3 nl = uWorldToLight * n;
     // Depth change per metre across the map on the receiver's plane.
     vec2 slope = nl.z < -1e-4 ? clamp(-nl.xy / nl.z, -kMaxReceiverSlope, kMaxReceiverSlope) : vec2(0.0);
-    // Interleaved gradient noise (Jimenez 2014) per pixel, moved on by the golden ratio per frame.
-    float noise = fract(52.9829189 * fract(dot(vec2(pixel), vec2(0.06711056, 0.00583715))));
-    float rotation = 2.0 * kPi * fract(noise + 0.61803399 * float(uFrame));
+    float rotation = discRotation(pixel, uFrame);
     float mapSize = float(textureSize(uSunDepth, 0).x);
     for (int c = 0; c < uCascadeCount; ++c) {
         float texel = uCascadeTexel[c];

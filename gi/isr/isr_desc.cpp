@@ -1,0 +1,22 @@
+#include "gi/isr/isr_desc.h"
+
+namespace voxgi {
+
+const SettingsTable<IsrDesc>& isrSettings() {
+    static const SettingsTable<IsrDesc> table = [] {
+        using D = IsrDesc;
+        SettingsTable<D> t("isr");
+        t.integer("patches", &D::patches, 1, 1024, "sender patches gathered per coarse pixel").main();
+        t.number("radius", &D::radius, 0.001, 2.0, "gather disc radius, a fraction of the image height");
+        t.integer("downsample", &D::downsample, 1, 8, "coarse pixels are this many pixels square");
+        t.integer("blur", &D::blur, 0, 16, "depth-aware blur radius of the coarse result, in coarse pixels (0: none)");
+        t.number("ao_strength", &D::aoStrength, 0.0, 1.0,
+                 "fraction of the sphere occlusion taken from ISR's own bounce (0: none; never adds light)");
+        return t;
+    }();
+    return table;
+}
+
+IsrDesc readIsrDesc(const GiSettings& gi) { return isrSettings().read(gi); }
+
+}  // namespace voxgi

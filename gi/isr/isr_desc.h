@@ -1,0 +1,25 @@
+// Image-space radiosity's settings (gi.isr.*; seed 003, docs/isr.md): defaults documented here.
+#pragma once
+
+#include "gi/settings_table.h"
+
+namespace voxgi {
+
+struct IsrDesc {
+    int patches = 48;          // sender patches gathered per coarse pixel (the seed: 48 timed, 80 for quality)
+    // The gather disc's radius, a fraction of the image height. The whole screen (1) measured
+    // best on every scene (docs/isr.md): one bounce from the surfaces on screen is already short.
+    float radius = 1.0f;
+    int downsample = 2;        // coarse pixels are this many pixels square (the seed: 2)
+    int blur = 2;              // depth-aware blur radius of the coarse result, coarse pixels (0: none)
+    // How much of the sphere occlusion (seed Eq. 26) removes from the gathered light: 0 keeps it
+    // all, 1 removes the occluded fraction. It scales only ISR's own bounce, which has no
+    // visibility between patches, and never adds light. 0 measured best on every scene: ISR
+    // misses more light (off screen, later bounces) than its missing visibility adds (docs/isr.md).
+    float aoStrength = 0.0f;
+};
+
+const SettingsTable<IsrDesc>& isrSettings();
+IsrDesc readIsrDesc(const GiSettings& gi);
+
+}  // namespace voxgi

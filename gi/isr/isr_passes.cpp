@@ -1,0 +1,118 @@
+#include "gi/isr/isr_passes.h"
+
+#include <cmath>
+
+namespace voxgi {
+
+IsrPasses::IsrPasses(const IsrDesc& desc)
+    : desc_(desc),
+      downsample_(gl::Program::graphics("frame/fullscreen.vert", "isr/downsample.frag")),
+      gather_program_(gl::Program::graphics("frame/fullscreen.vert", "isr/gather.frag")),
+      blur_(gl::Program::graphics("frame/fullscreen.vert", "isr/blur.frag")),
+      apply_(gl::Program::graphics("frame/fullscreen.vert", "isr/apply.frag")),
+      vao_(gl::createVertexArray()) {}
+
+float IsrPasses::radiusPixels() const { return std::max(desc_.radius * float(size_.y), 1.0f); }
+
+void IsrPasses::resize(glm::ivec2 size) {
+    if (size == size_) return;
+    size_ = size;
+    auto target = [&] { return gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, size.x, size.y); };
+    position_ = target();
+    normal_ = target();
+    radiance_ = target();
+    albedo_ = target();
+    gather_ = target();
+    half_ = target();
+    blurred_ = target();
+    for (const gl::Handle* t : {&position_, &normal_, &radiance_, &albedo_, &gather_, &half_, &blurred_}) {
+        glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    coarseFbo_ = gl::createFramebuffer({position_.id(), normal_.id(), radiance_.id(), albedo_.id()}, 0, "isr coarse buffers");
+    gatherFbo_ = gl::createFramebuffer({gather_.id()}, 0, "isr gather");
+    halfFbo_ = gl::createFramebuffer({half_.id()}, 0, "isr blur");
+    blurredFbo_ = gl::createFramebuffer({blurred_.id()}, 0, "isr blurred");
+}
+
+void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers) {
+    const int f = desc_.downsample;
+    resize({(g.width + f - 1) / f, (g.height + f - 1) / f});
+    forward_ = viewForward(g.viewProjection);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(vao_.id());
+    glViewport(0, 0, size_.x, size_.y);
+
+    timers.begin("isr.downsample");
+    glBindFramebuffer(GL_FRAMEBUFFER, coarseFbo_.id());
+    downsample_.use();
+    const char* names[5] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uDirectSum"};
+    const GLuint textures[5] = {g.position, g.normal, g.albedo, g.emission, g.directSum};
+    for (int i = 0; i < 5; ++i) {
+        glBindTextureUnit(GLuint(i), textures[i]);
+        downsample_.set(names[i], i);
+    }
+    // A full-resolution pixel's edge on the image plane at unit distance, times the factor.
+    const float edge = 2.0f * std::tan(0.5f * glm::radians(fovYDegrees)) / float(g.height) * float(f);
+    downsample_.set("uDirectFrames", float(std::max(g.directFrames, 1)));
+    downsample_.set("uFactor", f);
+    downsample_.set("uEye", g.eye);
+    downsample_.set("uForward", forward_);
+    downsample_.set("uPatchSolidAngle", edge * edge);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    timers.end();
+
+    timers.begin("isr.gather");
+    glBindFramebuffer(GL_FRAMEBUFFER, gatherFbo_.id());
+    gather_program_.use();
+    const char* coarse[3] = {"uCoarsePosition", "uCoarseNormal", "uCoarseRadiance"};
+    const GLuint coarseTextures[3] = {position_.id(), normal_.id(), radiance_.id()};
+    for (int i = 0; i < 3; ++i) {
+        glBindTextureUnit(GLuint(i), coarseTextures[i]);
+        gather_program_.set(coarse[i], i);
+    }
+    gather_program_.set("uPatches", desc_.patches);
+    gather_program_.set("uRadius", radiusPixels());
+    gather_program_.set("uFrame", frame);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    timers.end();
+
+    if (desc_.blur > 0) {
+        timers.begin("isr.blur");
+        blur_.use();
+        blur_.set("uRadius", desc_.blur);
+        blur_.set("uSource", 0);
+        blur_.set("uCoarseNormal", 1);
+        glBindTextureUnit(1, normal_.id());
+        const GLuint sources[2] = {gather_.id(), half_.id()};
+        const GLuint targets[2] = {halfFbo_.id(), blurredFbo_.id()};
+        for (int pass = 0; pass < 2; ++pass) {
+            glBindFramebuffer(GL_FRAMEBUFFER, targets[pass]);
+            glBindTextureUnit(0, sources[pass]);
+            blur_.set("uStep", glm::ivec2(pass == 0 ? 1 : 0, pass == 0 ? 0 : 1));
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+        timers.end();
+    }
+}
+
+void IsrPasses::apply(const GBufferView& g, gl::StageTimers& timers) {
+    timers.begin("isr.apply");
+    apply_.use();
+    const char* names[6] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uCoarseGather", "uCoarseNormal"};
+    const GLuint textures[6] = {g.position, g.normal, g.albedo, g.emission, result(), normal_.id()};
+    for (int i = 0; i < 6; ++i) {
+        glBindTextureUnit(GLuint(i), textures[i]);
+        apply_.set(names[i], i);
+    }
+    apply_.set("uFactor", desc_.downsample);
+    apply_.set("uEye", g.eye);
+    apply_.set("uForward", forward_);
+    apply_.set("uAoStrength", desc_.aoStrength);
+    glBindVertexArray(vao_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    timers.end();
+}
+
+}  // namespace voxgi

@@ -1,0 +1,51 @@
+// Image-space radiosity's GPU passes (seed 003; shaders/isr/): downsample the G-buffer and the
+// frame's direct light into coarse patches, gather one bounce and the sphere occlusion per
+// coarse pixel, blur, and upsample into the indirect layer. The coarse buffers stay readable for
+// the CPU reference (gi/isr/isr_reference.h) and the tests.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "gi/isr/isr_desc.h"
+#include "gi/technique.h"
+#include "gl/program.h"
+#include "gl/resources.h"
+
+namespace voxgi {
+
+class IsrPasses {
+public:
+    // Needs a current GL context.
+    explicit IsrPasses(const IsrDesc& desc);
+
+    // Downsample, gather and blur for G-buffer `g` (with its direct light: g.directSum) seen
+    // by a camera of vertical field of view `fovYDegrees`, kernels turned for `frame`.
+    void compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers);
+    // Adds the indirect radiance of every G-buffer pixel to the framebuffer bound now (the
+    // renderer's additive target); restores that binding after compute's own targets.
+    void apply(const GBufferView& g, gl::StageTimers& timers);
+
+    const IsrDesc& desc() const { return desc_; }
+    glm::ivec2 coarseSize() const { return size_; }
+    float radiusPixels() const;  // the gather disc's radius in coarse pixels
+    // Coarse textures (RGBA32F, coarseSize()): position (w hit), normal (w depth along the
+    // camera's axis), radiance (w patch area), the raw gather (rgb irradiance, w occlusion) and
+    // what apply reads (the blurred gather, or the raw one without blur).
+    GLuint position() const { return position_.id(); }
+    GLuint normal() const { return normal_.id(); }
+    GLuint radiance() const { return radiance_.id(); }
+    GLuint gather() const { return gather_.id(); }
+    GLuint result() const { return desc_.blur > 0 ? blurred_.id() : gather_.id(); }
+
+private:
+    void resize(glm::ivec2 size);
+
+    IsrDesc desc_;
+    gl::Program downsample_, gather_program_, blur_, apply_;
+    glm::ivec2 size_{0};
+    gl::Handle position_, normal_, radiance_, albedo_, gather_, half_, blurred_;
+    gl::Handle coarseFbo_, gatherFbo_, halfFbo_, blurredFbo_, vao_;
+    glm::vec3 forward_{0.0f, 0.0f, -1.0f};
+};
+
+}  // namespace voxgi
