@@ -64,9 +64,6 @@ struct MethodInfo {
     std::string name;     // --method NAME
     std::string summary;  // one line for listings
     bool built = true;    // false: named by the design, not implemented yet (exit 3)
-    // Its indirect light already holds the sky seen directly (DDGI's probe rays that miss see
-    // the sky): the frame's sky_light pass is left out so the sky is not counted twice.
-    bool skyInIndirect = false;
     // Its settings: `gi.<section>.KEY`, declared once (gi/settings_table.h). Methods may share a
     // section (lpv and clpv).
     std::string section;

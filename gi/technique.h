@@ -51,7 +51,7 @@ inline glm::vec3 viewForward(const glm::mat4& viewProjection) {
 struct FrameInput {
     const Scene& scene;
     const SceneGpu& sceneGpu;  // the scene's GL buffers (draw() rasterizes every triangle)
-    int frameIndex = 0;        // 0 for the first frame after init
+    int frameIndex = 0;        // frames since init or the last resetAccumulation() (sampling patterns)
     gl::StageTimers& timers;   // bracket each pass: timers.begin(pass) ... end()
     const TechniquePlan& plan; // the passes to run (their names are the timer stages)
     // The sky-lighting volume when the frame plan has it (sky_volume), else null.

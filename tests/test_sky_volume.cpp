@@ -1,7 +1,8 @@
 // The sky-lighting volume (gi/sky/sky_volume.h) and the frame's sky_light pass: an open ground
 // under a constant sky gets pi L (and the pass shows albedo L), the inside of a closed box gets
-// nothing, a budgeted build equals a whole one, and the plan leaves the pass out where the sky is
-// counted elsewhere or absent, and only the bricks a surface's lookup reaches are stored.
+// nothing, a budgeted build equals a whole one, the plan leaves the pass out where the sky is
+// absent or turned off, only the bricks a surface's lookup reaches are stored, and DDGI's probes
+// carry only the sky's bounce.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -147,11 +148,48 @@ TEST_F(SkyLightPass, TheFrameShowsAlbedoTimesTheSkyOnOpenGround) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], cpu[k], 0.01f * cpu[k]);
 }
 
-TEST(SkyLightPlan, LeftOutWithoutSkyForDdgiAndWhenTurnedOff) {
+// DDGI in a frame that lights surfaces with the sky volume: its indirect layer holds only light
+// that bounced, as the path tracer's does. Open ground far from the box has almost none (it
+// was albedo x L, the sky's direct light, when the probes' missed rays saw the sky), and the
+// box's side gets the ground's sky light bounced: about rho_box rho_ground L / 2 from the half
+// of its view that is ground lit by the whole sky.
+TEST_F(SkyLightPass, DdgiCarriesOnlyTheSkysBounce) {
+    Scene s = groundUnderSky();
+    s.gi.set("ddgi.hysteresis", "0.5");
+    s.camera.eye = glm::vec3(6.0f, 3.0f, -6.0f);
+    s.camera.target = glm::vec3(7.0f, 0.0f, -7.0f);
+    const glm::vec3 rho = s.materials[0].albedo;
+    {
+        FrameRenderer r(s, FrameOptions{}, "ddgi");
+        ASSERT_TRUE(r.plan().runs("sky_light"));
+        for (int f = 0; f < 12; ++f) r.renderFrame();
+        const Image image = r.resolve();
+        const glm::vec3 ground = image.rgb("indirect", 16, 16);
+        EXPECT_LT(ground.b, 0.05f * rho.b * s.sky.radiance.b) << ground.b;
+        EXPECT_GT(image.rgb("direct", 16, 16).b, 0.9f * rho.b * s.sky.radiance.b);
+    }
+    s.camera.eye = glm::vec3(6.0f, 1.0f, 0.0f);
+    s.camera.target = glm::vec3(0.0f, 1.0f, 0.0f);
+    // Embree on the CPU, and the GPU's march through the voxelized scene (its sky lookup is
+    // shaders/common/sky_volume.glsl).
+    for (const char* trace : {"triangles", "volume"}) {
+        s.gi.set("ddgi.trace", trace);
+        FrameRenderer r(s, FrameOptions{}, "ddgi");
+        for (int f = 0; f < 12; ++f) r.renderFrame();
+        const Image image = r.resolve();
+        const glm::vec3 side = image.rgb("indirect", 16, 16), expected = 0.5f * rho * rho * s.sky.radiance;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_GT(side[k], 0.4f * expected[k]) << trace << " " << k;
+            EXPECT_LT(side[k], 1.2f * expected[k]) << trace << " " << k;
+        }
+    }
+}
+
+TEST(SkyLightPlan, LeftOutWithoutSkyAndWhenTurnedOff) {
     Scene s = groundUnderSky();
     EXPECT_TRUE(planFrame(s, "direct", 1).runs("sky_light"));
     EXPECT_TRUE(planFrame(s, "clpv", 1).runs("sky_light"));
-    EXPECT_FALSE(planFrame(s, "ddgi", 1).runs("sky_light"));  // its probes see the sky
+    EXPECT_TRUE(planFrame(s, "ddgi", 1).runs("sky_light"));  // its probes carry only the bounce
     s.gi.set("sky.light", "false");
     EXPECT_FALSE(planFrame(s, "direct", 1).runs("sky_light"));
     s.gi = GiSettings{};

@@ -93,8 +93,12 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
         gpuStart[stage] = s.gpuMs.size();
         cpuStart[stage] = s.cpuMs.size();
     }
-    Image warm;
-    if (run.warmupFrames > 0) warm = renderer.resolve();
+    // The timed frames start the frame sequence again (camera jitter, the sun's PCSS rotation,
+    // area-light points): every method's image then averages the same frames, so their direct
+    // light differs only by what the method adds. After different warm-ups (4 frames, or DDGI's
+    // until its field settles) direct light alone moved the full-image RMSE on Sponza at noon
+    // from 0.00706 to 0.00663 (frames 4-11 against 100-107).
+    renderer.resetAccumulation();
     std::vector<double> frameMs;
     std::map<std::string, std::vector<double>> stats;
     for (int f = 0; f < run.timedFrames; ++f) {
@@ -119,16 +123,6 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
         run.stages.emplace_back(stage, t);
     }
     run.image = renderer.resolve();
-    // The renderer only keeps the mean of all frames; the mean of the frames after the warm-up
-    // (a converging DDGI or LPV is not part of the result) is (n A_n - w A_w) / (n - w).
-    const int w = run.warmupFrames, n = w + run.timedFrames;
-    if (w > 0)
-        for (const char* name : {"beauty", "direct", "indirect"}) {
-            ImageLayer& all = run.image.layer(name);
-            const ImageLayer& early = *warm.find(name);
-            for (std::size_t i = 0; i < all.data.size(); ++i)
-                all.data[i] = (float(n) * all.data[i] - float(w) * early.data[i]) / float(n - w);
-        }
     return run;
 }
 

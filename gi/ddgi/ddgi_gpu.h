@@ -25,6 +25,10 @@ public:
     // volume); `scene` gives the lights and must outlive this.
     void traceInVolume(const NanoGeometry& geometry, const Scene& scene);
     bool shadesRays() const override { return volume_ != nullptr; }
+    // Where the volume trace finds the sky (VolumeShadeGl::setSky); nothing without it.
+    void setSky(bool atMisses, const SkyVolumeTexture* volume) {
+        if (volume_) volume_->setSky(atMisses, volume);
+    }
     // Tracing in the volume, nothing on the CPU reads the atlases each frame: border() leaves
     // them on the GPU and this reads them back when they are newer than the CPU's.
     void syncToCpu(ProbeField& field) override;

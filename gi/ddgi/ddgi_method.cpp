@@ -6,6 +6,7 @@
 #include "gi/ddgi/ddgi_debug_views.h"
 #include "gi/ddgi/ddgi_technique.h"
 #include "gi/method.h"
+#include "gi/sky/sky_volume.h"
 
 namespace voxgi {
 
@@ -26,8 +27,9 @@ TechniquePlan ddgiPlan(const Scene& scene) {
     TechniquePlan p;
     p.update.push_back({"ddgi.trace", std::to_string(probes) + " probes (" + grids.str() + ") x " + std::to_string(d.rays) +
                                           " rays (+" + std::to_string(d.fixedRayCount()) + " fixed) with Embree"});
-    p.update.push_back({"ddgi.shade", std::string("emission, sky, direct light by ") +
+    p.update.push_back({"ddgi.shade", std::string("emission, direct light by ") +
                                           (d.directLight == DdgiDirectLight::ShadowRays ? "shadow rays" : "occlusion probes") +
+                                          (scene.sky.enabled && readSkyVolumeDesc(scene.gi).light ? ", the sky volume's irradiance" : "") +
                                           " and the previous field's irradiance at every hit"});
     const std::string where = d.gpuBlend() ? "gl" : "cpu";
     p.update.push_back({"ddgi.blend", "irradiance and distance atlases on " + where});
@@ -73,7 +75,6 @@ std::vector<StressCase> ddgiStressCases() {
 MethodInfo ddgiMethod() {
     MethodInfo m;
     m.name = "ddgi";
-    m.skyInIndirect = true;
     m.summary = "dynamic diffuse GI: probe fields traced with Embree, blended on the GPU (seed 004, RTXGI)";
     declareSettings(m, ddgiSettings());
     m.memoryBytes = [](const GiSettings& gi) {

@@ -1,6 +1,7 @@
 #include "gi/ddgi/ddgi_system.h"
 
 #include <chrono>
+#include <cmath>
 
 #include "gi/ddgi/occlusion_probes.h"
 #include "gi/ddgi/probe_sampling.h"
@@ -91,7 +92,7 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
         occlusion = std::make_unique<OcclusionProbeVisibility>(previous, *shadowRays_);
     const LightVisibility& visibility = occlusion ? *occlusion : *shadowRays_;
     ShadeStats shade = shadeProbeRays(tracer_.scene(), visibility, previous, rays_, trace_, blendProbes, frame_,
-                                      grouping ? &hitCache_ : nullptr, shaded_, &shadeWorkspace_);
+                                      grouping ? &hitCache_ : nullptr, shaded_, &shadeWorkspace_, sky_);
     stats.cacheGroups = shade.cacheGroups;
     stats.cacheGroupsEvaluated = shade.groupsEvaluated;
     stats.shadeGroupsMs = shade.groupsMs;
@@ -156,12 +157,12 @@ void DdgiSystem::measureChange() {
     if (int(meanHistory_.size()) > kChangeWindow + 1) meanHistory_.pop_front();
     if (int(meanHistory_.size()) <= kChangeWindow) return;
     const std::vector<glm::vec3>&then = meanHistory_.front(), &current = meanHistory_.back();
-    double moved = 0.0, total = 0.0;
+    double total = 0.0, before = 0.0;
     for (std::size_t p = 0; p < current.size(); ++p) {
-        const glm::dvec3 d = glm::abs(glm::dvec3(current[p]) - glm::dvec3(then[p]));
-        moved += d.x + d.y + d.z;
         total += double(current[p].x) + double(current[p].y) + double(current[p].z);
+        before += double(then[p].x) + double(then[p].y) + double(then[p].z);
     }
+    const double moved = std::abs(total - before);
     // A dark field that stays dark has converged; one that went dark has not.
     fieldChange_ = total > 0.0 ? moved / total : (moved > 0.0 ? 1.0 : 0.0);
 }

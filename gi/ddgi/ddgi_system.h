@@ -51,6 +51,10 @@ public:
     // (scrollCentre). The CPU reference blends when backend is null.
     DdgiFrameStats update(glm::vec3 eye, BlendBackend* backend = nullptr, glm::vec3 forward = glm::vec3(0.0f));
 
+    // Where the probes find the sky from the next update on (hit_shading.h); by default misses
+    // see it.
+    void setSky(const ProbeSky& sky) { sky_ = sky; }
+
     ProbeField& field() { return *field_; }
     const ProbeField& field() const { return *field_; }
     const DdgiDesc& desc() const { return field_->desc(); }
@@ -60,11 +64,15 @@ public:
     const RaySet& lastRays() const { return rays_; }
     const ProbeTrace& lastTrace() const { return trace_; }
 
-    // How much the field still moves: sum over probes of |mean irradiance now - kChangeWindow
-    // updates ago| over the sum of mean irradiance now (colours summed); negative until
-    // kChangeWindow updates ran after trackChange() (off by default: it reads every probe's
+    // How much the field still moves: |total now - total kChangeWindow updates ago| over the
+    // total now, the total being every probe's mean irradiance summed (colours summed); negative
+    // until kChangeWindow updates ran after trackChange() (off by default: it reads every probe's
     // irradiance each update). The window is the default sleep interval, so a sleeping probe
-    // counts its updates too, and long enough that ray noise averages down.
+    // counts its updates too. The total, not each probe's change: a settled probe keeps the
+    // rotated rays' noise (hysteresis 0.97 leaves about 12 % of one update's), which a sum over
+    // probes of |change| measures forever (2-3 % on Sponza at noon, whose bounce-only probes see a
+    // few bright hits among dark ones) while the sum averages it out (0.1 %); a field that is
+    // still filling up rises everywhere and moves the total.
     static constexpr int kChangeWindow = 10;
     double fieldChange() const { return fieldChange_; }
     void trackChange() { trackChange_ = true; }
@@ -88,6 +96,7 @@ private:
     ProbeTrace trace_;
     ShadedRays shaded_;
     ShadeWorkspace shadeWorkspace_;
+    ProbeSky sky_;
     std::uint32_t frame_ = 0;
     std::deque<std::vector<glm::vec3>> meanHistory_;  // per-probe mean irradiance, oldest first
     double fieldChange_ = -1.0;

@@ -4,6 +4,7 @@
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/occupancy_query.h"
 #include "gi/raytrace/ray_tracer.h"
+#include "gi/sky/sky_volume_texture.h"
 #include "volumes/nano_geometry.h"
 
 namespace voxgi {
@@ -27,6 +28,11 @@ DdgiTechnique::DdgiTechnique(const Scene& scene, GeometryQuery query) {
 DdgiTechnique::~DdgiTechnique() = default;
 
 void DdgiTechnique::update(const FrameInput& input, const GBufferView& gbuffer) {
+    // The frame lights surfaces with the sky (its sky_light pass, or none with sky.light=false):
+    // the probes carry only light that bounced, the sky's among it, as the reference's indirect
+    // layer does.
+    system_->setSky({false, input.sky ? &input.sky->volume() : nullptr});
+    gpu_->setSky(false, input.sky);
     BlendBackend* backend = system_->desc().gpuBlend() ? gpu_.get() : nullptr;
     lastStats_ = system_->update(gbuffer.eye, backend, viewForward(gbuffer.viewProjection));
     // The system runs every stage each frame; the plan lists each one (ddgi_method.cpp).

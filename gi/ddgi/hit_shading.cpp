@@ -12,6 +12,7 @@
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/sampling/sequences.h"
+#include "gi/sky/sky_volume.h"
 #include "shaders/shared/constants.h"
 #include "shaders/shared/light_model.h"
 
@@ -77,6 +78,15 @@ struct ShadeContext {
 
     // Quad-light sample points of this frame (quadLightSamples).
     const std::vector<glm::vec2>& quadSamples;
+    const ProbeSky& sky;
+
+    // Irradiance at a hit from the previous field (times the energy factor) and the sky volume.
+    glm::vec3 gathered(glm::vec3 position, glm::vec3 normal, glm::vec3 toProbe) const {
+        glm::vec3 e(0.0f);
+        if (energy > 0.0f) e = energy * sampler.irradiance(position, normal, toProbe);
+        if (sky.volume) e += sky.volume->sampleIrradiance(position, normal);
+        return e;
+    }
 
     const ProbeSurfel* jobSurfels(std::size_t job) const { return &trace.at(probes[job], rays.fixedRays); }
     // The point on quad lights this ray's hit uses this frame (only quad lights read it).
@@ -179,10 +189,7 @@ std::int64_t evaluateGroups(const ShadeContext& c, const HitCache& cache, bool s
             const int ray = int(h - std::size_t(probe) * std::size_t(c.rays.blendRays));
             const glm::vec3 position = cache.representativePosition(g), normal = cache.representativeNormal(g);
             glm::vec4* v = &out.values[g * std::size_t(out.stride)];
-            v[0] = glm::vec4(c.energy > 0.0f
-                                 ? c.energy * c.sampler.irradiance(position, normal, -c.rays.blendDirection(ray))
-                                 : glm::vec3(0.0f),
-                             0.0f);
+            v[0] = glm::vec4(c.gathered(position, normal, -c.rays.blendDirection(ray)), 0.0f);
             const glm::vec2 u = c.quadSample(ray, probe);
             for (int l = 0; l < out.lights; ++l) {
                 v[1 + l] = glm::vec4(0.0f);
@@ -239,15 +246,18 @@ void groupProbeHits(HitCache& cache, const ProbeField& field, const RaySet& rays
 
 ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeSampler& previous,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
-                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out, ShadeWorkspace* workspace) {
+                          std::uint32_t frame, const HitCache* grouped, ShadedRays& out, ShadeWorkspace* workspace,
+                          const ProbeSky& sky) {
     const DdgiDesc& desc = previous.field().desc();
     const std::vector<glm::vec2> quadSamples = quadLightSamples(scene, rays.blendRays, frame);
     const std::vector<PreparedLight> prepared = prepareLights(scene);
     const ShadeContext c{scene,  visibility, previous, rays, trace, probes, prepared, frame, desc.energyPreservation,
-                         quadSamples};
-    // Misses see the sky along their ray (one lookup per blend direction, the same for every probe).
-    std::vector<glm::vec3> sky(std::size_t(rays.blendRays));
-    for (int i = 0; i < rays.blendRays; ++i) sky[std::size_t(i)] = scene.sky.radianceAt(rays.blendDirection(i));
+                         quadSamples, sky};
+    // Misses see the sky along their ray (one lookup per blend direction, the same for every
+    // probe), or nothing when the frame lights surfaces with the sky itself.
+    std::vector<glm::vec3> skyAtMiss(std::size_t(rays.blendRays), glm::vec3(0.0f));
+    if (sky.atMisses)
+        for (int i = 0; i < rays.blendRays; ++i) skyAtMiss[std::size_t(i)] = scene.sky.radianceAt(rays.blendDirection(i));
     const std::size_t hits = probes.size() * std::size_t(rays.blendRays);
     out.raysPerJob = rays.blendRays;
     out.values.resize(hits);
@@ -288,7 +298,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 const ProbeSurfel& s = surfels[i];
                 glm::vec4& o = out.values[job * perJob + i];
                 if (s.distance >= kMissDistance) {
-                    o = glm::vec4(sky[i], kMissDistance);
+                    o = glm::vec4(skyAtMiss[i], kMissDistance);
                     continue;
                 }
                 if (!shadedHit(s)) {
@@ -315,10 +325,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 int firstExact = 0;     // lights from here on are evaluated at this hit
                 unsigned untested = 0;  // and the shared ones set here
                 if (g == HitCache::kNone) {
-                    if (c.energy > 0.0f) {
-                        const glm::vec3 position = hitPosition();
-                        e = c.energy * previous.irradiance(position, s.normal, -rays.blendDirection(int(i)));
-                    }
+                    if (c.energy > 0.0f || sky.volume) e = c.gathered(hitPosition(), s.normal, -rays.blendDirection(int(i)));
                 } else {
                     // Shared lights without branches on the cosine (a hit faces a light or not
                     // about at random); the rare light the representative did not test goes

@@ -1,6 +1,7 @@
 // Radiance leaving each probe-ray hit toward its probe: emission, direct light (all light types,
-// physical units like the rasterizer) and the previous frame's probe irradiance (infinite
-// bounces) times the energy-preservation factor, all over a diffuse (Lambert) lobe.
+// physical units like the rasterizer), the sky's light (ProbeSky) and the previous frame's probe
+// irradiance (infinite bounces) times the energy-preservation factor, all over a diffuse
+// (Lambert) lobe.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,17 @@
 namespace voxgi {
 
 class RayTracer;
+class SkyVolume;
+
+// Where the probes find the sky. Alone (tests, benchmarks) the rays that miss bring the sky's
+// radiance, so the field holds the sky's direct light as well as its bounce. In a frame whose
+// plan lights every surface with the sky-lighting volume (the sky_light pass), the field must
+// hold only light that bounced, as the path tracer's indirect layer does: misses bring nothing
+// and hits are lit by the same volume, so the sky's light still bounces.
+struct ProbeSky {
+    bool atMisses = true;
+    const SkyVolume* volume = nullptr;  // hits add its irradiance; null: none
+};
 
 // Visibility of the lights seen from surface points; shadow rays by default. The occlusion-probe
 // mode plugs in here.
@@ -83,6 +95,6 @@ struct ShadeWorkspace {
 ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility, const ProbeSampler& previous,
                           const RaySet& rays, const ProbeTrace& trace, const std::vector<int>& probes,
                           std::uint32_t frame, const HitCache* grouped, ShadedRays& out,
-                          ShadeWorkspace* workspace = nullptr);
+                          ShadeWorkspace* workspace = nullptr, const ProbeSky& sky = {});
 
 }  // namespace voxgi

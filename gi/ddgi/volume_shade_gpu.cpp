@@ -1,6 +1,7 @@
 #include "gi/ddgi/volume_shade_gpu.h"
 
 #include "gi/ddgi/hit_shading.h"
+#include "gi/sky/sky_volume_texture.h"
 #include "gl/scene_gpu.h"
 #include "scenes/scene.h"
 #include "shaders/shared/light_model.h"
@@ -49,6 +50,14 @@ void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, std::size_t
     program_.set("uEnergy", field.desc().energyPreservation);
     glBindTextureUnit(kSkyTextureUnit, sky_.id());
     program_.set("uSkyTable", int(kSkyTextureUnit));
+    program_.set("uSkyAtMisses", skyAtMisses_ ? 1 : 0);
+    program_.set("uSkyVolumeLit", skyVolume_ ? 1 : 0);
+    if (skyVolume_) {
+        skyVolume_->bind(program_, kSkyVolumeUnit);
+    } else {  // unused, but samplers of different types may not share a unit
+        program_.set("uSkyVolume", kSkyVolumeUnit);
+        program_.set("uSkyBricks", kSkyVolumeUnit + 1);
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, quadSamples_.id());

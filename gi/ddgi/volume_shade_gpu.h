@@ -17,6 +17,7 @@ namespace voxgi {
 
 struct NanoGeometry;
 struct Scene;
+class SkyVolumeTexture;
 
 class VolumeShadeGl {
 public:
@@ -29,6 +30,12 @@ public:
                  std::uint32_t frame);
     // Shades every job's blend rays into the ray buffer bound at 2, with the jobs bound at 0
     // and the blend directions at 1; reads the previous field from the atlases and probe data.
+    // Where the rays find the sky (hit_shading.h's ProbeSky; `volume` is its GPU copy, bound
+    // while it lives).
+    void setSky(bool atMisses, const SkyVolumeTexture* volume) {
+        skyAtMisses_ = atMisses;
+        skyVolume_ = volume;
+    }
     void dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance, GLuint distance,
                   GLuint probeData);
 
@@ -39,6 +46,9 @@ private:
     NanoGeometryGl geometry_;
     gl::Handle origins_, lights_, quadSamples_, sky_;
     static constexpr GLuint kSkyTextureUnit = 6;  // 4 and 5: the probe atlases (bindProbeField)
+    static constexpr int kSkyVolumeUnit = 7;      // and 8: its brick index
+    bool skyAtMisses_ = true;
+    const SkyVolumeTexture* skyVolume_ = nullptr;
     std::size_t originsBytes_ = 0, lightsBytes_ = 0, quadBytes_ = 0;
     int lightCount_ = 0;
     bool quadLights_ = false;

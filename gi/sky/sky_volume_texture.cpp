@@ -9,7 +9,8 @@
 namespace voxgi {
 
 SkyVolumeTexture::SkyVolumeTexture(const SkyVolume& volume)
-    : origin_(volume.origin()), cellSize_(volume.cellSize()), dims_(volume.dims()), atlasColumns_(volume.atlasColumns()) {
+    : volume_(volume),
+      origin_(volume.origin()), cellSize_(volume.cellSize()), dims_(volume.dims()), atlasColumns_(volume.atlasColumns()) {
     const glm::ivec3 atlas = volume.atlasSize(), bricks = volume.brickDims();
     GLint limit = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &limit);

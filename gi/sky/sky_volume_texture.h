@@ -18,15 +18,19 @@ class SkyVolume;
 
 class SkyVolumeTexture {
 public:
-    // Uploads every stored brick of `volume` (call once it is complete). Needs a current GL
+    // Uploads every stored brick of `volume` (call once it is complete), which must outlive
+    // this. Needs a current GL
     // context; throws InputError naming sky.resolution when the atlas exceeds the GPU's 3D
     // texture size.
     explicit SkyVolumeTexture(const SkyVolume& volume);
     // Binds the atlas to `unit`, the index to `unit` + 1, and sets shaders/common/sky_volume.glsl's
     // uniforms in `program`.
     void bind(const gl::Program& program, int unit) const;
+    // The CPU volume it was made from (techniques that sample on the CPU: DDGI's probe hits).
+    const SkyVolume& volume() const { return volume_; }
 
 private:
+    const SkyVolume& volume_;
     gl::Handle atlas_, index_;
     glm::vec3 origin_{0.0f};
     float cellSize_ = 1.0f;

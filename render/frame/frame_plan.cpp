@@ -54,7 +54,6 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
     const bool emitters = hasEmission(scene), sky = scene.sky.enabled;
     if (!sky) skip("sky_light", "no sky");
     else if (scene.triangleCount() == 0) skip("sky_light", "no triangles");
-    else if (info.skyInIndirect) skip("sky_light", method + "'s indirect light holds the sky it sees");
     else if (const SkyVolumeDesc d = readSkyVolumeDesc(scene.gi); !d.light) skip("sky_light", "sky.light=false");
     else {
         add("sky_volume", "the sky's irradiance as 3-band SH, " + std::to_string(d.rays) + " Embree rays a cell, " +

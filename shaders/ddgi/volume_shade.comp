@@ -3,12 +3,14 @@
 // one blend job (workgroup y = job), written where blend.comp reads them: rgb radiance toward
 // the probe, a signed hit distance. Rays march the NanoVDB geometry volume; a front-face hit
 // reflects the frame's lights (shadow rays through the same volume) and the previous frame's
-// probe irradiance times ddgi.energy over a Lambert lobe, as the CPU reference does
+// probe irradiance times ddgi.energy and the sky volume's irradiance (when the frame lights
+// surfaces with it; misses then bring no sky) over a Lambert lobe, as the CPU reference does
 // (gi/ddgi/hit_shading.cpp). The hit is where the ray meets the plane of the surface in the
 // first occupied voxel (its mean normal and surface offset), within that voxel.
 #define NANO_GEOMETRY_BINDING 3
 #include "common/nano_geometry.glsl"
 #include "common/sky.glsl"
+#include "common/sky_volume.glsl"
 #include "ddgi/blend_common.glsl"
 #include "ddgi/sampling.glsl"
 #include "shared/constants.h"
@@ -26,6 +28,8 @@ uniform int uLightCount;
 uniform int uQuadSampleSets;  // kQuadSampleSets, or 0 without quad lights (the sample is then the centre)
 uniform float uMissDistance;
 uniform float uEnergy;
+uniform bool uSkyAtMisses;   // gi/ddgi/hit_shading.h, ProbeSky
+uniform bool uSkyVolumeLit;  // hits add common/sky_volume.glsl's irradiance
 // Shadow rays leave this many voxels off the hit along its normal, and stop short of the light:
 // a point or spot light may sit anywhere in an occupied voxel (a lamp's), which the ray enters
 // up to a voxel diagonal before it; a quad light lies on a voxelized surface (a ceiling) whose
@@ -44,7 +48,7 @@ void main() {
     float t;
     ivec3 voxel;
     if (!nanoFirstHit(origin, dir, 0.0, uMissDistance, t, voxel)) {
-        rayValues[out_] = vec4(skyRadiance(dir), uMissDistance);
+        rayValues[out_] = vec4(uSkyAtMisses ? skyRadiance(dir) : vec3(0.0), uMissDistance);
         return;
     }
     pnanovdb_readaccessor_t normals = nanoAccessor(uNanoNormalGrid);
@@ -77,5 +81,6 @@ void main() {
         e += incident.irradiance * c;
     }
     if (uEnergy > 0.0) e += uEnergy * ddgiSampleIrradiance(p, n, -dir);
+    if (uSkyVolumeLit) e += skyVolumeIrradiance(p, n);
     rayValues[out_] = vec4(albedo * kInvPi * e, t);
 }
