@@ -325,7 +325,7 @@ ShadeStats shadeProbeRays(const Scene& scene, const LightVisibility& visibility,
                 int firstExact = 0;     // lights from here on are evaluated at this hit
                 unsigned untested = 0;  // and the shared ones set here
                 if (g == HitCache::kNone) {
-                    if (c.energy > 0.0f || sky.volume) e = c.gathered(hitPosition(), s.normal, -rays.blendDirection(int(i)));
+                    e = c.gathered(hitPosition(), s.normal, -rays.blendDirection(int(i)));
                 } else {
                     // Shared lights without branches on the cosine (a hit faces a light or not
                     // about at random); the rare light the representative did not test goes

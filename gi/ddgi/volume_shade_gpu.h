@@ -28,14 +28,14 @@ public:
     // included), this frame's quad-light points and the scene's lights.
     void prepare(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
                  std::uint32_t frame);
-    // Shades every job's blend rays into the ray buffer bound at 2, with the jobs bound at 0
-    // and the blend directions at 1; reads the previous field from the atlases and probe data.
     // Where the rays find the sky (hit_shading.h's ProbeSky; `volume` is its GPU copy, bound
     // while it lives).
     void setSky(bool atMisses, const SkyVolumeTexture* volume) {
         skyAtMisses_ = atMisses;
         skyVolume_ = volume;
     }
+    // Shades every job's blend rays into the ray buffer bound at 2, with the jobs bound at 0
+    // and the blend directions at 1; reads the previous field from the atlases and probe data.
     void dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance, GLuint distance,
                   GLuint probeData);
 

@@ -9,8 +9,7 @@
 namespace voxgi {
 
 SkyVolumeTexture::SkyVolumeTexture(const SkyVolume& volume)
-    : volume_(volume),
-      origin_(volume.origin()), cellSize_(volume.cellSize()), dims_(volume.dims()), atlasColumns_(volume.atlasColumns()) {
+    : volume_(volume) {
     const glm::ivec3 atlas = volume.atlasSize(), bricks = volume.brickDims();
     GLint limit = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &limit);
@@ -32,10 +31,10 @@ void SkyVolumeTexture::bind(const gl::Program& program, int unit) const {
     glBindTextureUnit(GLuint(unit + 1), index_.id());
     program.set("uSkyVolume", unit);
     program.set("uSkyBricks", unit + 1);
-    program.set("uSkyOrigin", origin_);
-    program.set("uSkyCellSize", cellSize_);
-    program.set("uSkyDims", dims_);
-    program.set("uSkyAtlasColumns", atlasColumns_);
+    program.set("uSkyOrigin", volume_.origin());
+    program.set("uSkyCellSize", volume_.cellSize());
+    program.set("uSkyDims", volume_.dims());
+    program.set("uSkyAtlasColumns", volume_.atlasColumns());
 }
 
 }  // namespace voxgi
