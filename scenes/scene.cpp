@@ -46,32 +46,58 @@ std::uint8_t linearToSrgb(float linear) {
     return std::uint8_t(linear - t[hi - 1] <= t[hi] - linear ? hi - 1 : hi);
 }
 
-glm::vec3 sampleSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv) {
-    if (width <= 0 || height <= 0) return glm::vec3(1.0f);
-    // Texel centres at (i + 0.5) / width; rows stored top first, v = 0 is the bottom.
+namespace {
+// Where a bilinear lookup lands: the texel left of and above uv (texel centres at (i + 0.5) /
+// width, rows stored top first, v = 0 at the bottom) and the weights towards the next ones.
+struct BilinearFootprint {
+    int x0, y0;
+    float fx, fy;
+};
+BilinearFootprint bilinearFootprint(int width, int height, glm::vec2 uv) {
     float x = (uv.x - std::floor(uv.x)) * float(width) - 0.5f;
     float y = (1.0f - (uv.y - std::floor(uv.y))) * float(height) - 0.5f;
     int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    float fx = x - float(x0), fy = y - float(y0);
+    return {x0, y0, x - float(x0), y - float(y0)};
+}
+// Lookups step at most one texel past an edge, so one add or subtract wraps them (small mip
+// levels wrap on most lookups: no division there); non-finite uvs take the modulo.
+int wrapTexel(int i, int size) {
+    if (unsigned(i) >= unsigned(size)) i = i < 0 ? i + size : i - size;
+    if (unsigned(i) >= unsigned(size)) i = ((i % size) + size) % size;
+    return i;
+}
+}  // namespace
+
+glm::vec3 sampleSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv) {
+    if (width <= 0 || height <= 0) return glm::vec3(1.0f);
+    const BilinearFootprint f = bilinearFootprint(width, height, uv);
     const std::array<float, 256>& decode = srgbTable();
     auto texel = [&](int i, int j) {
-        // Lookups step at most one texel past an edge, so one add or subtract wraps them (small
-        // mip levels wrap on most lookups: no division there); non-finite uvs take the modulo.
-        if (unsigned(i) >= unsigned(width)) i = i < 0 ? i + width : i - width;
-        if (unsigned(j) >= unsigned(height)) j = j < 0 ? j + height : j - height;
-        if (unsigned(i) >= unsigned(width)) i = ((i % width) + width) % width;
-        if (unsigned(j) >= unsigned(height)) j = ((j % height) + height) % height;
-        const std::uint8_t* p = &rgba[(std::size_t(j) * std::size_t(width) + std::size_t(i)) * 4];
+        const std::uint8_t* p =
+            &rgba[(std::size_t(wrapTexel(j, height)) * std::size_t(width) + std::size_t(wrapTexel(i, width))) * 4];
         return glm::vec3(decode[p[0]], decode[p[1]], decode[p[2]]);
     };
-    glm::vec3 a = glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx);
-    glm::vec3 b = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx);
-    return glm::mix(a, b, fy);
+    glm::vec3 a = glm::mix(texel(f.x0, f.y0), texel(f.x0 + 1, f.y0), f.fx);
+    glm::vec3 b = glm::mix(texel(f.x0, f.y0 + 1), texel(f.x0 + 1, f.y0 + 1), f.fx);
+    return glm::mix(a, b, f.fy);
+}
+
+void prefetchSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv) {
+    if (width <= 0 || height <= 0) return;
+    const BilinearFootprint f = bilinearFootprint(width, height, uv);
+    const std::size_t x = std::size_t(wrapTexel(f.x0, width));
+    for (int row : {f.y0, f.y0 + 1})
+        __builtin_prefetch(&rgba[(std::size_t(wrapTexel(row, height)) * std::size_t(width) + x) * 4]);
 }
 
 glm::vec3 Texture::sampleLinear(glm::vec2 uv) const {
     if (rgba.size() < std::size_t(width) * std::size_t(height) * 4) return glm::vec3(1.0f);
     return sampleSrgbBilinear(rgba.data(), width, height, uv);
+}
+
+void Texture::prefetch(glm::vec2 uv) const {
+    if (rgba.size() < std::size_t(width) * std::size_t(height) * 4) return;
+    prefetchSrgbBilinear(rgba.data(), width, height, uv);
 }
 
 Bounds Scene::bounds() const {

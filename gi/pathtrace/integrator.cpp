@@ -202,6 +202,18 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
             break;
         }
         const Material& material = scene_.materials[hit.material];
+        // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
+        // direction in a sun's disc (gi/pathtrace/sampler.h). Their points are computed while
+        // the texels of the albedo load: that cache miss was most of a texture lookup's time.
+        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
+        tracer_.prefetchAlbedo(hit);
+        glm::vec3 uLight(0.0f), uBsdf(0.0f);
+        glm::vec2 uDisc(0.0f);
+        if (depth < maxBounces_) {
+            uLight = sampler.get3D(decision);
+            uDisc = sampler.get2D(decision + 4);
+            uBsdf = sampler.get3D(decision + 1);
+        }
         glm::vec3 albedo = tracer_.albedoAt(hit);
         if (depth == 0) {
             out.albedo = albedo;
@@ -223,24 +235,19 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
 
         glm::vec3 wo = -direction;
         Bsdf bsdf(material, albedo, wo, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
-        // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
-        // direction in a sun's disc (gi/pathtrace/sampler.h).
-        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
         if (bsdf.hasSmoothPart()) {
             // A light-vertex connection from the previous vertex could have made this path's
             // next-event samples of delta lights when that vertex sampled a smooth lobe.
             const float arrivalPdfArea = connecting && depth >= 1 && !previousDelta
                                              ? previousPdf * std::abs(glm::dot(hit.geometricNormal, direction)) / (hit.t * hit.t)
                                              : 0.0f;
-            deposit(depth + 1, throughput * sampleLights(bsdf, hit, sampler.get3D(decision), sampler.get2D(decision + 4),
-                                                                arrivalPdfArea, out.rays));
+            deposit(depth + 1, throughput * sampleLights(bsdf, hit, uLight, uDisc, arrivalPdfArea, out.rays));
             if (connecting && depth + 1 < maxBounces_)
                 deposit(depth + 2, throughput * connect(bsdf, hit, *lightVertices, sampler.get1D(decision + 3), out.rays));
         }
 
-        glm::vec3 u = sampler.get3D(decision + 1);
         BsdfSample s;
-        if (!bsdf.sample(u, s)) break;
+        if (!bsdf.sample(uBsdf, s)) break;
         throughput *= s.weight;
         out.scatterings = depth + 1;
         previousPdf = s.pdf;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -16,8 +17,18 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/raytrace/texture_pyramid.h"
+#include "scenes/memory_limit.h"
 
 namespace voxgi {
+
+namespace {
+// A triangle's vertices and unit geometric normal in one cache line: the hit record's chain of
+// misses (the index, then each vertex) was the most of its time on big scenes.
+struct alignas(64) TriangleCorners {
+    glm::vec3 a{0.0f}, b{0.0f}, c{0.0f};
+    glm::vec3 geometricNormal{0.0f};  // normalize(cross(b - a, c - a))
+};
+}  // namespace
 
 struct RayTracer::Impl {
     RTCDevice device = nullptr;
@@ -31,9 +42,10 @@ struct RayTracer::Impl {
     std::vector<float> texelScale;
     std::vector<std::size_t> meshFirst;  // set by the constructor
     std::size_t allTriangles = 0;        // over all meshes, degenerate ones included
-    std::once_flag surfacesOnce;
-    std::atomic<bool> surfacesBuilt{false};
-    std::vector<TriangleSurface> surfaces;  // per triangle, from meshFirst
+    // Per triangle, from meshFirst: what a hit record reads, one cache line each and no index
+    // to follow (built with the scene: every intersect() needs them).
+    std::vector<TriangleSurface> surfaces;
+    std::vector<TriangleCorners> corners;
     std::atomic<bool> logging{false};
     tbb::enumerable_thread_specific<std::vector<LoggedRay>> log;
     ~Impl() {
@@ -77,6 +89,28 @@ RayTracer::RayTracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scen
         impl_->meshFirst[m] = impl_->allTriangles;
         impl_->allTriangles += scene.meshes[m].triangleCount();
     }
+    requireMemory(double(impl_->allTriangles) * double(sizeof(TriangleSurface) + sizeof(TriangleCorners)),
+                  "ray tracer: hit records of " + std::to_string(impl_->allTriangles) + " triangles");
+    impl_->surfaces.resize(impl_->allTriangles);
+    impl_->corners.resize(impl_->allTriangles);
+    tbb::parallel_for(std::size_t(0), scene.meshes.size(), [&](std::size_t m) {
+        const Mesh& mesh = scene.meshes[m];
+        TriangleSurface* surface = &impl_->surfaces[impl_->meshFirst[m]];
+        TriangleCorners* corners = &impl_->corners[impl_->meshFirst[m]];
+        for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const std::uint32_t* tri = &mesh.indices[3 * t];
+            for (int k = 0; k < 3; ++k) {
+                if (!mesh.normals.empty()) surface[t].normals[k] = mesh.normals[tri[k]];
+                if (!mesh.uvs.empty()) surface[t].uvs[k] = mesh.uvs[tri[k]];
+            }
+            surface[t].material = mesh.materialIds[t];
+            TriangleCorners& k = corners[t];
+            k.a = mesh.positions[tri[0]];
+            k.b = mesh.positions[tri[1]];
+            k.c = mesh.positions[tri[2]];
+            k.geometricNormal = glm::normalize(glm::cross(k.b - k.a, k.c - k.a));
+        }
+    });
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
@@ -138,10 +172,11 @@ RawHit toRawHit(const RTCRayHit& rh) {
     return raw;
 }
 
-// The hit record: a chain of dependent loads (mesh, indices, vertices) and square roots, so
-// callers with many rays build them after tracing a batch. Written in place: a record built
-// aside and copied whole would be read back before its fields left the store buffer.
-void makeHit(const Scene& scene, const RawHit& raw, glm::vec3 d, RayHit& hit) {
+// The hit record: loads from two lines per triangle and square roots, so callers with many
+// rays build them after tracing a batch. Written in place: a record built aside and copied
+// whole would be read back before its fields left the store buffer.
+void makeHit(const Scene& scene, const TriangleSurface* surfaces, const TriangleCorners* corners,
+             const std::vector<std::size_t>& meshFirst, const RawHit& raw, glm::vec3 d, RayHit& hit) {
     hit = RayHit{};
     if (!raw.hit()) return;
     hit.hit = true;
@@ -149,16 +184,18 @@ void makeHit(const Scene& scene, const RawHit& raw, glm::vec3 d, RayHit& hit) {
     hit.mesh = raw.mesh;
     hit.triangle = raw.triangle;
     const Mesh& mesh = scene.meshes[hit.mesh];
-    const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hit.triangle)];
-    const glm::vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+    const std::size_t index = meshFirst[hit.mesh] + hit.triangle;
+    const TriangleCorners& k = corners[index];
+    const TriangleSurface& surface = surfaces[index];
+    const glm::vec3 &a = k.a, &b = k.b, &c = k.c;
     const float u = raw.u, v = raw.v, w = 1.0f - u - v;
     hit.position = w * a + u * b + v * c;
-    hit.geometricNormal = glm::normalize(glm::cross(b - a, c - a));
+    hit.geometricNormal = k.geometricNormal;
     hit.frontFace = glm::dot(hit.geometricNormal, d) < 0.0f;
     hit.shadingNormal = hit.geometricNormal;
     hit.smoothPosition = hit.position;
     if (!mesh.normals.empty()) {
-        const glm::vec3 &na = mesh.normals[tri[0]], &nb = mesh.normals[tri[1]], &nc = mesh.normals[tri[2]];
+        const glm::vec3 &na = surface.normals[0], &nb = surface.normals[1], &nc = surface.normals[2];
         glm::vec3 n = w * na + u * nb + v * nc;
         float len = glm::length(n);
         if (len > 0.0f && std::isfinite(len)) {
@@ -173,8 +210,8 @@ void makeHit(const Scene& scene, const RawHit& raw, glm::vec3 d, RayHit& hit) {
                 hit.smoothPosition = smooth;
         }
     }
-    if (!mesh.uvs.empty()) hit.uv = w * mesh.uvs[tri[0]] + u * mesh.uvs[tri[1]] + v * mesh.uvs[tri[2]];
-    hit.material = mesh.materialIds[hit.triangle];
+    if (!mesh.uvs.empty()) hit.uv = w * surface.uvs[0] + u * surface.uvs[1] + v * surface.uvs[2];
+    hit.material = surface.material;
 }
 }  // namespace
 
@@ -183,12 +220,12 @@ RayHit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tMin, float tMax) co
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RayHit hit;
-    makeHit(scene_, toRawHit(nearest(impl_->scene, context, o, d, tMin, tMax)), d, hit);
+    makeHit(scene_, impl_->surfaces.data(), impl_->corners.data(), impl_->meshFirst,
+            toRawHit(nearest(impl_->scene, context, o, d, tMin, tMax)), d, hit);
     return hit;
 }
 
 void RayTracer::traceFan(glm::vec3 o, const glm::vec3* d, int n, RawHit* hits, const TriangleSurface** surfaces) const {
-    if (surfaces && !impl_->surfacesBuilt.load(std::memory_order_acquire)) prepareSurfaces();
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     for (int i = 0; i < n; ++i) {
@@ -211,7 +248,9 @@ void RayTracer::intersectFan(glm::vec3 o, const glm::vec3* d, int n, RayHit* hit
     for (int first = 0; first < n; first += kBatch) {
         const int count = std::min(kBatch, n - first);
         traceFan(o, d + first, count, raw);
-        for (int i = 0; i < count; ++i) makeHit(scene_, raw[i], d[first + i], hits[first + i]);
+        for (int i = 0; i < count; ++i)
+            makeHit(scene_, impl_->surfaces.data(), impl_->corners.data(), impl_->meshFirst, raw[i], d[first + i],
+                    hits[first + i]);
     }
 }
 
@@ -292,27 +331,7 @@ void RayTracer::prepareCones() const {
     });
 }
 
-void RayTracer::prepareSurfaces() const {
-    std::call_once(impl_->surfacesOnce, [&] {
-        impl_->surfaces.resize(impl_->allTriangles);
-        tbb::parallel_for(std::size_t(0), scene_.meshes.size(), [&](std::size_t m) {
-            const Mesh& mesh = scene_.meshes[m];
-            TriangleSurface* out = &impl_->surfaces[impl_->meshFirst[m]];
-            for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-                const std::uint32_t* tri = &mesh.indices[3 * t];
-                for (int k = 0; k < 3; ++k) {
-                    if (!mesh.normals.empty()) out[t].normals[k] = mesh.normals[tri[k]];
-                    if (!mesh.uvs.empty()) out[t].uvs[k] = mesh.uvs[tri[k]];
-                }
-                out[t].material = mesh.materialIds[t];
-            }
-        });
-        impl_->surfacesBuilt.store(true, std::memory_order_release);
-    });
-}
-
 const TriangleSurface& RayTracer::surface(const RawHit& hit) const {
-    if (!impl_->surfacesBuilt.load(std::memory_order_acquire)) prepareSurfaces();
     return impl_->surfaces[impl_->meshFirst[hit.mesh] + hit.triangle];
 }
 
@@ -337,6 +356,11 @@ glm::vec3 RayTracer::albedoInCone(const RawHit& hit, const TriangleSurface& surf
                                   float spread) const {
     return coneAlbedo(surface.material, impl_->meshFirst[hit.mesh] + hit.triangle, surface.uv(hit.u, hit.v), hit.t,
                       glm::dot(hit.normal, direction) / glm::length(hit.normal), spread);
+}
+
+void RayTracer::prefetchAlbedo(const RayHit& hit) const {
+    const Material& m = scene_.materials[hit.material];
+    if (m.albedoTexture >= 0) scene_.textures[std::size_t(m.albedoTexture)].prefetch(hit.uv);
 }
 
 glm::vec3 RayTracer::albedoAt(const RayHit& hit) const {

@@ -95,11 +95,13 @@ public:
 
     // Material albedo at a hit, times the diffuse texture when there is one.
     glm::vec3 albedoAt(const RayHit& hit) const;
+    // Starts loading the texels albedoAt(hit) reads: a texture lookup's cache miss was most of
+    // its cost, and callers have other work to do before they need the value.
+    void prefetchAlbedo(const RayHit& hit) const;
     // The same averaged over the footprint of a ray cone of apex angle `spread` (radians) that
     // travelled hit.t along unit `direction` (texture mip pyramids, gi/raytrace/texture_pyramid.h).
     glm::vec3 albedoInCone(const RayHit& hit, glm::vec3 direction, float spread) const;
-    // The surface of a raw hit's triangle (the table is built on first use: 64 bytes per
-    // triangle of the scene).
+    // The surface of a raw hit's triangle (64 bytes per triangle of the scene, built with it).
     const TriangleSurface& surface(const RawHit& hit) const;
     // albedoInCone at a raw hit on `surface`, its triangle.
     glm::vec3 albedoInCone(const RawHit& hit, const TriangleSurface& surface, glm::vec3 direction, float spread) const;
@@ -109,7 +111,6 @@ public:
 
 private:
     void prepareCones() const;
-    void prepareSurfaces() const;
     glm::vec3 coneAlbedo(std::uint32_t material, std::size_t triangle, glm::vec2 uv, float t, float cosine,
                          float spread) const;
     struct Impl;

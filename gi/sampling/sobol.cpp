@@ -42,57 +42,28 @@ Directions makeDirections() {
 
 const Directions kDirections = makeDirections();
 
-
 }  // namespace
 
-std::uint32_t reverseBits(std::uint32_t x) {
-    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
-    return __builtin_bswap32(x);
-}
-
 namespace {
-// The generator matrices in bit-reversed form, applied a byte of the reversed index at a time:
-// tables[d][byte][value] is the reversed xor of the direction numbers that the set bits of
-// `value` select there (reversed bit j is the index's bit 31 - j). 16 KiB in all.
-using ByteTables = std::array<std::array<std::array<std::uint32_t, 256>, 4>, kSobolDimensions>;
-ByteTables makeReversedTables() {
-    ByteTables t{};
+SobolReversedTables makeReversedTables() {
+    SobolReversedTables r{};
     for (int d = 0; d < kSobolDimensions; ++d)
         for (int byte = 0; byte < 4; ++byte)
             for (std::uint32_t value = 0; value < 256; ++value) {
                 std::uint32_t x = 0;
                 for (int bit = 0; bit < 8; ++bit)
                     if ((value >> bit) & 1u) x ^= kDirections[std::size_t(d)][std::size_t(31 - (8 * byte + bit))];
-                t[std::size_t(d)][std::size_t(byte)][value] = reverseBits(x);
+                r.t[d][byte][value] = reverseBits(x);
             }
-    return t;
+    return r;
 }
-const ByteTables kReversedTables = makeReversedTables();
 }  // namespace
 
-
-std::uint32_t sobolReversed(std::uint32_t reversedIndex, int dimension) {
-    const auto& t = kReversedTables[std::size_t(dimension)];
-    return t[0][reversedIndex & 0xFFu] ^ t[1][(reversedIndex >> 8) & 0xFFu] ^ t[2][(reversedIndex >> 16) & 0xFFu] ^
-           t[3][reversedIndex >> 24];
-}
+// Built after kDirections (above, in this translation unit); readers run after static
+// initialisation.
+const SobolReversedTables kSobolReversedTables = makeReversedTables();
 
 std::uint32_t sobol(std::uint32_t index, int dimension) { return reverseBits(sobolReversed(reverseBits(index), dimension)); }
-
-std::uint32_t owenPermutationReversed(std::uint32_t x, std::uint32_t seed) {
-    // Every step changes a bit only as a function of the bits below it (addition, and xor with
-    // a product by an even constant): in reversed order that is exactly Owen's nesting, each
-    // digit flipped by a function of the digits above it (Laine and Karras 2011; the
-    // multipliers are Vegdahl's, which pass the avalanche tests).
-    x += seed;
-    x ^= x * 0x6c50b47cu;
-    x ^= x * 0xb82f1e52u;
-    x ^= x * 0xc7afe638u;
-    x ^= x * 0x8d22f6e6u;
-    return x;
-}
 
 std::uint32_t nestedUniformScramble(std::uint32_t x, std::uint32_t seed) {
     return reverseBits(owenPermutationReversed(reverseBits(x), seed));
