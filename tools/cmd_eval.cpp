@@ -32,7 +32,7 @@ const char* kUsage =
     "  --spp: reference samples per pixel (default 256); --cache: reference cache (default DIR/cache)\n"
     "  --frames: frames accumulated per run (default the scene's, at least warm-up + 5); --warmup: untimed frames (4)\n"
     "  --converge: methods whose light builds up over frames (ddgi) warm up until it changes less than this\n"
-    "    relative amount over their window (0.01), or for --max-warmup frames (300)";
+    "    relative amount over their window (0.002), or for --max-warmup frames (300)";
 
 std::string sceneName(const std::string& argument) {
     std::string stem = std::filesystem::path(argument).stem().string();
@@ -147,7 +147,7 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
         throw InputError("--reference " + refArg + ": a reference file fits one scene; use auto for several");
     const int spp = args.integer("--spp", 256, 1, 1 << 20);
     const int warmup = args.integer("--warmup", 4, 0, 1 << 16);
-    const double convergeBelow = args.number("--converge", 0.01, 0.0, 1.0);
+    const double convergeBelow = args.number("--converge", 0.002, 0.0, 1.0);
     const int maxWarmup = args.integer("--max-warmup", 300, 0, 1 << 20);
     const std::string cacheDir = args.value("--cache", dir + "/cache");
 

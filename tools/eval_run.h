@@ -40,7 +40,7 @@ struct RenderSettings {
     int warmup = 0;             // first frames left out of the timing and of the image
     // Temporal techniques warm up until their light state changes less than this over their
     // window (at least `warmup` frames), or for maxWarmup frames.
-    double convergeBelow = 0.01;
+    double convergeBelow = 0.002;
     int maxWarmup = 300;
 };
 
