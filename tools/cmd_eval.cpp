@@ -10,13 +10,14 @@
 #include <sstream>
 
 #include "gi/methods.h"
-#include "gi/metrics/flip.h"
 #include "gl/context.h"
 #include "render/frame/frame_renderer.h"
 #include "scenes/errors.h"
 #include "tools/commands.h"
 #include "tools/eval_report.h"
 #include "tools/eval_stability.h"
+#include "tools/eval_views.h"
+#include "render/view/view_sampler.h"
 #include "tools/scene_arg.h"
 
 namespace voxgi::cli {
@@ -27,31 +28,21 @@ const char* kUsage =
     "voxgi eval SCENE... -o DIR [--methods NAME,...] [--presets low,medium,high]\n"
     "       [--reference REF.exr | auto] [--spp N] [--cache DIR] [--frames N] [--warmup N] [--converge EPS]\n"
     "       [--max-warmup N] [--width W --height H] [--set section.key=value]...\n"
+    "       [--views N | --views VIEWS.json] [--view-seed S]\n"
     "  voxgi eval --stability -o DIR [--cases NAME,...]\n"
     "  --methods: default every built method; --presets: each method's (voxgi methods NAME), one run for a method with none\n"
     "  --spp: reference samples per pixel (default 256); --cache: reference cache (default DIR/cache)\n"
     "  --frames: frames accumulated per run (default the scene's, at least warm-up + 5); --warmup: untimed frames (4)\n"
     "  --converge: methods whose light builds up over frames (ddgi) warm up until it changes less than this\n"
-    "    relative amount over their window (0.002), or for --max-warmup frames (300)";
+    "    relative amount over their window (0.002), or for --max-warmup frames (300)\n"
+    "  --views: judge over N camera views drawn in the scene's free space (seed --view-seed, default 1), or over\n"
+    "    the camera keys of a viewer script; each view has its own cached reference; writes views.md/json/csv";
 
 std::string sceneName(const std::string& argument) {
     std::string stem = std::filesystem::path(argument).stem().string();
     for (char& c : stem)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
     return stem.empty() ? "scene" : stem;
-}
-
-// Error 0 stays black, rising through red and yellow to white at 1 (or above).
-void writeFlipMap(const std::string& path, const Image& test, const Image& reference) {
-    std::vector<float> e = flip::hdrFlip(test.find("beauty")->data, reference.find("beauty")->data,
-                                         reference.width(), reference.height()).error;
-    std::vector<std::uint8_t> rgb(3 * e.size());
-    for (std::size_t i = 0; i < e.size(); ++i) {
-        float v = std::clamp(e[i], 0.0f, 1.0f);
-        float c[3] = {std::sqrt(v), v, v * v * v};
-        for (int k = 0; k < 3; ++k) rgb[3 * i + std::size_t(k)] = std::uint8_t(std::lround(255.0f * c[k]));
-    }
-    writePngRgb8(path, reference.width(), reference.height(), rgb);
 }
 
 // The centre half of each image, side by side, tone-mapped as the previews.
@@ -127,6 +118,49 @@ EvalRow measure(const std::string& method, const Preset& preset, MethodRun run, 
     return row;
 }
 
+// --views: N views drawn per scene, or the camera keys of a script (one scene).
+int runViewsEvaluation(const Args& args, const std::string& dir, const std::vector<Scene>& scenes,
+                       const std::vector<std::string>& methodNames, const std::vector<std::string>& presetNames, int spp,
+                       int warmup, double convergeBelow, int maxWarmup, const std::string& cacheDir, const ReportInfo& info) {
+    const std::string viewsArg = args.value("--views", "");
+    const bool counted = !viewsArg.empty() && std::all_of(viewsArg.begin(), viewsArg.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+    if (!counted && scenes.size() != 1) throw InputError("--views " + viewsArg + ": a views file fits one scene; give a count for several");
+    const int count = counted ? args.integer("--views", 0, 1, 100000) : 0;
+    const auto seed = std::uint64_t(args.integer("--view-seed", 1, 0, 1 << 30));
+    std::vector<ViewsEval> results;
+    for (std::size_t si = 0; si < scenes.size(); ++si) {
+        const Scene& scene = scenes[si];
+        const std::string name = sceneName(args.positional()[si]);
+        view::ViewSampling sampling;
+        sampling.count = count;
+        sampling.seed = seed;
+        std::printf("%s: %s views...\n", name.c_str(), counted ? "drawing" : "reading");
+        std::fflush(stdout);
+        const std::vector<Camera> views = counted ? view::sampleViews(scene, sampling) : view::readViews(viewsArg, scene);
+        ViewsJob job;
+        for (const std::string& method : methodNames)
+            for (const Preset& preset : presetsFor(findMethod(method), presetNames)) job.runs.push_back({method, preset});
+        job.settings.width = scene.camera.width;
+        job.settings.height = scene.camera.height;
+        job.settings.warmup = warmup;
+        job.settings.frames = args.integer("--frames", std::max(defaultFrameCount(scene), warmup + 5), 1, 1 << 20);
+        job.settings.convergeBelow = convergeBelow;
+        job.settings.maxWarmup = maxWarmup;
+        job.spp = spp;
+        job.cacheDir = cacheDir;
+        std::filesystem::create_directories(dir + "/" + name);
+        ViewsEval e = evaluateViews(scene, name, views, job, dir);
+        e.source = args.positional()[si];
+        e.viewsFile = name + "/views.json";
+        view::writeViews(dir + "/" + e.viewsFile, views);
+        results.push_back(std::move(e));
+    }
+    const std::vector<std::string> plots = writeViewsReport(dir, results, info);
+    std::printf("wrote %s/views.md, views.json, views.csv%s\n", dir.c_str(),
+                info.gnuplot ? (" and " + std::to_string(plots.size()) + " plots").c_str() : " (gnuplot not found: no plots)");
+    return kOk;
+}
+
 int runEvaluation(const Args& args, const std::string& dir, const std::vector<std::string>& argv) {
     if (args.positional().empty()) throw InputError("give at least one SCENE; usage: " + usageLine(kUsage));
     std::string allBuilt;
@@ -150,6 +184,9 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
     const double convergeBelow = args.number("--converge", 0.002, 0.0, 1.0);
     const int maxWarmup = args.integer("--max-warmup", 300, 0, 1 << 20);
     const std::string cacheDir = args.value("--cache", dir + "/cache");
+    const bool views = args.has("--views");
+    if (views && refArg != "auto") throw InputError("--reference: each of --views has its own reference; leave it auto");
+    if (!views && args.has("--view-seed")) throw InputError("--view-seed: only with --views");
 
     std::vector<Scene> scenes;
     for (const std::string& s : args.positional()) {
@@ -165,6 +202,9 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
     info.gnuplot = gnuplotAvailable();
     info.command = "voxgi eval";
     for (const std::string& a : argv) info.command += " " + a;
+
+    if (views) return runViewsEvaluation(args, dir, scenes, methodNames, presetNames, spp, warmup, convergeBelow, maxWarmup,
+                                         cacheDir, info);
 
     std::vector<SceneEval> results;
     for (std::size_t si = 0; si < scenes.size(); ++si) {
@@ -234,7 +274,7 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
 int runEval(const std::vector<std::string>& argv) {
     Args args(argv,
               {"-o", "--methods", "--presets", "--reference", "--spp", "--cache", "--frames", "--warmup", "--converge",
-               "--max-warmup", "--width", "--height", "--set", "--cases"},
+               "--max-warmup", "--width", "--height", "--set", "--cases", "--views", "--view-seed"},
               {"--stability"}, {"--set"});
     auto out = args.value("-o");
     if (!out) throw InputError("-o DIR is required; usage: " + usageLine(kUsage));

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gi/metrics/flip.h"
 #include "scenes/atomic_file.h"
 #include "scenes/errors.h"
 
@@ -28,6 +29,27 @@ glm::dvec3 layerMean(const Image& image, const std::string& layer) {
             count[int(i % 3)] += 1.0;
         }
     return sum / glm::max(count, glm::dvec3(1.0));
+}
+
+// Error 0 stays black, rising through red and yellow to white at 1 (or above).
+void writeFlipMap(const std::string& path, const Image& test, const Image& reference) {
+    std::vector<float> e = flip::hdrFlip(test.find("beauty")->data, reference.find("beauty")->data,
+                                         reference.width(), reference.height()).error;
+    std::vector<std::uint8_t> rgb(3 * e.size());
+    for (std::size_t i = 0; i < e.size(); ++i) {
+        float v = std::clamp(e[i], 0.0f, 1.0f);
+        float c[3] = {std::sqrt(v), v, v * v * v};
+        for (int k = 0; k < 3; ++k) rgb[3 * i + std::size_t(k)] = std::uint8_t(std::lround(255.0f * c[k]));
+    }
+    writePngRgb8(path, reference.width(), reference.height(), rgb);
+}
+
+std::string formatNumber(double v, const char* format) {
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, format, v);
+    return buf;
 }
 
 bool gnuplotAvailable() { return std::system("gnuplot -e 'exit' >/dev/null 2>&1") == 0; }
@@ -50,13 +72,6 @@ std::vector<std::size_t> paretoFront(const std::vector<double>& time, const std:
 
 namespace {
 
-std::string fmt(double v, const char* f = "%.4g") {
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, v);
-    return buf;
-}
 
 nlohmann::json metricsJson(const ImageMetrics& m) { return nlohmann::json::parse(toJson(m), nullptr, false); }
 
@@ -65,11 +80,11 @@ std::string label(const EvalRow& r) { return r.preset == "default" ? r.method : 
 // Temporal rows: frames and seconds until the light settled, or the cap they hit.
 std::string convergedColumn(const EvalRow& r) {
     if (!r.temporal) return "-";
-    return (r.converged ? "" : "no, ") + std::to_string(r.warmupFrames) + " fr, " + fmt(r.convergeMs / 1000.0, "%.1f") + " s";
+    return (r.converged ? "" : "no, ") + std::to_string(r.warmupFrames) + " fr, " + formatNumber(r.convergeMs / 1000.0, "%.1f") + " s";
 }
 
 // An oracle's row says so: it saw the answer.
-std::string methodColumn(const EvalRow& r) { return r.oracle ? r.method + " (oracle)" : r.method; }
+std::string methodColumn(const EvalRow& r) { return r.oracle ? r.method + " (oracle fit)" : r.method; }
 
 std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& info,
                      const std::vector<std::string>& plots) {
@@ -85,23 +100,23 @@ std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& inf
     for (const SceneEval& s : scenes) {
         md << "## " << s.name << "\n\n";
         md << s.width << "x" << s.height << ", reference: " << s.referenceSpp << " spp path traced in "
-           << fmt(s.referenceSeconds, "%.1f") << " s" << (s.referenceCached ? " (reused from cache)" : "")
-           << ". Reference against itself: RMSE " << fmt(s.selfFull.rmse) << ", FLIP " << fmt(s.selfFull.flip)
-           << " (full), RMSE " << fmt(s.selfIndirect.rmse) << " (indirect).\n\n";
+           << formatNumber(s.referenceSeconds, "%.1f") << " s" << (s.referenceCached ? " (reused from cache)" : "")
+           << ". Reference against itself: RMSE " << formatNumber(s.selfFull.rmse) << ", FLIP " << formatNumber(s.selfFull.flip)
+           << " (full), RMSE " << formatNumber(s.selfIndirect.rmse) << " (indirect).\n\n";
         md << "| method | preset | frame ms | converged | RMSE full | relMSE full | FLIP full | RMSE indirect | relMSE indirect | "
               "FLIP indirect | settings |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
         for (const EvalRow& r : s.rows)
-            md << "| " << methodColumn(r) << " | " << r.preset << " | " << fmt(r.frameMs, "%.1f") << " | "
+            md << "| " << methodColumn(r) << " | " << r.preset << " | " << formatNumber(r.frameMs, "%.1f") << " | "
                << convergedColumn(r) << " | "
-               << fmt(r.full.rmse) << " | " << fmt(r.full.relMse) << " | " << fmt(r.full.flip) << " | "
-               << fmt(r.indirect.rmse) << " | " << fmt(r.indirect.relMse) << " | " << fmt(r.indirect.flip) << " | "
+               << formatNumber(r.full.rmse) << " | " << formatNumber(r.full.relMse) << " | " << formatNumber(r.full.flip) << " | "
+               << formatNumber(r.indirect.rmse) << " | " << formatNumber(r.indirect.relMse) << " | " << formatNumber(r.indirect.flip) << " | "
                << (r.oracle ? "fitted to the reference: " + r.fitted : (r.settings.empty() ? "-" : r.settings))
                << " |\n";
         md << "\nStage medians (GPU ms / CPU ms):\n\n";
         for (const EvalRow& r : s.rows) {
             md << "- " << label(r) << ":";
             for (const auto& [stage, t] : r.stages)
-                md << " " << stage << " " << fmt(t.gpuMs, "%.2f") << "/" << fmt(t.cpuMs, "%.2f");
+                md << " " << stage << " " << formatNumber(t.gpuMs, "%.2f") << "/" << formatNumber(t.cpuMs, "%.2f");
             md << "\n";
         }
         md << "\n";
@@ -160,12 +175,12 @@ std::string csv(const std::vector<SceneEval>& scenes) {
          "flip_indirect,reference_spp,reference_seconds,warmup_frames,converged,converge_ms\n";
     for (const SceneEval& s : scenes)
         for (const EvalRow& r : s.rows)
-            c << s.name << "," << r.method << "," << r.preset << "," << fmt(r.frameMs, "%.4f") << ","
-              << fmt(r.full.rmse, "%.6g") << "," << fmt(r.full.relMse, "%.6g") << "," << fmt(r.full.flip, "%.6g")
-              << "," << fmt(r.full.ssim, "%.6g") << "," << fmt(r.indirect.rmse, "%.6g") << ","
-              << fmt(r.indirect.relMse, "%.6g") << "," << fmt(r.indirect.flip, "%.6g") << "," << s.referenceSpp << ","
-              << fmt(s.referenceSeconds, "%.3f") << "," << r.warmupFrames << ","
-              << (r.temporal ? (r.converged ? "yes" : "no") : "-") << "," << fmt(r.convergeMs, "%.1f") << "\n";
+            c << s.name << "," << r.method << "," << r.preset << "," << formatNumber(r.frameMs, "%.4f") << ","
+              << formatNumber(r.full.rmse, "%.6g") << "," << formatNumber(r.full.relMse, "%.6g") << "," << formatNumber(r.full.flip, "%.6g")
+              << "," << formatNumber(r.full.ssim, "%.6g") << "," << formatNumber(r.indirect.rmse, "%.6g") << ","
+              << formatNumber(r.indirect.relMse, "%.6g") << "," << formatNumber(r.indirect.flip, "%.6g") << "," << s.referenceSpp << ","
+              << formatNumber(s.referenceSeconds, "%.3f") << "," << r.warmupFrames << ","
+              << (r.temporal ? (r.converged ? "yes" : "no") : "-") << "," << formatNumber(r.convergeMs, "%.1f") << "\n";
     return c.str();
 }
 
@@ -177,14 +192,14 @@ std::vector<std::string> plot(const std::string& dir, const SceneEval& s) {
     data << "# label frame_ms flip_full rmse_indirect\n";
     std::vector<double> time, error;
     for (const EvalRow& r : s.rows) {
-        data << label(r) << " " << fmt(std::max(r.frameMs, 1e-3), "%.6g") << " " << fmt(r.full.flip, "%.6g") << " "
-             << fmt(r.indirect.rmse, "%.6g") << "\n";
+        data << label(r) << " " << formatNumber(std::max(r.frameMs, 1e-3), "%.6g") << " " << formatNumber(r.full.flip, "%.6g") << " "
+             << formatNumber(r.indirect.rmse, "%.6g") << "\n";
         time.push_back(r.frameMs);
         error.push_back(r.full.flip);
     }
     std::ostringstream front;
     for (std::size_t i : paretoFront(time, error))
-        front << fmt(std::max(time[i], 1e-3), "%.6g") << " " << fmt(error[i], "%.6g") << "\n";
+        front << formatNumber(std::max(time[i], 1e-3), "%.6g") << " " << formatNumber(error[i], "%.6g") << "\n";
     // Paths relative to the report folder, where gnuplot runs, so the folder can move. gnuplot
     // reads its inputs from disk and writes the PNGs itself: these files cannot wait for the
     // command's outputs to be committed together.

@@ -50,6 +50,11 @@ std::vector<std::string> writeEvalReport(const std::string& dir, const std::vect
 
 // Per-colour mean of an RGB layer (finite values only).
 glm::dvec3 layerMean(const Image& image, const std::string& layer);
+// The HDR-FLIP map of test's beauty layer against the reference's as a PNG: error 0 black,
+// rising through red and yellow to white at 1 (or above).
+void writeFlipMap(const std::string& path, const Image& test, const Image& reference);
+// printf-formatted, with nan and inf spelled out.
+std::string formatNumber(double v, const char* format = "%.4g");
 // Whether `gnuplot` runs.
 bool gnuplotAvailable();
 // Points (x = time, y = error) on the lower-left Pareto front, sorted by time: no other point is

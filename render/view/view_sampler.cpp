@@ -1,0 +1,137 @@
+#include "render/view/view_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "gi/raytrace/ray_tracer.h"
+#include "gi/sampling/hash.h"
+#include "render/view/view_script.h"
+#include "scenes/atomic_file.h"
+#include "scenes/errors.h"
+#include "volumes/geometry_volume.h"
+
+namespace voxgi::view {
+
+namespace {
+
+// A counter-based stream of uniform numbers in [0, 1): the n-th number of `key` is a hash.
+class Uniforms {
+public:
+    explicit Uniforms(std::uint64_t key) : key_(mix64(key ^ 0x5EEDull)) {}
+    float next() { return float(mix64(key_ + 0x9E3779B97F4A7C15ull * ++n_) >> 40) * (1.0f / 16777216.0f); }
+    glm::vec3 direction() {
+        const float z = 1.0f - 2.0f * next(), phi = 6.28318530718f * next();
+        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        return {r * std::cos(phi), r * std::sin(phi), z};
+    }
+
+private:
+    std::uint64_t key_;
+    std::uint64_t n_ = 0;
+};
+
+// Probe rays in a fixed Fibonacci spiral: the same directions for every eye.
+std::vector<glm::vec3> probeDirections(int n) {
+    std::vector<glm::vec3> d;
+    for (int i = 0; i < n; ++i) {
+        const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n), phi = 2.39996322973f * float(i);
+        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        d.push_back({r * std::cos(phi), r * std::sin(phi), z});
+    }
+    return d;
+}
+
+bool clearAround(const SparseGeometryVolume& occupancy, glm::ivec3 ijk) {
+    for (int z = -1; z <= 1; ++z)
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x)
+                if (occupancy.occupied(ijk + glm::ivec3(x, y, z))) return false;
+    return true;
+}
+
+}  // namespace
+
+std::vector<Camera> sampleViews(const Scene& scene, const ViewSampling& sampling) {
+    std::vector<Camera> views;
+    if (sampling.count <= 0) return views;
+    const Bounds bounds = scene.bounds();
+    if (!bounds.valid()) throw InputError("--views: the scene has no geometry to place views in");
+    const glm::vec3 extent = bounds.extent();
+    const float longest = std::max(extent.x, std::max(extent.y, extent.z));
+    if (!(longest > 0.0f)) throw InputError("--views: the scene's geometry is flat or a point");
+    VoxelizeSettings settings;
+    settings.voxelSize = longest / float(std::max(sampling.voxelsAcross, 4));
+    const SparseGeometryVolume occupancy = voxelizeScene(scene, settings);
+    const RayTracer tracer(scene);
+    const std::vector<glm::vec3> probes = probeDirections(64);
+    const glm::vec3 up = glm::normalize(scene.camera.up);
+    const float diagonal = glm::length(extent);
+
+    Uniforms u(sampling.seed);
+    const long long maxCandidates = 400LL * sampling.count;
+    for (long long candidate = 0; candidate < maxCandidates && int(views.size()) < sampling.count; ++candidate) {
+        // An eye in the scene's box, at least a voxel from every surface.
+        const glm::vec3 eye = bounds.min + glm::vec3(u.next(), u.next(), u.next()) * extent;
+        if (!clearAround(occupancy, occupancy.voxelAt(eye))) continue;
+        int hits = 0, backFaces = 0;
+        for (const glm::vec3& d : probes) {
+            const RayHit h = tracer.intersect(eye, d);
+            if (!h.hit) continue;
+            ++hits;
+            backFaces += h.frontFace ? 0 : 1;
+        }
+        if (float(hits) < sampling.minSeenFraction * float(probes.size()) ||
+            float(backFaces) > sampling.maxBackFaceFraction * float(hits))
+            continue;
+        // A target: the front face some random direction meets, two voxels away or more, not
+        // straight above or below (the camera keeps the scene's up).
+        for (int attempt = 0; attempt < 16; ++attempt) {
+            const glm::vec3 d = u.direction();
+            if (std::abs(glm::dot(d, up)) > 0.9f) continue;
+            const RayHit h = tracer.intersect(eye, d);
+            // Far enough to frame part of the scene, not a patch of the nearest wall.
+            if (!h.hit || !h.frontFace || h.t < std::max(2.0f * settings.voxelSize, sampling.minTargetDistance * longest))
+                continue;
+            Camera c = scene.camera;
+            c.eye = eye;
+            c.target = h.position;
+            c.farPlane = std::max(c.farPlane, diagonal);
+            views.push_back(c);
+            break;
+        }
+    }
+    if (int(views.size()) < sampling.count)
+        throw InputError("--views " + std::to_string(sampling.count) + ": found only " + std::to_string(views.size()) +
+                         " views in the scene's free space after " + std::to_string(maxCandidates) + " candidate eyes");
+    return views;
+}
+
+std::vector<Camera> readViews(const std::string& path, const Scene& scene) {
+    const ViewScript script = ViewScript::load(path);
+    if (script.keys().empty()) throw InputError(path + ": no camera keys (each key is one view)");
+    std::vector<Camera> views;
+    for (const CameraKey& k : script.keys()) {
+        Camera c = scene.camera;
+        c.eye = k.eye;
+        c.target = k.target;
+        views.push_back(c);
+    }
+    return views;
+}
+
+void writeViews(const std::string& path, const std::vector<Camera>& views) {
+    std::ostringstream out;
+    out.precision(9);
+    out << "{\"keys\": [\n";
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const Camera& c = views[i];
+        out << "  {\"frame\": " << i << ", \"eye\": [" << c.eye.x << ", " << c.eye.y << ", " << c.eye.z
+            << "], \"target\": [" << c.target.x << ", " << c.target.y << ", " << c.target.z << "]}"
+            << (i + 1 < views.size() ? ",\n" : "\n");
+    }
+    out << "]}\n";
+    writeTextAtomically(path, out.str());
+}
+
+}  // namespace voxgi::view
