@@ -12,6 +12,8 @@ const SettingsTable<IsrDesc>& isrSettings() {
         t.integer("blur", &D::blur, 0, 16, "depth-aware blur radius of the coarse result, in coarse pixels (0: none)");
         t.number("ao_strength", &D::aoStrength, 0.0, 1.0,
                  "fraction of the sphere occlusion taken from ISR's own bounce (0: none; never adds light)");
+        t.integer("temporal_frames", &D::temporalFrames, 1, 256,
+                  "gathers averaged over frames where reprojection finds the same surface (1: none)");
         return t;
     }();
     return table;

@@ -17,6 +17,10 @@ struct IsrDesc {
     // visibility between patches, and never adds light. 0 measured best on every scene: ISR
     // misses more light (off screen, later bounces) than its missing visibility adds (docs/isr.md).
     float aoStrength = 0.0f;
+    // Gathers averaged per coarse pixel where reprojection into the previous frame finds the same
+    // surface point (shaders/isr/temporal.frag); the kernels turn every frame, so n frames of p
+    // patches approach one gather of n x p. 1: no history.
+    int temporalFrames = 1;
 };
 
 const SettingsTable<IsrDesc>& isrSettings();

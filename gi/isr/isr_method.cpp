@@ -17,13 +17,17 @@ MethodInfo isrMethod() {
         const IsrDesc d = readIsrDesc(s.gi);
         TechniquePlan p;
         if (s.triangleCount() == 0) {
-            for (const char* pass : {"isr.downsample", "isr.gather", "isr.blur", "isr.apply"})
+            for (const char* pass : {"isr.downsample", "isr.gather", "isr.temporal", "isr.blur", "isr.apply"})
                 p.skipped.push_back({pass, "no triangles: no surfaces to bounce between"});
             return p;
         }
         const std::string f = std::to_string(d.downsample);
         p.apply.push_back({"isr.downsample", "G-buffer and direct light to coarse patches of " + f + "x" + f + " pixels"});
         p.apply.push_back({"isr.gather", std::to_string(d.patches) + " sender patches per coarse pixel, one bounce and sphere occlusion"});
+        if (d.temporalFrames > 1)
+            p.apply.push_back({"isr.temporal", "gathers averaged over up to " + std::to_string(d.temporalFrames) +
+                                                   " frames where reprojection finds the same surface"});
+        else p.skipped.push_back({"isr.temporal", "isr.temporal_frames=1"});
         if (d.blur > 0) p.apply.push_back({"isr.blur", "separable depth-aware blur, radius " + std::to_string(d.blur)});
         else p.skipped.push_back({"isr.blur", "isr.blur=0"});
         p.apply.push_back({"isr.apply", "bilateral upsample into the indirect layer"});

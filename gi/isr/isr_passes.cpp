@@ -8,6 +8,7 @@ IsrPasses::IsrPasses(const IsrDesc& desc)
     : desc_(desc),
       downsample_(gl::Program::graphics("frame/fullscreen.vert", "isr/downsample.frag")),
       gather_program_(gl::Program::graphics("frame/fullscreen.vert", "isr/gather.frag")),
+      temporal_(gl::Program::graphics("frame/fullscreen.vert", "isr/temporal.frag")),
       blur_(gl::Program::graphics("frame/fullscreen.vert", "isr/blur.frag")),
       apply_(gl::Program::graphics("frame/fullscreen.vert", "isr/apply.frag")),
       vao_(gl::createVertexArray()) {}
@@ -29,6 +30,17 @@ void IsrPasses::resize(glm::ivec2 size) {
         glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
+    for (int i = 0; i < 2; ++i) {
+        mean_[i] = target();
+        points_[i] = target();
+        normals_[i] = target();
+        for (const gl::Handle* t : {&mean_[i], &points_[i], &normals_[i]}) {
+            glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        temporalFbo_[i] = gl::createFramebuffer({mean_[i].id(), points_[i].id(), normals_[i].id()}, 0, "isr temporal mean");
+    }
+    historyValid_ = false;  // a new size: no history to reproject into
     coarseFbo_ = gl::createFramebuffer({position_.id(), normal_.id(), radiance_.id(), albedo_.id()}, 0, "isr coarse buffers");
     gatherFbo_ = gl::createFramebuffer({gather_.id()}, 0, "isr gather");
     halfFbo_ = gl::createFramebuffer({half_.id()}, 0, "isr blur");
@@ -78,6 +90,8 @@ void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::
     glDrawArrays(GL_TRIANGLES, 0, 3);
     timers.end();
 
+    if (desc_.temporalFrames > 1) accumulate(g, edge, timers);
+
     if (desc_.blur > 0) {
         timers.begin("isr.blur");
         blur_.use();
@@ -85,7 +99,7 @@ void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::
         blur_.set("uSource", 0);
         blur_.set("uCoarseNormal", 1);
         glBindTextureUnit(1, normal_.id());
-        const GLuint sources[2] = {gather_.id(), half_.id()};
+        const GLuint sources[2] = {accumulated(), half_.id()};
         const GLuint targets[2] = {halfFbo_.id(), blurredFbo_.id()};
         for (int pass = 0; pass < 2; ++pass) {
             glBindFramebuffer(GL_FRAMEBUFFER, targets[pass]);
@@ -95,6 +109,30 @@ void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::
         }
         timers.end();
     }
+}
+
+void IsrPasses::accumulate(const GBufferView& g, float pixelAngle, gl::StageTimers& timers) {
+    timers.begin("isr.temporal");
+    const int previous = current_;
+    current_ = 1 - current_;
+    glBindFramebuffer(GL_FRAMEBUFFER, temporalFbo_[current_].id());
+    temporal_.use();
+    const char* names[6] = {"uGather", "uCoarsePosition", "uCoarseNormal", "uHistory", "uHistoryPosition", "uHistoryNormal"};
+    const GLuint textures[6] = {gather_.id(),       position_.id(),        normal_.id(),
+                                mean_[previous].id(), points_[previous].id(), normals_[previous].id()};
+    for (int i = 0; i < 6; ++i) {
+        glBindTextureUnit(GLuint(i), textures[i]);
+        temporal_.set(names[i], i);
+    }
+    temporal_.set("uPreviousViewProjection", previousViewProjection_);
+    temporal_.set("uHistoryValid", historyValid_);
+    temporal_.set("uMaxFrames", desc_.temporalFrames);
+    temporal_.set("uEye", g.eye);
+    temporal_.set("uPixelAngle", pixelAngle);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    previousViewProjection_ = g.viewProjection;
+    historyValid_ = true;
+    timers.end();
 }
 
 void IsrPasses::apply(const GBufferView& g, gl::StageTimers& timers) {

@@ -35,17 +35,28 @@ public:
     GLuint normal() const { return normal_.id(); }
     GLuint radiance() const { return radiance_.id(); }
     GLuint gather() const { return gather_.id(); }
-    GLuint result() const { return desc_.blur > 0 ? blurred_.id() : gather_.id(); }
+    // The gather averaged over frames (isr.temporal_frames > 1), else the gather itself.
+    GLuint accumulated() const { return desc_.temporalFrames > 1 ? mean_[current_].id() : gather_.id(); }
+    GLuint result() const { return desc_.blur > 0 ? blurred_.id() : accumulated(); }
+    // The surface points behind accumulated(): xyz, w the gathers in each pixel's mean.
+    GLuint accumulatedPoints() const { return points_[current_].id(); }
 
 private:
     void resize(glm::ivec2 size);
+    void accumulate(const GBufferView& g, float pixelAngle, gl::StageTimers& timers);
 
     IsrDesc desc_;
-    gl::Program downsample_, gather_program_, blur_, apply_;
+    gl::Program downsample_, gather_program_, temporal_, blur_, apply_;
     glm::ivec2 size_{0};
     gl::Handle position_, normal_, radiance_, albedo_, gather_, half_, blurred_;
     gl::Handle coarseFbo_, gatherFbo_, halfFbo_, blurredFbo_, vao_;
     glm::vec3 forward_{0.0f, 0.0f, -1.0f};
+    // The temporal mean, its surface points and their normals, written and read in turn
+    // (current_ is this frame's), and the camera they were seen from.
+    gl::Handle mean_[2], points_[2], normals_[2], temporalFbo_[2];
+    int current_ = 0;
+    bool historyValid_ = false;
+    glm::mat4 previousViewProjection_{1.0f};
 };
 
 }  // namespace voxgi

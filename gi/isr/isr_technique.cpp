@@ -10,7 +10,10 @@ void IsrTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) 
     GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     glGetIntegerv(GL_VIEWPORT, viewport);
-    passes_.compute(g, scene_.camera.fovYDegrees, input.frameIndex, input.timers);
+    // With history the kernels keep turning while the camera moves, which restarts frameIndex
+    // every frame: the history would otherwise average the same patches again.
+    const int turn = passes_.desc().temporalFrames > 1 ? turns_++ : input.frameIndex;
+    passes_.compute(g, scene_.camera.fovYDegrees, turn, input.timers);
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glEnable(GL_BLEND);

@@ -24,6 +24,7 @@ public:
 private:
     const Scene& scene_;
     IsrPasses passes_;
+    int turns_ = 0;  // frames drawn, for the kernels' rotation when there is history
 };
 
 }  // namespace voxgi
