@@ -84,22 +84,28 @@ std::vector<Camera> sampleViews(const Scene& scene, const ViewSampling& sampling
         if (float(hits) < sampling.minSeenFraction * float(probes.size()) ||
             float(backFaces) > sampling.maxBackFaceFraction * float(hits))
             continue;
-        // A target: the front face some random direction meets, two voxels away or more, not
-        // straight above or below (the camera keeps the scene's up).
+        // A target: of the front faces that 16 random directions meet some way off (not straight
+        // above or below: the camera keeps the scene's up), the farthest, so the view looks
+        // into the scene rather than at the nearest wall (a single plane, where every method
+        // that bounces light between surfaces on screen has nothing to do).
+        bool found = false;
+        glm::vec3 target(0.0f);
+        float farthest = std::max(2.0f * settings.voxelSize, sampling.minTargetDistance * longest);
         for (int attempt = 0; attempt < 16; ++attempt) {
             const glm::vec3 d = u.direction();
             if (std::abs(glm::dot(d, up)) > 0.9f) continue;
             const RayHit h = tracer.intersect(eye, d);
-            // Far enough to frame part of the scene, not a patch of the nearest wall.
-            if (!h.hit || !h.frontFace || h.t < std::max(2.0f * settings.voxelSize, sampling.minTargetDistance * longest))
-                continue;
-            Camera c = scene.camera;
-            c.eye = eye;
-            c.target = h.position;
-            c.farPlane = std::max(c.farPlane, diagonal);
-            views.push_back(c);
-            break;
+            if (!h.hit || !h.frontFace || h.t < farthest) continue;
+            farthest = h.t;
+            target = h.position;
+            found = true;
         }
+        if (!found) continue;
+        Camera c = scene.camera;
+        c.eye = eye;
+        c.target = target;
+        c.farPlane = std::max(c.farPlane, diagonal);
+        views.push_back(c);
     }
     if (int(views.size()) < sampling.count)
         throw InputError("--views " + std::to_string(sampling.count) + ": found only " + std::to_string(views.size()) +

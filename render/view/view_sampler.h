@@ -2,7 +2,7 @@
 // views instead of the one someone chose (`voxgi eval --views N`). Eyes are drawn in voxels of
 // the scene's occupancy that are empty with all 26 neighbours, and kept when rays from them see
 // the scene around (not the sky through most directions) and few back faces (not inside a
-// closed solid); each looks at a front-facing surface that a ray from it hits some way off. The same scene, count
+// closed solid); each looks at the farthest of the front faces that random rays from it hit. The same scene, count
 // and seed give the same views. Views are written and read as a viewer script's camera keys
 // (render/view/view_script.h), so `voxgi view --script views.json` flies through them.
 #pragma once
