@@ -31,6 +31,20 @@ Scene cornell(int size) {
     return s;
 }
 
+// The Cornell box at 64² with 8 patches a frame and `frames` frames of history.
+Scene historyScene(const char* frames) {
+    Scene s = cornell(64);
+    s.gi.set("isr.patches", "8");
+    s.gi.set("isr.temporal_frames", frames);
+    return s;
+}
+
+FrameOptions unjittered() {
+    FrameOptions options;
+    options.jitter = false;
+    return options;
+}
+
 }  // namespace
 
 TEST_F(IsrTest, GatherAndUpsampleMatchTheCpuReference) {
@@ -111,13 +125,9 @@ TEST_F(IsrTest, CornellBoxCloserToThePathTracerThanDirectLight) {
 // mean is exactly the running mean of the turned gathers, then an exponential mean of the
 // history length once it is full.
 TEST_F(IsrTest, TemporalMeanIsTheRunningMeanOfTheTurnedGathers) {
-    Scene scene = cornell(64);
-    scene.gi.set("isr.patches", "8");
+    Scene scene = historyScene("4");
     scene.gi.set("isr.blur", "0");
-    scene.gi.set("isr.temporal_frames", "4");
-    FrameOptions options;
-    options.jitter = false;
-    FrameRenderer renderer(scene, options, "isr");
+    FrameRenderer renderer(scene, unjittered(), "isr");
     const auto* isr = dynamic_cast<const IsrTechnique*>(renderer.technique());
     ASSERT_NE(isr, nullptr);
     std::vector<glm::vec4> expected;
@@ -150,12 +160,8 @@ TEST_F(IsrTest, TemporalMeanIsTheRunningMeanOfTheTurnedGathers) {
 // A camera that moves a little keeps the history of the surfaces it still sees; pixels that see
 // other points, or the same points from the other side of a thin wall, start over.
 TEST_F(IsrTest, TemporalHistoryFollowsTheSurfacesNotThePixels) {
-    Scene scene = cornell(64);
-    scene.gi.set("isr.patches", "8");
-    scene.gi.set("isr.temporal_frames", "16");
-    FrameOptions options;
-    options.jitter = false;
-    FrameRenderer renderer(scene, options, "isr");
+    Scene scene = historyScene("16");
+    FrameRenderer renderer(scene, unjittered(), "isr");
     const auto* isr = dynamic_cast<const IsrTechnique*>(renderer.technique());
     ASSERT_NE(isr, nullptr);
     auto kept = [&] {  // the share of hit pixels with more than one gather in their mean
