@@ -192,4 +192,5 @@ TEST(EvalViews, CornellBoxOverViewsWithHeldOutAmbientAndAReplayableViewsFile) {
     EXPECT_EQ(runVoxgi("eval cornell-box --views 2 --reference x.exr -o " + dir + "/c").exitCode, 2);
     EXPECT_EQ(runVoxgi("eval cornell-box --view-seed 2 -o " + dir + "/c").exitCode, 2);
     EXPECT_EQ(runVoxgi("eval cornell-box --views " + dir + "/missing.json -o " + dir + "/c").exitCode, 2);
+    EXPECT_FALSE(fileExists(dir + "/c"));  // read with the other inputs: nothing written
 }

@@ -118,41 +118,53 @@ EvalRow measure(const std::string& method, const Preset& preset, MethodRun run, 
     return row;
 }
 
-// --views: N views drawn per scene, or the camera keys of a script (one scene).
-int runViewsEvaluation(const Args& args, const std::string& dir, const std::vector<Scene>& scenes,
-                       const std::vector<std::string>& methodNames, const std::vector<std::string>& presetNames, int spp,
-                       int warmup, double convergeBelow, int maxWarmup, const std::string& cacheDir, const ReportInfo& info) {
+// The frames, warm-up and convergence every run on `scene` gets, from the command line.
+RenderSettings renderSettingsFor(const Args& args, const Scene& scene) {
+    RenderSettings rs;
+    rs.width = scene.camera.width;
+    rs.height = scene.camera.height;
+    rs.warmup = args.integer("--warmup", 4, 0, 1 << 16);
+    rs.frames = args.integer("--frames", std::max(defaultFrameCount(scene), rs.warmup + 5), 1, 1 << 20);
+    rs.convergeBelow = args.number("--converge", 0.002, 0.0, 1.0);
+    rs.maxWarmup = args.integer("--max-warmup", 300, 0, 1 << 20);
+    return rs;
+}
+
+// --views: N views drawn in each scene, or the camera keys of a script (one scene). Read with
+// the other inputs, before any output exists.
+std::vector<std::vector<Camera>> viewsFor(const Args& args, const std::vector<Scene>& scenes) {
     const std::string viewsArg = args.value("--views", "");
-    const bool counted = !viewsArg.empty() && std::all_of(viewsArg.begin(), viewsArg.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
-    if (!counted && scenes.size() != 1) throw InputError("--views " + viewsArg + ": a views file fits one scene; give a count for several");
-    const int count = counted ? args.integer("--views", 0, 1, 100000) : 0;
-    const auto seed = std::uint64_t(args.integer("--view-seed", 1, 0, 1 << 30));
+    const bool counted = !viewsArg.empty() && std::all_of(viewsArg.begin(), viewsArg.end(), [](char c) {
+        return std::isdigit(static_cast<unsigned char>(c));
+    });
+    if (!counted && scenes.size() != 1)
+        throw InputError("--views " + viewsArg + ": a views file fits one scene; give a count for several");
+    view::ViewSampling sampling;
+    sampling.count = counted ? args.integer("--views", 0, 1, 100000) : 0;
+    sampling.seed = std::uint64_t(args.integer("--view-seed", 1, 0, 1 << 30));
+    std::vector<std::vector<Camera>> views;
+    for (const Scene& scene : scenes) views.push_back(counted ? view::sampleViews(scene, sampling) : view::readViews(viewsArg, scene));
+    return views;
+}
+
+int runViewsEvaluation(const Args& args, const std::string& dir, const std::vector<Scene>& scenes,
+                       const std::vector<RenderSettings>& settings, const std::vector<std::vector<Camera>>& views, const std::vector<std::string>& methodNames,
+                       const std::vector<std::string>& presetNames, int spp, const std::string& cacheDir,
+                       const ReportInfo& info) {
     std::vector<ViewsEval> results;
     for (std::size_t si = 0; si < scenes.size(); ++si) {
-        const Scene& scene = scenes[si];
         const std::string name = sceneName(args.positional()[si]);
-        view::ViewSampling sampling;
-        sampling.count = count;
-        sampling.seed = seed;
-        std::printf("%s: %s views...\n", name.c_str(), counted ? "drawing" : "reading");
-        std::fflush(stdout);
-        const std::vector<Camera> views = counted ? view::sampleViews(scene, sampling) : view::readViews(viewsArg, scene);
         ViewsJob job;
         for (const std::string& method : methodNames)
             for (const Preset& preset : presetsFor(findMethod(method), presetNames)) job.runs.push_back({method, preset});
-        job.settings.width = scene.camera.width;
-        job.settings.height = scene.camera.height;
-        job.settings.warmup = warmup;
-        job.settings.frames = args.integer("--frames", std::max(defaultFrameCount(scene), warmup + 5), 1, 1 << 20);
-        job.settings.convergeBelow = convergeBelow;
-        job.settings.maxWarmup = maxWarmup;
+        job.settings = settings[si];
         job.spp = spp;
         job.cacheDir = cacheDir;
         std::filesystem::create_directories(dir + "/" + name);
-        ViewsEval e = evaluateViews(scene, name, views, job, dir);
+        ViewsEval e = evaluateViews(scenes[si], name, views[si], job, dir);
         e.source = args.positional()[si];
         e.viewsFile = name + "/views.json";
-        view::writeViews(dir + "/" + e.viewsFile, views);
+        view::writeViews(dir + "/" + e.viewsFile, views[si]);
         results.push_back(std::move(e));
     }
     const std::vector<std::string> plots = writeViewsReport(dir, results, info);
@@ -180,20 +192,20 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
     if (refArg != "auto" && args.positional().size() != 1)
         throw InputError("--reference " + refArg + ": a reference file fits one scene; use auto for several");
     const int spp = args.integer("--spp", 256, 1, 1 << 20);
-    const int warmup = args.integer("--warmup", 4, 0, 1 << 16);
-    const double convergeBelow = args.number("--converge", 0.002, 0.0, 1.0);
-    const int maxWarmup = args.integer("--max-warmup", 300, 0, 1 << 20);
     const std::string cacheDir = args.value("--cache", dir + "/cache");
     const bool views = args.has("--views");
     if (views && refArg != "auto") throw InputError("--reference: each of --views has its own reference; leave it auto");
     if (!views && args.has("--view-seed")) throw InputError("--view-seed: only with --views");
 
     std::vector<Scene> scenes;
+    std::vector<RenderSettings> sceneSettings;
     for (const std::string& s : args.positional()) {
         scenes.push_back(loadSceneArgument(s));
         applySceneOverrides(args, scenes.back());
         for (const std::string& m : methodNames) validateMethod(m, scenes.back());
+        sceneSettings.push_back(renderSettingsFor(args, scenes.back()));
     }
+    const std::vector<std::vector<Camera>> sceneViews = views ? viewsFor(args, scenes) : std::vector<std::vector<Camera>>{};
     // Only once every input has been read, so bad input leaves no folder behind.
     makeOutputFolder(dir);
     auto context = gl::Context::createHeadless();
@@ -203,8 +215,7 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
     info.command = "voxgi eval";
     for (const std::string& a : argv) info.command += " " + a;
 
-    if (views) return runViewsEvaluation(args, dir, scenes, methodNames, presetNames, spp, warmup, convergeBelow, maxWarmup,
-                                         cacheDir, info);
+    if (views) return runViewsEvaluation(args, dir, scenes, sceneSettings, sceneViews, methodNames, presetNames, spp, cacheDir, info);
 
     std::vector<SceneEval> results;
     for (std::size_t si = 0; si < scenes.size(); ++si) {
@@ -229,13 +240,7 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
         se.referencePng = se.name + "/reference.png";
         writePng(dir + "/" + se.referencePng, ref.image, "beauty", 0.0f);
 
-        RenderSettings rs;
-        rs.width = scene.camera.width;
-        rs.height = scene.camera.height;
-        rs.warmup = warmup;
-        rs.frames = args.integer("--frames", std::max(defaultFrameCount(scene), warmup + 5), 1, 1 << 20);
-        rs.convergeBelow = convergeBelow;
-        rs.maxWarmup = maxWarmup;
+        const RenderSettings& rs = sceneSettings[si];
         std::vector<Image> images;
         for (const std::string& method : methodNames)
             for (const Preset& preset : presetsFor(findMethod(method), presetNames)) {

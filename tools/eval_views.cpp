@@ -48,29 +48,29 @@ SettingList heldOutSettings(const std::vector<SettingList>& fitted, std::size_t 
     return out;
 }
 
-// Keeps the `limit` views with the highest full-image FLIP, with their images.
+// The beauty layer alone: all that the worst views' images and FLIP maps read.
+Image beautyOf(const Image& image) {
+    Image beauty(image.width(), image.height());
+    beauty.layer("beauty") = *image.find("beauty");
+    beauty.display = image.display;
+    return beauty;
+}
+
+// Keeps the `limit` views with the highest full-image FLIP, with their images and references.
 struct WorstKeeper {
     struct Entry {
         int view;
         double flip;
-        Image image;
+        Image image, reference;
     };
     std::vector<Entry> entries;
-    void offer(int view, double flip, const Image& image, int limit) {
+    void offer(int view, double flip, const Image& image, const Image& reference, int limit) {
         if (limit <= 0 || (int(entries.size()) >= limit && !(flip > entries.back().flip))) return;
-        // The beauty layer alone: all that the images and FLIP maps read.
-        Image beauty(image.width(), image.height());
-        beauty.layer("beauty") = *image.find("beauty");
-        beauty.display = image.display;
-        entries.push_back({view, flip, std::move(beauty)});
+        entries.push_back({view, flip, beautyOf(image), beautyOf(reference)});
         std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.flip > b.flip; });
         if (int(entries.size()) > limit) entries.pop_back();
     }
 };
-
-std::string runLabel(const std::string& method, const std::string& preset, bool heldOut) {
-    return (preset == "default" ? method : method + "-" + preset) + (heldOut ? "-held-out" : "");
-}
 
 }  // namespace
 
@@ -85,16 +85,22 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
     const std::string folder = name + "/views";
     std::filesystem::create_directories(dir + "/" + folder);
 
+    // One copy of the scene, its camera set to the view at hand.
+    Scene viewScene = scene;
+    auto reference = [&](std::size_t k) {
+        viewScene.camera = views[k];
+        return loadOrRenderReference(viewScene, name + "-view" + std::to_string(k), job.spp, job.cacheDir);
+    };
+    auto progress = [&](std::size_t k, const std::string& what) {
+        std::printf("%s: view %zu/%zu %s\n", name.c_str(), k + 1, views.size(), what.c_str());
+        std::fflush(stdout);
+    };
+
     // Every reference first: they are the slow part, and their progress says how long it takes.
-    std::vector<Scene> viewScenes;
-    for (const Camera& c : views) {
-        viewScenes.push_back(scene);
-        viewScenes.back().camera = c;
-    }
     double renderedSeconds = 0.0;
     for (std::size_t k = 0; k < views.size(); ++k) {
         const auto start = std::chrono::steady_clock::now();
-        const Reference ref = loadOrRenderReference(viewScenes[k], name + "-view" + std::to_string(k), job.spp, job.cacheDir);
+        const Reference ref = reference(k);
         out.referenceSeconds.push_back(ref.seconds);
         if (!ref.fromCache) {
             ++out.referencesRendered;
@@ -102,13 +108,12 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
         }
         // The time left, from the mean of the references rendered so far (cached ones are free).
         const double perView = out.referencesRendered ? renderedSeconds / out.referencesRendered : 0.0;
-        std::printf("%s: view %zu/%zu reference %s; about %.0f s of references left\n", name.c_str(), k + 1, views.size(),
-                    ref.fromCache ? "from the cache" : "path traced", perView * double(views.size() - k - 1));
-        std::fflush(stdout);
+        char left[64];
+        std::snprintf(left, sizeof left, "%.0f", perView * double(views.size() - k - 1));
+        progress(k, std::string("reference ") + (ref.fromCache ? "from the cache" : "path traced") + "; about " + left +
+                        " s of references left");
     }
 
-    std::vector<WorstKeeper> worst(job.runs.size() + 1);
-    std::vector<std::vector<SettingList>> fits(job.runs.size());
     for (const auto& [method, preset] : job.runs) {
         ViewsRow row;
         row.method = method;
@@ -117,81 +122,68 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
         row.oracle = findMethod(method).oracle();
         out.rows.push_back(row);
     }
-    const auto score = [&](const Image& image, const Reference& ref, double frameMs) {
+    // Per row: its worst views, and an oracle's settings fitted to each view.
+    std::vector<WorstKeeper> worst(out.rows.size());
+    std::vector<std::vector<SettingList>> fits(out.rows.size());
+    // Renders row r (of job.runs[run]) on view k with `settings` and scores it.
+    auto score = [&](std::size_t r, std::size_t run, std::size_t k, const Reference& ref, const SettingList& settings) {
+        progress(k, runLabel(out.rows[r]) + "...");
+        const auto& [method, preset] = job.runs[run];
+        const MethodRun result = renderMethod(viewScene, method, preset, job.settings, settings);
         ViewScore s;
-        s.full = computeMetrics(image, ref.image, "beauty");
-        s.indirect = computeMetrics(image, ref.image, "indirect");
-        s.frameMs = frameMs;
-        return s;
+        s.full = computeMetrics(result.image, ref.image, "beauty");
+        s.indirect = computeMetrics(result.image, ref.image, "indirect");
+        s.frameMs = result.frameMs;
+        s.fitted = settingsText(settings);
+        out.rows[r].views.push_back(s);
+        worst[r].offer(int(k), s.full.flip, result.image, ref.image, job.worstViews);
     };
     for (std::size_t k = 0; k < views.size(); ++k) {
-        const Scene& viewScene = viewScenes[k];
-        const Reference ref = loadOrRenderReference(viewScene, name + "-view" + std::to_string(k), job.spp, job.cacheDir);
+        const Reference ref = reference(k);
         for (std::size_t r = 0; r < job.runs.size(); ++r) {
-            const auto& [method, preset] = job.runs[r];
-            std::printf("%s: view %zu/%zu %s...\n", name.c_str(), k + 1, views.size(), runLabel(method, preset.name, false).c_str());
-            std::fflush(stdout);
             SettingList fitted;
             if (out.rows[r].oracle) {
+                const auto& [method, preset] = job.runs[r];
                 RenderWith render = [&](const SettingList& extra) {
                     return renderMethod(viewScene, method, preset, job.settings, extra).image;
                 };
                 fitted = findMethod(method).fitToReference(render, ref.image);
             }
             fits[r].push_back(fitted);
-            const MethodRun run = renderMethod(viewScene, method, preset, job.settings, fitted);
-            ViewScore s = score(run.image, ref, run.frameMs);
-            s.fitted = settingsText(fitted);
-            out.rows[r].views.push_back(s);
-            worst[r].offer(int(k), s.full.flip, run.image, job.worstViews);
+            score(r, r, k, ref, fitted);
         }
     }
     // Oracles held out: each view scored with what the other views' references taught them.
-    const std::size_t runs = out.rows.size();
-    for (std::size_t r = 0; r < runs && views.size() > 1; ++r) {
-        if (!out.rows[r].oracle) continue;
-        const auto& [method, preset] = job.runs[r];
-        ViewsRow held = out.rows[r];
+    for (std::size_t run = 0; run < job.runs.size() && views.size() > 1; ++run) {
+        if (!out.rows[run].oracle) continue;
+        ViewsRow held = out.rows[run];
         held.oracle = false;
         held.heldOut = true;
         held.views.clear();
-        for (std::size_t k = 0; k < views.size(); ++k) {
-            std::printf("%s: view %zu/%zu %s...\n", name.c_str(), k + 1, views.size(), runLabel(method, preset.name, true).c_str());
-            std::fflush(stdout);
-            const Reference ref = loadOrRenderReference(viewScenes[k], name + "-view" + std::to_string(k), job.spp, job.cacheDir);
-            const SettingList settings = heldOutSettings(fits[r], k);
-            const MethodRun run = renderMethod(viewScenes[k], method, preset, job.settings, settings);
-            ViewScore s = score(run.image, ref, run.frameMs);
-            s.fitted = settingsText(settings);
-            held.views.push_back(s);
-            worst.back().offer(int(k), s.full.flip, run.image, job.worstViews);
-        }
         out.rows.push_back(held);
-        break;  // one held-out row: the worst-view keeper has one slot for it
+        worst.emplace_back();
+        for (std::size_t k = 0; k < views.size(); ++k) score(out.rows.size() - 1, run, k, reference(k), heldOutSettings(fits[run], k));
     }
 
     // The worst views' images, FLIP maps and references.
     std::map<int, std::string> referencePngs;
     for (std::size_t r = 0; r < out.rows.size(); ++r) {
         ViewsRow& row = out.rows[r];
-        const WorstKeeper& keeper = r < runs ? worst[r] : worst.back();
-        for (const WorstKeeper::Entry& e : keeper.entries) {
-            const Reference ref = loadOrRenderReference(viewScenes[std::size_t(e.view)], name + "-view" + std::to_string(e.view),
-                                                        job.spp, job.cacheDir);
+        for (const WorstKeeper::Entry& e : worst[r].entries) {
             const std::string view = "view" + std::to_string(e.view);
             if (!referencePngs.count(e.view)) {
                 referencePngs[e.view] = folder + "/" + view + "-reference.png";
-                writePng(dir + "/" + referencePngs[e.view], ref.image, "beauty", 0.0f);
+                writePng(dir + "/" + referencePngs[e.view], e.reference, "beauty", 0.0f);
             }
             ViewsRow::Worst w;
             w.view = e.view;
             w.flip = e.flip;
             w.referencePng = referencePngs[e.view];
-            const std::string stem = folder + "/" + view + "-" + runLabel(row.method, row.preset, row.heldOut);
+            const std::string stem = folder + "/" + view + "-" + runLabel(row);
             w.imagePng = stem + ".png";
             w.flipPng = stem + "-flip.png";
             writePng(dir + "/" + w.imagePng, e.image, "beauty", 0.0f);
-            writeFlipMap(dir + "/" + w.flipPng, e.image, ref.image);
+            writeFlipMap(dir + "/" + w.flipPng, e.image, e.reference);
             row.worst.push_back(w);
         }
     }

@@ -61,6 +61,10 @@ struct ViewsJob {
 ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::vector<Camera>& views,
                         const ViewsJob& job, const std::string& dir);
 
+// "method-preset" ("method" for a default preset), "-held-out" appended for a held-out row:
+// the row's name in file names, plots and the log.
+std::string runLabel(const ViewsRow& row);
+
 // Across the views of one row, against the rows of direct light and the fitted ambient when
 // given (fractions are NaN without them).
 struct ViewSummary {

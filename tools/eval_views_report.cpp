@@ -48,9 +48,6 @@ double beats(const ViewsRow& row, const ViewsRow* other, F value) {
     return double(wins) / double(row.views.size());
 }
 
-std::string label(const ViewsRow& r) {
-    return (r.preset == "default" ? r.method : r.method + "-" + r.preset) + (r.heldOut ? "-held-out" : "");
-}
 // Whether the row saw the answer, said where its name is.
 std::string methodColumn(const ViewsRow& r) {
     if (r.oracle) return r.method + " (oracle fit)";
@@ -104,7 +101,7 @@ std::string markdown(const std::vector<ViewsEval>& scenes, const ReportInfo& inf
             if (p.find("plots/" + s.name + "-views") == 0) md << "![" << p << "](" << p << ")\n";
         md << "\nWorst views by HDR-FLIP (full image): reference | image | FLIP map.\n\n";
         for (const ViewsRow& r : s.rows) {
-            md << "- **" << label(r) << "**:";
+            md << "- **" << runLabel(r) << "**:";
             for (const ViewsRow::Worst& w : r.worst) md << " view " << w.view << " (" << formatNumber(w.flip, "%.3f") << ")";
             md << "\n\n ";
             for (const ViewsRow::Worst& w : r.worst)
@@ -186,12 +183,12 @@ std::vector<std::string> plot(const std::string& dir, const ViewsEval& s) {
     for (const ViewsRow& r : s.rows) {
         std::vector<double> flips = each(r, [](const ViewScore& v) { return v.full.flip; });
         std::sort(flips.begin(), flips.end());
-        sorted << "# " << label(r) << "\n";
+        sorted << "# " << runLabel(r) << "\n";
         for (std::size_t k = 0; k < flips.size(); ++k)
             sorted << formatNumber((double(k) + 0.5) / double(flips.size()), "%.6g") << " " << formatNumber(flips[k], "%.6g") << "\n";
         sorted << "\n\n";
         const ViewSummary v = summarize(r, nullptr, nullptr);
-        summary << label(r) << " " << formatNumber(std::max(v.frameMsMedian, 1e-3), "%.6g") << " "
+        summary << runLabel(r) << " " << formatNumber(std::max(v.frameMsMedian, 1e-3), "%.6g") << " "
                 << formatNumber(v.flipMean, "%.6g") << " " << formatNumber(v.flipSd, "%.6g") << "\n";
     }
     writeTextAtomically(dir + "/" + base + "-sorted.dat", sorted.str());
@@ -203,7 +200,7 @@ std::vector<std::string> plot(const std::string& dir, const ViewsEval& s) {
        << "plot";
     for (std::size_t i = 0; i < s.rows.size(); ++i)
         gp << (i ? ", \\\n    " : " ") << "'" << base << "-sorted.dat' index " << i << " using 1:2 with linespoints title '"
-           << label(s.rows[i]) << "'";
+           << runLabel(s.rows[i]) << "'";
     gp << "\n"
        << "set output '" << base << "-error-vs-time.png'\nset logscale x\n"
        << "set title '" << s.name << ": mean HDR-FLIP over views against frame time'\n"
@@ -217,6 +214,10 @@ std::vector<std::string> plot(const std::string& dir, const ViewsEval& s) {
 }
 
 }  // namespace
+
+std::string runLabel(const ViewsRow& r) {
+    return (r.preset == "default" ? r.method : r.method + "-" + r.preset) + (r.heldOut ? "-held-out" : "");
+}
 
 ViewSummary summarize(const ViewsRow& row, const ViewsRow* direct, const ViewsRow* ambientOracle) {
     ViewSummary v;
