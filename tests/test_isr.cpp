@@ -13,6 +13,7 @@
 #include "gl/resources.h"
 #include "render/frame/frame_plan.h"
 #include "render/frame/frame_renderer.h"
+#include "scenes/errors.h"
 #include "shaders/shared/constants.h"
 #include "support/test_support.h"
 
@@ -45,6 +46,70 @@ FrameOptions unjittered() {
     return options;
 }
 
+// The gather: the same patches, the same math; a sample landing on a pixel boundary may round the
+// other way on the GPU, so nearly every pixel agrees and the total does.
+void expectGatherIsTheCpuGather(const IsrPasses& passes, int frame, bool discs) {
+    const IsrCoarseBuffers coarse = readIsrCoarse(passes);
+    const std::vector<glm::vec4> gpu = readIsrTexture(passes, passes.gather());
+    const std::vector<glm::vec4> cpu = isrGatherCpu(coarse, passes.desc().patches, passes.radiusPixels(), frame, discs);
+    int close = 0, lit = 0;
+    double gpuSum = 0.0, cpuSum = 0.0, gpuOcclusion = 0.0, cpuOcclusion = 0.0;
+    for (std::size_t i = 0; i < cpu.size(); ++i) {
+        gpuSum += double(gpu[i].g);
+        cpuSum += double(cpu[i].g);
+        gpuOcclusion += double(gpu[i].w);
+        cpuOcclusion += double(cpu[i].w);
+        if (cpu[i].g > 0.0f) ++lit;
+        close += std::abs(gpu[i].g - cpu[i].g) <= 1e-3f * std::abs(cpu[i].g) + 1e-7f &&
+                         std::abs(gpu[i].w - cpu[i].w) <= 1e-3f * std::abs(cpu[i].w) + 1e-6f
+                     ? 1
+                     : 0;
+    }
+    EXPECT_GT(lit, int(cpu.size()) / 2);
+    EXPECT_GE(close, int(0.98 * double(cpu.size()))) << close << " of " << cpu.size();
+    EXPECT_NEAR(gpuSum, cpuSum, 1e-3 * cpuSum);
+    EXPECT_NEAR(gpuOcclusion, cpuOcclusion, 1e-3 * cpuOcclusion);
+}
+
+// The upsample: the indirect layer is diffuse albedo / pi x the upsampled irradiance, less the
+// occluded fraction the AO strength takes (the box's materials are Lambertian), plus the far
+// field's light where the occlusion leaves the hemisphere open.
+void expectIndirectIsTheUpsample(const Scene& scene, const FrameRenderer& renderer, const Image& image, const IsrTechnique& isr) {
+    const IsrPasses& passes = isr.passes();
+    const IsrCoarseBuffers coarse = readIsrCoarse(passes);
+    const int w = scene.camera.width, h = scene.camera.height;
+    const std::vector<glm::vec4> result = readIsrTexture(passes, passes.result());
+    const std::vector<float> position = gl::readTexture(renderer.textures().position, w, h, 4);
+    const std::vector<float> far = isr.farFieldLight() ? gl::readTexture(isr.farFieldLight(), w, h, 4) : std::vector<float>();
+    const glm::vec3 forward = glm::normalize(scene.camera.target - scene.camera.eye);
+    int checked = 0;
+    double farSum = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t at = (std::size_t(y) * std::size_t(w) + std::size_t(x)) * 4;
+            const float* p = &position[at];
+            if (p[3] <= 0.0f) continue;
+            const int row = h - 1 - y;  // images are stored top row first
+            const glm::vec3 normal = image.rgb("normal", x, row);
+            const float depth = glm::dot(glm::vec3(p[0], p[1], p[2]) - scene.camera.eye, forward);
+            const glm::vec4 e = isrUpsampleCpu(coarse, result, passes.desc().downsample, {x, y}, depth, normal);
+            const float occlusion = glm::clamp(e.w, 0.0f, 1.0f);
+            glm::vec3 expected = image.rgb("albedo", x, row) * shading::kInvPi * glm::vec3(e) *
+                                 (1.0f - passes.desc().aoStrength * occlusion);
+            if (!far.empty()) {
+                expected += (1.0f - occlusion) * glm::vec3(far[at], far[at + 1], far[at + 2]);
+                farSum += double(far[at + 1]);
+            }
+            const glm::vec3 got = image.rgb("indirect", x, row);
+            for (int k = 0; k < 3; ++k) ASSERT_NEAR(got[k], expected[k], 2e-3f * expected[k] + 1e-6f) << x << " " << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, w * h / 2);
+    if (isr.farFieldLight()) {
+        EXPECT_GT(farSum, 0.0);
+    }
+}
+
 }  // namespace
 
 TEST_F(IsrTest, GatherAndUpsampleMatchTheCpuReference) {
@@ -57,50 +122,48 @@ TEST_F(IsrTest, GatherAndUpsampleMatchTheCpuReference) {
     const Image image = renderer.resolve();
     const auto* isr = dynamic_cast<const IsrTechnique*>(renderer.technique());
     ASSERT_NE(isr, nullptr);
-    const IsrPasses& passes = isr->passes();
-    const IsrCoarseBuffers coarse = readIsrCoarse(passes);
-    ASSERT_EQ(coarse.width, 48);
+    ASSERT_EQ(isr->passes().coarseSize().x, 48);
+    expectGatherIsTheCpuGather(isr->passes(), 0, false);
+    expectIndirectIsTheUpsample(scene, renderer, image, *isr);
+}
 
-    // The gather: the same patches, the same math; a sample landing on a pixel boundary may round
-    // the other way on the GPU, so nearly every pixel agrees and the total does.
-    const std::vector<glm::vec4> gpu = readIsrTexture(passes, passes.gather());
-    const std::vector<glm::vec4> cpu = isrGatherCpu(coarse, passes.desc().patches, passes.radiusPixels(), 0);
-    int close = 0, lit = 0;
-    double gpuSum = 0.0, cpuSum = 0.0;
-    for (std::size_t i = 0; i < cpu.size(); ++i) {
-        gpuSum += double(gpu[i].g);
-        cpuSum += double(cpu[i].g);
-        if (cpu[i].g > 0.0f) ++lit;
-        close += std::abs(gpu[i].g - cpu[i].g) <= 1e-3f * std::abs(cpu[i].g) + 1e-7f &&
-                         std::abs(gpu[i].w - cpu[i].w) <= 1e-3f * std::abs(cpu[i].w) + 1e-6f
-                     ? 1
-                     : 0;
+// With a far field (isr.far_field): the patches send its light on with their direct light, and
+// the pixel gets it where the patches leave the hemisphere open. Full-resolution patches, so a
+// patch's radiance is its pixel's: the far field's light is exactly what it adds.
+TEST_F(IsrTest, FarFieldLightIsSentOnAndFillsTheOpenHemisphere) {
+    Scene plain = cornell(48);
+    plain.gi.set("isr.downsample", "1");
+    plain.gi.set("isr.ao_strength", "0.5");
+    Scene withFar = plain;
+    withFar.gi.set("isr.far_field", "ddgi");
+    FrameRenderer alone(plain, unjittered(), "isr"), renderer(withFar, unjittered(), "isr");
+    for (int i = 0; i < 3; ++i) {
+        alone.renderFrame();
+        renderer.renderFrame();
     }
-    EXPECT_GT(lit, int(cpu.size()) / 2);
-    EXPECT_GE(close, int(0.98 * double(cpu.size()))) << close << " of " << cpu.size();
-    EXPECT_NEAR(gpuSum, cpuSum, 1e-3 * cpuSum);
-
-    // The upsample: the indirect layer is diffuse albedo / pi x the upsampled irradiance, less
-    // the occluded fraction the AO strength takes (the box's materials are Lambertian).
-    const std::vector<glm::vec4> result = readIsrTexture(passes, passes.result());
-    const std::vector<float> position = gl::readTexture(renderer.textures().position, 96, 96, 4);
-    const glm::vec3 forward = glm::normalize(scene.camera.target - scene.camera.eye);
+    const auto* isr = dynamic_cast<const IsrTechnique*>(renderer.technique());
+    const auto* isrAlone = dynamic_cast<const IsrTechnique*>(alone.technique());
+    ASSERT_TRUE(isr && isrAlone);
+    ASSERT_NE(isr->farFieldLight(), 0u);
+    EXPECT_EQ(isrAlone->farFieldLight(), 0u);
+    const IsrCoarseBuffers sent = readIsrCoarse(isr->passes()), direct = readIsrCoarse(isrAlone->passes());
+    const std::vector<float> far = gl::readTexture(isr->farFieldLight(), 48, 48, 4);
     int checked = 0;
-    for (int y = 0; y < 96; ++y)
-        for (int x = 0; x < 96; ++x) {
-            const float* p = &position[(std::size_t(y) * 96 + std::size_t(x)) * 4];
-            if (p[3] <= 0.0f) continue;
-            const int row = 95 - y;  // images are stored top row first
-            const glm::vec3 normal = image.rgb("normal", x, row);
-            const float depth = glm::dot(glm::vec3(p[0], p[1], p[2]) - scene.camera.eye, forward);
-            const glm::vec4 e = isrUpsampleCpu(coarse, result, passes.desc().downsample, {x, y}, depth, normal);
-            const float visible = 1.0f - passes.desc().aoStrength * glm::clamp(e.w, 0.0f, 1.0f);
-            const glm::vec3 expected = image.rgb("albedo", x, row) * shading::kInvPi * glm::vec3(e) * visible;
-            const glm::vec3 got = image.rgb("indirect", x, row);
-            for (int k = 0; k < 3; ++k) ASSERT_NEAR(got[k], expected[k], 2e-3f * expected[k] + 1e-6f) << x << " " << y;
-            ++checked;
+    for (std::size_t i = 0; i < sent.radiance.size(); ++i) {
+        if (sent.position[i].w <= 0.0f) continue;
+        for (int k = 0; k < 3; ++k) {
+            const float expected = direct.radiance[i][k] + far[i * 4 + std::size_t(k)];
+            ASSERT_NEAR(sent.radiance[i][k], expected, 1e-4f * expected + 1e-6f) << i;
         }
-    EXPECT_GT(checked, 96 * 96 / 2);
+        checked += far[i * 4 + 1] > 0.0f ? 1 : 0;
+    }
+    EXPECT_GT(checked, 48 * 48 / 2);
+    // Once the frames are averaged the layer is their mean: one frame more, and only its image.
+    FrameRenderer single(withFar, unjittered(), "isr");
+    single.renderFrame();
+    const auto& first = *dynamic_cast<const IsrTechnique*>(single.technique());
+    expectGatherIsTheCpuGather(first.passes(), 0, true);
+    expectIndirectIsTheUpsample(withFar, single, single.resolve(), first);
 }
 
 TEST_F(IsrTest, CornellBoxCloserToThePathTracerThanDirectLight) {
@@ -262,4 +325,12 @@ TEST_F(IsrTest, PlanFollowsTheSettings) {
     s.gi.set("isr.temporal_frames", "8");
     EXPECT_FALSE(planFrame(s, "isr", 1).technique.runs("isr.blur"));
     EXPECT_TRUE(planFrame(s, "isr", 1).technique.runs("isr.temporal"));
+    // A far field runs its own passes first, then ISR's.
+    s.gi.set("isr.far_field", "ddgi");
+    const TechniquePlan far = planFrame(s, "isr", 1).technique;
+    EXPECT_TRUE(far.runs("ddgi.trace"));
+    EXPECT_TRUE(far.runs("ddgi.sample"));
+    EXPECT_TRUE(far.runs("isr.apply"));
+    s.gi.set("isr.far_field", "sky");
+    EXPECT_THROW(planFrame(s, "isr", 1), InputError);
 }

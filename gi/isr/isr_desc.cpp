@@ -11,12 +11,25 @@ const SettingsTable<IsrDesc>& isrSettings() {
         t.integer("downsample", &D::downsample, 1, 8, "coarse pixels are this many pixels square");
         t.integer("blur", &D::blur, 0, 16, "depth-aware blur radius of the coarse result, in coarse pixels (0: none)");
         t.number("ao_strength", &D::aoStrength, 0.0, 1.0,
-                 "fraction of the sphere occlusion taken from ISR's own bounce (0: none; never adds light)");
+                 "fraction of the occlusion (spheres; discs with a far field) taken from ISR's own bounce (0: none; never adds light)");
         t.integer("temporal_frames", &D::temporalFrames, 1, 256,
                   "gathers averaged over frames where reprojection finds the same surface (1: none)");
+        t.choice("far_field", &D::farField,
+                 {{"none", IsrFarField::None}, {"lpv", IsrFarField::Lpv}, {"clpv", IsrFarField::Clpv}, {"ddgi", IsrFarField::Ddgi}},
+                 "volume method for the light from off screen, weighted by the hemisphere the screen leaves open");
         return t;
     }();
     return table;
+}
+
+const char* farFieldMethod(IsrFarField f) {
+    switch (f) {
+        case IsrFarField::Lpv: return "lpv";
+        case IsrFarField::Clpv: return "clpv";
+        case IsrFarField::Ddgi: return "ddgi";
+        case IsrFarField::None: break;
+    }
+    return "";
 }
 
 IsrDesc readIsrDesc(const GiSettings& gi) { return isrSettings().read(gi); }

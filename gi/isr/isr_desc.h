@@ -5,6 +5,9 @@
 
 namespace voxgi {
 
+// The volume method that lights what the screen cannot (docs/isr.md, "Far field").
+enum class IsrFarField { None, Lpv, Clpv, Ddgi };
+
 struct IsrDesc {
     int patches = 48;          // sender patches gathered per coarse pixel (the seed: 48 timed, 80 for quality)
     // The gather disc's radius, a fraction of the image height. The whole screen (1) measured
@@ -21,7 +24,15 @@ struct IsrDesc {
     // surface point (shaders/isr/temporal.frag); the kernels turn every frame, so n frames of p
     // patches approach one gather of n x p. 1: no history.
     int temporalFrames = 1;
+    // A volume method for the light from off screen: its indirect light is added where the
+    // screen's patches leave the hemisphere open (1 - occlusion) and is sent on by the patches
+    // with their direct light, so on-screen surfaces bring all bounces, not only the first.
+    // Its own settings stay in its section (gi.ddgi.*, gi.lpv.*).
+    IsrFarField farField = IsrFarField::None;
 };
+
+// The far field's method name ("" for none).
+const char* farFieldMethod(IsrFarField f);
 
 const SettingsTable<IsrDesc>& isrSettings();
 IsrDesc readIsrDesc(const GiSettings& gi);

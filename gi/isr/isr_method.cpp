@@ -4,18 +4,41 @@
 #include "gi/isr/isr_desc.h"
 #include "gi/isr/isr_technique.h"
 #include "gi/method.h"
+#include "gi/methods.h"
 
 namespace voxgi {
 
 MethodInfo isrMethod() {
     MethodInfo m;
     m.name = "isr";
-    m.summary = "image-space radiosity: one bounce of the direct light between on-screen surfaces, and AO (seed 003)";
+    m.summary = "image-space radiosity: one bounce of the direct light between on-screen surfaces, and AO (seed 003); a volume method may add the far field";
     declareSettings(m, isrSettings());
-    m.create = [](const Scene& s) { return std::make_unique<IsrTechnique>(s, readIsrDesc(s.gi)); };
+    // The far field's settings and memory are the far-field method's own (its section).
+    m.validate = [](const GiSettings& gi) {
+        const IsrDesc d = readIsrDesc(gi);
+        if (d.farField != IsrFarField::None) findMethod(farFieldMethod(d.farField)).validate(gi);
+    };
+    m.memoryBytes = [](const GiSettings& gi) {
+        const IsrDesc d = readIsrDesc(gi);
+        if (d.farField == IsrFarField::None) return 0.0;
+        const MethodInfo& far = findMethod(farFieldMethod(d.farField));
+        return far.memoryBytes ? far.memoryBytes(gi) : 0.0;
+    };
+    m.create = [](const Scene& s) {
+        const IsrDesc d = readIsrDesc(s.gi);
+        std::unique_ptr<GiTechnique> far;
+        if (d.farField != IsrFarField::None) far = createTechnique(farFieldMethod(d.farField), s);
+        return std::make_unique<IsrTechnique>(s, d, std::move(far));
+    };
     m.plan = [](const Scene& s) {
         const IsrDesc d = readIsrDesc(s.gi);
         TechniquePlan p;
+        if (d.farField != IsrFarField::None) {
+            // The far field runs its own passes first: its light is what the patches send on.
+            p = findMethod(farFieldMethod(d.farField)).plan(s);
+            p.notes.push_back(std::string("isr: far field ") + farFieldMethod(d.farField) +
+                              ", added where the screen's patches leave the hemisphere open and sent on by them");
+        }
         if (s.triangleCount() == 0) {
             for (const char* pass : {"isr.downsample", "isr.gather", "isr.temporal", "isr.blur", "isr.apply"})
                 p.skipped.push_back({pass, "no triangles: no surfaces to bounce between"});

@@ -47,7 +47,18 @@ void IsrPasses::resize(glm::ivec2 size) {
     blurredFbo_ = gl::createFramebuffer({blurred_.id()}, 0, "isr blurred");
 }
 
-void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers) {
+namespace {
+
+// The far field's light at texture unit `unit` (a texture that is never read stands in without one).
+void bindFarLight(gl::Program& program, GLuint unit, GLuint farLight, GLuint fallback) {
+    glBindTextureUnit(unit, farLight ? farLight : fallback);
+    program.set("uFarLight", int(unit));
+    program.set("uHasFarLight", int(farLight != 0));
+}
+
+}  // namespace
+
+void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers, GLuint farLight) {
     const int f = desc_.downsample;
     resize({(g.width + f - 1) / f, (g.height + f - 1) / f});
     forward_ = viewForward(g.viewProjection);
@@ -65,6 +76,7 @@ void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::
         glBindTextureUnit(GLuint(i), textures[i]);
         downsample_.set(names[i], i);
     }
+    bindFarLight(downsample_, 5, farLight, g.position);
     // A full-resolution pixel's edge on the image plane at unit distance, times the factor.
     const float edge = 2.0f * std::tan(0.5f * glm::radians(fovYDegrees)) / float(g.height) * float(f);
     downsample_.set("uDirectFrames", float(std::max(g.directFrames, 1)));
@@ -87,6 +99,7 @@ void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::
     gather_program_.set("uPatches", desc_.patches);
     gather_program_.set("uRadius", radiusPixels());
     gather_program_.set("uFrame", frame);
+    gather_program_.set("uDiscs", int(farLight != 0));
     glDrawArrays(GL_TRIANGLES, 0, 3);
     timers.end();
 
@@ -135,7 +148,7 @@ void IsrPasses::accumulate(const GBufferView& g, float pixelAngle, gl::StageTime
     timers.end();
 }
 
-void IsrPasses::apply(const GBufferView& g, gl::StageTimers& timers) {
+void IsrPasses::apply(const GBufferView& g, gl::StageTimers& timers, GLuint farLight) {
     timers.begin("isr.apply");
     apply_.use();
     const char* names[6] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uCoarseGather", "uCoarseNormal"};
@@ -144,6 +157,7 @@ void IsrPasses::apply(const GBufferView& g, gl::StageTimers& timers) {
         glBindTextureUnit(GLuint(i), textures[i]);
         apply_.set(names[i], i);
     }
+    bindFarLight(apply_, 6, farLight, g.position);
     apply_.set("uFactor", desc_.downsample);
     apply_.set("uEye", g.eye);
     apply_.set("uForward", forward_);

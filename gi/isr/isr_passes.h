@@ -19,11 +19,14 @@ public:
     explicit IsrPasses(const IsrDesc& desc);
 
     // Downsample, gather and blur for G-buffer `g` (with its direct light: g.directSum) seen
-    // by a camera of vertical field of view `fovYDegrees`, kernels turned for `frame`.
-    void compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers);
+    // by a camera of vertical field of view `fovYDegrees`, kernels turned for `frame`. With a
+    // far field (`farLight`, its indirect radiance per G-buffer pixel; 0: none) the patches send
+    // that light on with their direct light.
+    void compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers, GLuint farLight = 0);
     // Adds the indirect radiance of every G-buffer pixel to the framebuffer bound now (the
-    // renderer's additive target); restores that binding after compute's own targets.
-    void apply(const GBufferView& g, gl::StageTimers& timers);
+    // renderer's additive target), and the far field's where the patches leave the hemisphere
+    // open (1 - occlusion). The caller binds that target again after compute's own.
+    void apply(const GBufferView& g, gl::StageTimers& timers, GLuint farLight = 0);
 
     const IsrDesc& desc() const { return desc_; }
     glm::ivec2 coarseSize() const { return size_; }

@@ -27,7 +27,7 @@ IsrCoarseBuffers readIsrCoarse(const IsrPasses& passes) {
     return c;
 }
 
-std::vector<glm::vec4> isrGatherCpu(const IsrCoarseBuffers& c, int patches, float radiusPixels, int frame) {
+std::vector<glm::vec4> isrGatherCpu(const IsrCoarseBuffers& c, int patches, float radiusPixels, int frame, bool discs) {
     std::vector<glm::vec4> out(std::size_t(c.width) * std::size_t(c.height), glm::vec4(0.0f));
     const float weight = shading::kPi * radiusPixels * radiusPixels / float(patches);
     for (int y = 0; y < c.height; ++y)
@@ -45,7 +45,7 @@ std::vector<glm::vec4> isrGatherCpu(const IsrCoarseBuffers& c, int patches, floa
                 if (xp.w <= 0.0f) continue;
                 const glm::vec4 radiance = c.at(c.radiance, q);
                 sum += shading::isrPatchContribution(glm::vec3(p), n, glm::vec3(xp), glm::vec3(c.at(c.normal, q)), radiance.w,
-                                                     glm::vec3(radiance));
+                                                     glm::vec3(radiance), discs);
             }
             out[std::size_t(y) * std::size_t(c.width) + std::size_t(x)] = sum * weight;
         }

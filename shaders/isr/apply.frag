@@ -3,7 +3,8 @@
 // bilateral upsample (seed Eqs. 27-28: bilinear weights times depth agreement, here with normal
 // agreement too), then the pixel's indirect radiance: diffuse albedo / pi times the irradiance,
 // less the occluded fraction uAoStrength takes. Pixels whose four coarse samples all disagree
-// take the one nearest in depth.
+// take the one nearest in depth. A far field's light (gi/isr/isr_technique.h) is added where the
+// patches leave the cosine-weighted hemisphere open: the rest of it is what they already send.
 #include "common/gbuffer_textures.glsl"
 #include "shared/isr.h"
 
@@ -13,6 +14,8 @@ uniform int uFactor;
 uniform vec3 uEye;
 uniform vec3 uForward;
 uniform float uAoStrength;
+uniform sampler2D uFarLight;  // the far field's indirect radiance, when uHasFarLight
+uniform bool uHasFarLight;
 
 layout(location = 0) out vec4 outColor;
 
@@ -42,6 +45,8 @@ void main() {
         if (abs(c.w - depth) < nearestGap) { nearestGap = abs(c.w - depth); nearest = value; }
     }
     vec4 e = weights > 1e-6 ? sum / weights : nearest;
-    float visible = 1.0 - uAoStrength * clamp(e.w, 0.0, 1.0);
-    outColor = vec4(diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * e.rgb * visible, 1.0);
+    float occlusion = clamp(e.w, 0.0, 1.0);
+    vec3 near = diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * e.rgb * (1.0 - uAoStrength * occlusion);
+    vec3 far = uHasFarLight ? (1.0 - occlusion) * texelFetch(uFarLight, pixel, 0).rgb : vec3(0.0);
+    outColor = vec4(near + far, 1.0);
 }

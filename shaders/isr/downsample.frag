@@ -3,12 +3,15 @@
 // resolution, one patch per coarse pixel (uFactor^2 pixels). The patch's surface is the block's
 // pixel nearest the eye; its radiance is the mean over the block's pixels on that surface (depth
 // within 5 %, normals within 25 degrees), so a patch never mixes a wall with what is behind it,
-// less their emission (the direct layer holds what emitters show the camera).
+// less their emission (the direct layer holds what emitters show the camera), plus the far
+// field's indirect light where there is one (gi/isr/isr_technique.h).
 #include "common/gbuffer_textures.glsl"
 #include "shared/isr.h"
 
 uniform sampler2D uDirectSum;   // the direct layer summed over uDirectFrames frames
 uniform float uDirectFrames;
+uniform sampler2D uFarLight;     // the far field's indirect radiance, when uHasFarLight
+uniform bool uHasFarLight;
 uniform int uFactor;
 uniform vec3 uEye;
 uniform vec3 uForward;
@@ -16,7 +19,7 @@ uniform float uPatchSolidAngle;  // a coarse pixel's solid angle on the camera's
 
 layout(location = 0) out vec4 outPosition;  // xyz, w = 1 where a surface was hit
 layout(location = 1) out vec4 outNormal;    // xyz, w = depth along the camera's axis (m)
-layout(location = 2) out vec4 outRadiance;  // rgb direct radiance (W/(m^2 sr)), w = patch area (m^2)
+layout(location = 2) out vec4 outRadiance;  // rgb radiance sent (W/(m^2 sr)), w = patch area (m^2)
 layout(location = 3) out vec4 outAlbedo;    // rgb diffuse albedo
 
 void main() {
@@ -51,6 +54,7 @@ void main() {
             // What the surface reflects: its own emission is light the frame's emitters already
             // deliver as direct light, and sending it again would count it twice.
             sum += texelFetch(uDirectSum, q, 0).rgb / uDirectFrames - texelFetch(uEmission, q, 0).rgb;
+            if (uHasFarLight) sum += texelFetch(uFarLight, q, 0).rgb;
             count += 1.0;
         }
     outPosition = vec4(s.position, 1.0);

@@ -2,7 +2,8 @@
 // ISR step 2 (seed 003 section 4.4): per coarse pixel, uPatches sender patches from a disc of
 // uRadius coarse pixels around it (Vogel's spiral, turned per pixel and frame), each standing for
 // pi uRadius^2 / uPatches pixels of the disc: the irradiance they send (rgb) and the fraction of
-// the hemisphere their spheres hide (w), by shaders/shared/isr.h. No visibility between patches
+// the hemisphere their spheres hide (w; with uDiscs, their discs: a far field's weight), by
+// shaders/shared/isr.h. No visibility between patches
 // (the seed has none); gi/isr/isr_reference.cpp is the same gather on the CPU.
 #include "shared/disc_samples.h"
 #include "shared/isr.h"
@@ -13,6 +14,7 @@ uniform sampler2D uCoarseRadiance;
 uniform int uPatches;
 uniform float uRadius;  // coarse pixels
 uniform int uFrame;
+uniform bool uDiscs;
 
 layout(location = 0) out vec4 outGather;
 
@@ -30,7 +32,7 @@ void main() {
         vec4 x = texelFetch(uCoarsePosition, q, 0);
         if (x.w <= 0.0) continue;
         vec4 radiance = texelFetch(uCoarseRadiance, q, 0);
-        sum += isrPatchContribution(p.xyz, n, x.xyz, texelFetch(uCoarseNormal, q, 0).xyz, radiance.w, radiance.rgb);
+        sum += isrPatchContribution(p.xyz, n, x.xyz, texelFetch(uCoarseNormal, q, 0).xyz, radiance.w, radiance.rgb, uDiscs);
     }
     outGather = sum * (kPi * uRadius * uRadius / float(uPatches));
 }

@@ -10,7 +10,11 @@
 // The A / pi in the denominator is a disc of area A seen on its axis: it bounds a patch right
 // next to the receiver at pi L_x (a full hemisphere of it) where the seed's 1 / r^2 is unbounded.
 // The seed's sphere occluder (Eq. 14) is the patch as a sphere of the same area: the fraction of
-// the receiver's cosine-weighted hemisphere it hides, 2 (1 - cos alpha) cos(theta_p).
+// the receiver's cosine-weighted hemisphere it hides, 2 (1 - cos alpha) cos(theta_p). With a far
+// field the patch occludes as what it is, a flat disc: its form factor
+//     F = cos(theta_p) |cos(theta_x)| A / (pi (r^2 + A / pi)),
+// the same geometry as its light, so that a far field weighted by 1 - sum F fills exactly the
+// directions the patches do not (a sphere hides a patch seen edge-on as much as one seen face on).
 #ifndef VOXGI_SHARED_ISR_H
 #define VOXGI_SHARED_ISR_H
 
@@ -33,15 +37,18 @@ inline float isrPatchArea(vec3 x, vec3 nx, vec3 eye, vec3 forward, float pixelSo
 }
 
 // What the patch (x, nx, area, radiance) adds to the irradiance at p with normal n: the
-// irradiance itself (rgb) and the occlusion its sphere adds (w), both before the sampling weight.
-inline vec4 isrPatchContribution(vec3 p, vec3 n, vec3 x, vec3 nx, float area, vec3 radiance) {
+// irradiance itself (rgb) and the occlusion its sphere (or, with `discs`, its disc) adds (w),
+// both before the sampling weight.
+inline vec4 isrPatchContribution(vec3 p, vec3 n, vec3 x, vec3 nx, float area, vec3 radiance, bool discs) {
     const vec3 d = x - p;
     const float r2 = dot(d, d);
     if (!(r2 > 0.0f)) return vec4(0.0f);
     const vec3 w = d / sqrt(r2);
     const float cosP = max(dot(n, w), 0.0f);
     const float cosX = max(-dot(nx, w), 0.0f);
-    const vec3 e = radiance * (cosP * cosX * area / (r2 + area * kInvPi));
+    const float bounded = area / (r2 + area * kInvPi);
+    const vec3 e = radiance * (cosP * cosX * bounded);
+    if (discs) return vec4(e, cosP * abs(dot(nx, w)) * bounded * kInvPi);
     const float sinAlpha2 = min(area * kInvPi / r2, 1.0f);  // (sphere radius / distance)^2
     const float occlusion = 2.0f * (1.0f - sqrt(1.0f - sinAlpha2)) * cosP;
     return vec4(e, occlusion);
