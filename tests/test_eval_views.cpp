@@ -194,3 +194,39 @@ TEST(EvalViews, CornellBoxOverViewsWithHeldOutAmbientAndAReplayableViewsFile) {
     EXPECT_EQ(runVoxgi("eval cornell-box --views " + dir + "/missing.json -o " + dir + "/c").exitCode, 2);
     EXPECT_FALSE(fileExists(dir + "/c"));  // read with the other inputs: nothing written
 }
+
+// `--views` runs every method but the oracles on one renderer whose camera moves: DDGI's field
+// settles once, at the first view, and the next view starts from it; a method without a light
+// state renders each view exactly as a fresh run does.
+TEST(EvalViews, OneRendererKeepsItsLightStateFromViewToView) {
+    useHeadlessContext();
+    Scene scene = cornellBox();
+    cli::RenderSettings rs;
+    rs.width = rs.height = scene.camera.width = scene.camera.height = 16;
+    rs.frames = 4;
+    rs.warmup = 1;
+    rs.convergeBelow = 0.05;
+    rs.maxWarmup = 200;
+    Camera second = scene.camera;
+    second.eye += 0.1f * (second.target - second.eye);
+    second.target += glm::vec3(0.05f, 0.0f, 0.0f);
+
+    cli::MethodSession ddgi(scene, "ddgi", Preset{"low", {{"ddgi.rays", "32"}}}, rs);
+    const cli::MethodRun first = ddgi.render(scene.camera);
+    const cli::MethodRun next = ddgi.render(second);
+    EXPECT_TRUE(first.converged);
+    EXPECT_GT(first.warmupFrames, 10);  // the change window fills first
+    EXPECT_TRUE(next.converged);
+    EXPECT_EQ(next.warmupFrames, rs.warmup);
+
+    cli::MethodSession isr(scene, "isr", Preset{"default", {}}, rs);
+    isr.render(scene.camera);
+    Scene moved = scene;
+    moved.camera = second;
+    const cli::MethodRun keptRun = isr.render(second);
+    const cli::MethodRun freshRun = cli::renderMethod(moved, "isr", Preset{"default", {}}, rs);
+    const std::vector<float>& kept = keptRun.image.find("beauty")->data;
+    const std::vector<float>& fresh = freshRun.image.find("beauty")->data;
+    ASSERT_EQ(kept.size(), fresh.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) ASSERT_NEAR(kept[i], fresh[i], 1e-6f * (1.0f + std::abs(fresh[i]))) << i;
+}

@@ -57,23 +57,50 @@ std::string sceneKey(const Scene& scene) {
 }
 }  // namespace
 
-MethodRun renderMethod(const Scene& base, const std::string& method, const Preset& preset,
-                       const RenderSettings& settings, const SettingList& extra) {
+struct MethodSession::Impl {
+    Scene scene;  // the renderer reads it every frame: the camera moves here
+    FrameRenderer renderer;
+    RenderSettings settings;
+
+    static FrameOptions options(const RenderSettings& settings) {
+        FrameOptions o;
+        o.width = settings.width;
+        o.height = settings.height;
+        // Timed frames do all their work, as lpv.reuse=false makes the LPV's: a still camera would
+        // keep the sun's maps and time a frame no moving camera gets.
+        o.keepSunMaps = false;
+        return o;
+    }
+    Impl(const Scene& s, const std::string& method, const RenderSettings& rs)
+        : scene(s), renderer(scene, options(rs), method), settings(rs) {}
+};
+
+namespace {
+Scene withSettings(const Scene& base, const Preset& preset, const SettingList& extra) {
     Scene scene = base;
     for (const auto& [k, v] : preset.settings) scene.gi.set(k, v);
     for (const auto& [k, v] : extra) scene.gi.set(k, v);
-    FrameOptions options;
-    options.width = settings.width;
-    options.height = settings.height;
-    // Timed frames do all their work, as lpv.reuse=false makes the LPV's: a still camera would
-    // keep the sun's maps and time a frame no moving camera gets.
-    options.keepSunMaps = false;
-    FrameRenderer renderer(scene, options, method);
+    return scene;
+}
+}  // namespace
+
+MethodSession::MethodSession(const Scene& scene, const std::string& method, const Preset& preset,
+                             const RenderSettings& settings, const SettingList& extra)
+    : impl_(std::make_unique<Impl>(withSettings(scene, preset, extra), method, settings)) {
+    if (GiTechnique* technique = impl_->renderer.technique()) technique->trackConvergence();
+}
+
+MethodSession::~MethodSession() = default;
+
+MethodRun MethodSession::render(const Camera& camera) {
+    const RenderSettings& settings = impl_->settings;
+    FrameRenderer& renderer = impl_->renderer;
+    impl_->scene.camera = camera;
+    renderer.resetAccumulation();
     MethodRun run;
     const int warmup = std::min(settings.warmup, settings.frames - 1);
     run.timedFrames = settings.frames - warmup;
     GiTechnique* technique = renderer.technique();
-    if (technique) technique->trackConvergence();
     run.temporal = technique && technique->lightStateChange().has_value();
     // Warm-up: a fixed number of frames, or for a temporal technique until its light settles.
     auto settled = [&] {
@@ -124,6 +151,11 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
     }
     run.image = renderer.resolve();
     return run;
+}
+
+MethodRun renderMethod(const Scene& base, const std::string& method, const Preset& preset,
+                       const RenderSettings& settings, const SettingList& extra) {
+    return MethodSession(base, method, preset, settings, extra).render(base.camera);
 }
 
 Reference loadOrRenderReference(const Scene& scene, const std::string& name, int spp, const std::string& cacheDir) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,25 @@ struct RenderSettings {
 // scene's.
 MethodRun renderMethod(const Scene& scene, const std::string& method, const Preset& preset,
                        const RenderSettings& settings, const SettingList& extra = {});
+
+// One method and preset on one frame renderer whose camera moves from view to view, as a user's
+// camera does: light that builds up over frames (DDGI) settles once, at the first view, and every
+// later view starts from that light state (`voxgi eval --views`). Needs a current GL context.
+class MethodSession {
+public:
+    MethodSession(const Scene& scene, const std::string& method, const Preset& preset, const RenderSettings& settings,
+                  const SettingList& extra = {});
+    ~MethodSession();
+    MethodSession(const MethodSession&) = delete;
+    MethodSession& operator=(const MethodSession&) = delete;
+    // The warm-up (for a temporal technique: until its light settles again) and timed frames at
+    // `camera` (its size must be the session's).
+    MethodRun render(const Camera& camera);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 struct Reference {
     Image image;

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "gi/methods.h"
@@ -87,20 +89,20 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
 
     // One copy of the scene, its camera set to the view at hand.
     Scene viewScene = scene;
-    auto reference = [&](std::size_t k) {
-        viewScene.camera = views[k];
-        return loadOrRenderReference(viewScene, name + "-view" + std::to_string(k), job.spp, job.cacheDir);
-    };
     auto progress = [&](std::size_t k, const std::string& what) {
         std::printf("%s: view %zu/%zu %s\n", name.c_str(), k + 1, views.size(), what.c_str());
         std::fflush(stdout);
     };
 
     // Every reference first: they are the slow part, and their progress says how long it takes.
+    // They stay in memory (every layer of every view: 100 views at 64x64 are about 30 MB).
+    std::vector<Reference> references;
     double renderedSeconds = 0.0;
     for (std::size_t k = 0; k < views.size(); ++k) {
         const auto start = std::chrono::steady_clock::now();
-        const Reference ref = reference(k);
+        viewScene.camera = views[k];
+        references.push_back(loadOrRenderReference(viewScene, name + "-view" + std::to_string(k), job.spp, job.cacheDir));
+        const Reference& ref = references.back();
         out.referenceSeconds.push_back(ref.seconds);
         if (!ref.fromCache) {
             ++out.referencesRendered;
@@ -125,33 +127,46 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
     // Per row: its worst views, and an oracle's settings fitted to each view.
     std::vector<WorstKeeper> worst(out.rows.size());
     std::vector<std::vector<SettingList>> fits(out.rows.size());
-    // Renders row r (of job.runs[run]) on view k with `settings` and scores it.
-    auto score = [&](std::size_t r, std::size_t run, std::size_t k, const Reference& ref, const SettingList& settings) {
-        progress(k, runLabel(out.rows[r]) + "...");
-        const auto& [method, preset] = job.runs[run];
-        const MethodRun result = renderMethod(viewScene, method, preset, job.settings, settings);
+    auto score = [&](std::size_t r, std::size_t k, const MethodRun& result, const SettingList& settings) {
         ViewScore s;
-        s.full = computeMetrics(result.image, ref.image, "beauty");
-        s.indirect = computeMetrics(result.image, ref.image, "indirect");
+        s.full = computeMetrics(result.image, references[k].image, "beauty");
+        s.indirect = computeMetrics(result.image, references[k].image, "indirect");
         s.frameMs = result.frameMs;
         s.fitted = settingsText(settings);
         out.rows[r].views.push_back(s);
-        worst[r].offer(int(k), s.full.flip, result.image, ref.image, job.worstViews);
+        worst[r].offer(int(k), s.full.flip, result.image, references[k].image, job.worstViews);
     };
-    for (std::size_t k = 0; k < views.size(); ++k) {
-        const Reference ref = reference(k);
-        for (std::size_t r = 0; r < job.runs.size(); ++r) {
-            SettingList fitted;
-            if (out.rows[r].oracle) {
-                const auto& [method, preset] = job.runs[r];
-                RenderWith render = [&](const SettingList& extra) {
-                    return renderMethod(viewScene, method, preset, job.settings, extra).image;
-                };
-                fitted = findMethod(method).fitToReference(render, ref.image);
+    // Row r (of job.runs[run]) with `settings(k)` on every view: an oracle's settings change per
+    // view, so it starts afresh each time; any other method keeps one renderer and its light state
+    // while the camera moves from view to view.
+    auto scoreViews = [&](std::size_t r, std::size_t run, const std::function<SettingList(std::size_t)>& settings) {
+        const auto& [method, preset] = job.runs[run];
+        std::unique_ptr<MethodSession> session;
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            progress(k, runLabel(out.rows[r]) + "...");
+            viewScene.camera = views[k];
+            if (!settings) {
+                if (!session) session = std::make_unique<MethodSession>(viewScene, method, preset, job.settings);
+                score(r, k, session->render(views[k]), {});
+                continue;
             }
-            fits[r].push_back(fitted);
-            score(r, r, k, ref, fitted);
+            const SettingList s = settings(k);
+            score(r, k, renderMethod(viewScene, method, preset, job.settings, s), s);
         }
+    };
+    for (std::size_t r = 0; r < job.runs.size(); ++r) {
+        if (!out.rows[r].oracle) {
+            scoreViews(r, r, nullptr);
+            continue;
+        }
+        const auto& [method, preset] = job.runs[r];
+        scoreViews(r, r, [&, r](std::size_t k) {
+            RenderWith render = [&](const SettingList& extra) {
+                return renderMethod(viewScene, method, preset, job.settings, extra).image;
+            };
+            fits[r].push_back(findMethod(method).fitToReference(render, references[k].image));
+            return fits[r].back();
+        });
     }
     // Oracles held out: each view scored with what the other views' references taught them.
     for (std::size_t run = 0; run < job.runs.size() && views.size() > 1; ++run) {
@@ -162,7 +177,7 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
         held.views.clear();
         out.rows.push_back(held);
         worst.emplace_back();
-        for (std::size_t k = 0; k < views.size(); ++k) score(out.rows.size() - 1, run, k, reference(k), heldOutSettings(fits[run], k));
+        scoreViews(out.rows.size() - 1, run, [&, run](std::size_t k) { return heldOutSettings(fits[run], k); });
     }
 
     // The worst views' images, FLIP maps and references.

@@ -5,7 +5,9 @@
 // fitted ambient (an oracle: it saw each view's reference), seed 003's quality function f_q
 // (Eq. 21) and gain against direct light on its mean error (Eq. 19), and its worst views.
 // The ambient also runs held out: each view gets the mean of the constants fitted to the other
-// views, a baseline that never sees the view it is scored on.
+// views, a baseline that never sees the view it is scored on. A method other than an oracle runs
+// on one renderer whose camera visits the views in turn (MethodSession): light that builds up over
+// frames settles at the first view and every later one starts from that light state.
 #pragma once
 
 #include <string>
