@@ -37,8 +37,13 @@ function(voxgi_sanitize_input_sources)
     file(RELATIVE_PATH relative "${PROJECT_SOURCE_DIR}" "${source}")
     foreach(dir IN LISTS VOXGI_INPUT_DIRS)
       if(relative MATCHES "^${dir}/")
-        set_source_files_properties("${source}" PROPERTIES
-          COMPILE_OPTIONS "-fsanitize=address,undefined;-fno-omit-frame-pointer;-g")
+        set(options "-fsanitize=address,undefined;-fno-omit-frame-pointer;-g")
+        # OpenVDB's templates under the sanitizers compile twice as fast at -O1 as at -O3
+        # (volumes/volume_io.cpp: 75 s against 160 s), and volumes/ runs little in the tests.
+        if(relative MATCHES "^volumes/")
+          list(APPEND options "-O1")
+        endif()
+        set_source_files_properties("${source}" PROPERTIES COMPILE_OPTIONS "${options}")
       endif()
     endforeach()
   endforeach()
