@@ -7,10 +7,8 @@ set xlabel 'fraction of views'
 set ylabel 'HDR-FLIP (full image)'
 plot 'plots/cornell-box-views-sorted.dat' index 0 using 1:2 with linespoints title 'direct', \
     'plots/cornell-box-views-sorted.dat' index 1 using 1:2 with linespoints title 'ambient', \
-    'plots/cornell-box-views-sorted.dat' index 2 using 1:2 with linespoints title 'isr-low', \
-    'plots/cornell-box-views-sorted.dat' index 3 using 1:2 with linespoints title 'isr-medium', \
-    'plots/cornell-box-views-sorted.dat' index 4 using 1:2 with linespoints title 'isr-high', \
-    'plots/cornell-box-views-sorted.dat' index 5 using 1:2 with linespoints title 'ambient-held-out'
+    'plots/cornell-box-views-sorted.dat' index 2 using 1:2 with linespoints title 'isr-medium', \
+    'plots/cornell-box-views-sorted.dat' index 3 using 1:2 with linespoints title 'ambient-held-out'
 set output 'plots/cornell-box-views-error-vs-time.png'
 set logscale x
 set title 'cornell-box: mean HDR-FLIP over views against frame time'
