@@ -46,7 +46,8 @@ MethodInfo isrMethod() {
         }
         const std::string f = std::to_string(d.downsample);
         p.apply.push_back({"isr.downsample", "G-buffer and direct light to coarse patches of " + f + "x" + f + " pixels"});
-        p.apply.push_back({"isr.gather", std::to_string(d.patches) + " sender patches per coarse pixel, one bounce and sphere occlusion"});
+        p.apply.push_back({"isr.gather", std::to_string(d.patches) + " sender patches per coarse pixel, one bounce and " +
+                                             (d.farField == IsrFarField::None ? "sphere occlusion" : "disc occlusion (the far field's weight)")});
         if (d.temporalFrames > 1)
             p.apply.push_back({"isr.temporal", "gathers averaged over up to " + std::to_string(d.temporalFrames) +
                                                    " frames where reprojection finds the same surface"});
