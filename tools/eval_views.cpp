@@ -140,18 +140,15 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
     // view, so it starts afresh each time; any other method keeps one renderer and its light state
     // while the camera moves from view to view.
     auto scoreViews = [&](std::size_t r, std::size_t run, const std::function<SettingList(std::size_t)>& settings) {
+        if (views.empty()) return;
         const auto& [method, preset] = job.runs[run];
-        std::unique_ptr<MethodSession> session;
+        viewScene.camera = views.front();  // a session starts where its first view is (DDGI places its probes there)
+        const auto session = settings ? nullptr : std::make_unique<MethodSession>(viewScene, method, preset, job.settings);
         for (std::size_t k = 0; k < views.size(); ++k) {
             progress(k, runLabel(out.rows[r]) + "...");
             viewScene.camera = views[k];
-            if (!settings) {
-                if (!session) session = std::make_unique<MethodSession>(viewScene, method, preset, job.settings);
-                score(r, k, session->render(views[k]), {});
-                continue;
-            }
-            const SettingList s = settings(k);
-            score(r, k, renderMethod(viewScene, method, preset, job.settings, s), s);
+            const SettingList s = settings ? settings(k) : SettingList{};
+            score(r, k, session ? session->render(views[k]) : renderMethod(viewScene, method, preset, job.settings, s), s);
         }
     };
     for (std::size_t r = 0; r < job.runs.size(); ++r) {

@@ -15,21 +15,11 @@ const SettingsTable<IsrDesc>& isrSettings() {
         t.integer("temporal_frames", &D::temporalFrames, 1, 256,
                   "gathers averaged over frames where reprojection finds the same surface (1: none)");
         t.choice("far_field", &D::farField,
-                 {{"none", IsrFarField::None}, {"lpv", IsrFarField::Lpv}, {"clpv", IsrFarField::Clpv}, {"ddgi", IsrFarField::Ddgi}},
+                 std::vector<std::pair<std::string, std::string>>{{"none", ""}, {"lpv", "lpv"}, {"clpv", "clpv"}, {"ddgi", "ddgi"}},
                  "volume method for the light from off screen, weighted by the hemisphere the screen leaves open");
         return t;
     }();
     return table;
-}
-
-const char* farFieldMethod(IsrFarField f) {
-    switch (f) {
-        case IsrFarField::Lpv: return "lpv";
-        case IsrFarField::Clpv: return "clpv";
-        case IsrFarField::Ddgi: return "ddgi";
-        case IsrFarField::None: break;
-    }
-    return "";
 }
 
 IsrDesc readIsrDesc(const GiSettings& gi) { return isrSettings().read(gi); }

@@ -1,12 +1,11 @@
 // Image-space radiosity's settings (gi.isr.*; seed 003, docs/isr.md): defaults documented here.
 #pragma once
 
+#include <string>
+
 #include "gi/settings_table.h"
 
 namespace voxgi {
-
-// The volume method that lights what the screen cannot (docs/isr.md, "Far field").
-enum class IsrFarField { None, Lpv, Clpv, Ddgi };
 
 struct IsrDesc {
     int patches = 48;          // sender patches gathered per coarse pixel (the seed: 48 timed, 80 for quality)
@@ -27,12 +26,10 @@ struct IsrDesc {
     // A volume method for the light from off screen: its indirect light is added where the
     // screen's patches leave the hemisphere open (1 - occlusion) and is sent on by the patches
     // with their direct light, so on-screen surfaces bring all bounces, not only the first.
-    // Its own settings stay in its section (gi.ddgi.*, gi.lpv.*).
-    IsrFarField farField = IsrFarField::None;
+    // Its own settings stay in its section (gi.ddgi.*, gi.lpv.*). The method's name, empty for
+    // none (docs/isr.md, "Far field").
+    std::string farField;
 };
-
-// The far field's method name ("" for none).
-const char* farFieldMethod(IsrFarField f);
 
 const SettingsTable<IsrDesc>& isrSettings();
 IsrDesc readIsrDesc(const GiSettings& gi);

@@ -8,6 +8,13 @@
 
 namespace voxgi {
 
+namespace {
+// The far field's method, or null for none.
+const MethodInfo* farFieldInfo(const IsrDesc& d) {
+    return d.farField.empty() ? nullptr : &findMethod(d.farField);
+}
+}  // namespace
+
 MethodInfo isrMethod() {
     MethodInfo m;
     m.name = "isr";
@@ -15,28 +22,25 @@ MethodInfo isrMethod() {
     declareSettings(m, isrSettings());
     // The far field's settings and memory are the far-field method's own (its section).
     m.validate = [](const GiSettings& gi) {
-        const IsrDesc d = readIsrDesc(gi);
-        if (d.farField != IsrFarField::None) findMethod(farFieldMethod(d.farField)).validate(gi);
+        if (const MethodInfo* far = farFieldInfo(readIsrDesc(gi))) far->validate(gi);
     };
     m.memoryBytes = [](const GiSettings& gi) {
-        const IsrDesc d = readIsrDesc(gi);
-        if (d.farField == IsrFarField::None) return 0.0;
-        const MethodInfo& far = findMethod(farFieldMethod(d.farField));
-        return far.memoryBytes ? far.memoryBytes(gi) : 0.0;
+        const MethodInfo* far = farFieldInfo(readIsrDesc(gi));
+        return far && far->memoryBytes ? far->memoryBytes(gi) : 0.0;
     };
     m.create = [](const Scene& s) {
         const IsrDesc d = readIsrDesc(s.gi);
         std::unique_ptr<GiTechnique> far;
-        if (d.farField != IsrFarField::None) far = createTechnique(farFieldMethod(d.farField), s);
+        if (const MethodInfo* info = farFieldInfo(d)) far = createTechnique(info->name, s);
         return std::make_unique<IsrTechnique>(s, d, std::move(far));
     };
     m.plan = [](const Scene& s) {
         const IsrDesc d = readIsrDesc(s.gi);
         TechniquePlan p;
-        if (d.farField != IsrFarField::None) {
+        if (const MethodInfo* far = farFieldInfo(d)) {
             // The far field runs its own passes first: its light is what the patches send on.
-            p = findMethod(farFieldMethod(d.farField)).plan(s);
-            p.notes.push_back(std::string("isr: far field ") + farFieldMethod(d.farField) +
+            p = far->plan(s);
+            p.notes.push_back("isr: far field " + far->name +
                               ", added where the screen's patches leave the hemisphere open and sent on by them");
         }
         if (s.triangleCount() == 0) {
@@ -47,7 +51,7 @@ MethodInfo isrMethod() {
         const std::string f = std::to_string(d.downsample);
         p.apply.push_back({"isr.downsample", "G-buffer and direct light to coarse patches of " + f + "x" + f + " pixels"});
         p.apply.push_back({"isr.gather", std::to_string(d.patches) + " sender patches per coarse pixel, one bounce and " +
-                                             (d.farField == IsrFarField::None ? "sphere occlusion" : "disc occlusion (the far field's weight)")});
+                                             (d.farField.empty() ? "sphere occlusion" : "disc occlusion (the far field's weight)")});
         if (d.temporalFrames > 1)
             p.apply.push_back({"isr.temporal", "gathers averaged over up to " + std::to_string(d.temporalFrames) +
                                                    " frames where reprojection finds the same surface"});

@@ -32,10 +32,9 @@ void IsrTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) 
     // No surfaces to bounce between (no triangles): nothing for the far field to light either.
     if (!input.plan.runs("isr.apply")) return;
     // compute() draws into its own coarse targets: the renderer's additive target comes back after.
-    GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0}, vertexArray = 0;
+    GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     glGetIntegerv(GL_VIEWPORT, viewport);
-    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertexArray);
     if (farField_) drawFarField(input, g);
     // With history the kernels keep turning while the camera moves, which restarts frameIndex
     // every frame: the history would otherwise average the same patches again.
@@ -43,7 +42,6 @@ void IsrTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) 
     passes_.compute(g, scene_.camera.fovYDegrees, turn, input.timers, farFieldLight());
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    glBindVertexArray(GLuint(vertexArray));
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     passes_.apply(g, input.timers, farFieldLight());

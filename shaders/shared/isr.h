@@ -45,10 +45,10 @@ inline vec4 isrPatchContribution(vec3 p, vec3 n, vec3 x, vec3 nx, float area, ve
     if (!(r2 > 0.0f)) return vec4(0.0f);
     const vec3 w = d / sqrt(r2);
     const float cosP = max(dot(n, w), 0.0f);
-    const float cosX = max(-dot(nx, w), 0.0f);
+    const float facing = -dot(nx, w);  // cos(theta_x), negative for a patch's back
     const float bounded = area / (r2 + area * kInvPi);
-    const vec3 e = radiance * (cosP * cosX * bounded);
-    if (discs) return vec4(e, cosP * abs(dot(nx, w)) * bounded * kInvPi);
+    const vec3 e = radiance * (cosP * max(facing, 0.0f) * bounded);
+    if (discs) return vec4(e, cosP * abs(facing) * bounded * kInvPi);  // a back hides as much
     const float sinAlpha2 = min(area * kInvPi / r2, 1.0f);  // (sphere radius / distance)^2
     const float occlusion = 2.0f * (1.0f - sqrt(1.0f - sinAlpha2)) * cosP;
     return vec4(e, occlusion);
