@@ -73,6 +73,25 @@ TEST(ViewSampler, ViewsStandInFreeSpaceAndSeeTheirTargets) {
     }
 }
 
+TEST(ViewSampler, NoEyeInASealedCavity) {
+    // The room holds a closed hollow box [0.8, 3.2]^3 whose walls face both ways: from inside
+    // it looks like a room (front faces all round), but no light or camera gets in. It fills
+    // over a fifth of the room, so without the reachability test about that share of eyes
+    // lands inside.
+    Scene scene = roomWithBlock();
+    scene.meshes.pop_back();
+    const glm::mat4 cavity = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(2.0f)), glm::vec3(2.4f));
+    scene.meshes.push_back(makeBox(cavity, 0, true));
+    scene.meshes.push_back(makeBox(cavity, 0, false));
+    view::ViewSampling sampling;
+    sampling.count = 24;
+    const std::vector<Camera> views = view::sampleViews(scene, sampling);
+    ASSERT_EQ(views.size(), 24u);
+    for (const Camera& c : views)
+        EXPECT_FALSE(glm::all(glm::greaterThan(c.eye, glm::vec3(0.8f))) && glm::all(glm::lessThan(c.eye, glm::vec3(3.2f))))
+            << c.eye.x << " " << c.eye.y << " " << c.eye.z;
+}
+
 TEST(ViewSampler, SameSeedSameViewsOtherSeedOthers) {
     const Scene scene = roomWithBlock();
     view::ViewSampling sampling;

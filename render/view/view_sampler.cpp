@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
 #include <sstream>
 
 #include "gi/raytrace/ray_tracer.h"
@@ -50,6 +53,67 @@ bool clearAround(const SparseGeometryVolume& occupancy, glm::ivec3 ijk) {
     return true;
 }
 
+// The free space the scene's own camera stands in: the voxels of the occupancy's box, grown by
+// two voxels so that the outside joins up around the scene, reached from the camera's eye
+// through empty face neighbours. Eyes anywhere else stand in sealed cavities (Sponza's hollow
+// walls and roof): no light arrives there, the reference is black and every method ties.
+class ReachableSpace {
+public:
+    ReachableSpace(const SparseGeometryVolume& occupancy, glm::vec3 eye) {
+        IndexBox box = occupancy.indexBounds();
+        if (box.empty()) box = IndexBox{occupancy.voxelAt(eye), occupancy.voxelAt(eye)};
+        min_ = box.min - 2;
+        size_ = box.max - box.min + 5;
+        reached_.assign(std::size_t(size_.x) * std::size_t(size_.y) * std::size_t(size_.z), 0);
+        std::deque<glm::ivec3> front{start(occupancy, eye)};
+        reached_[index(front.front())] = 1;
+        const glm::ivec3 steps[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        while (!front.empty()) {
+            const glm::ivec3 v = front.front();
+            front.pop_front();
+            for (const glm::ivec3& step : steps) {
+                const glm::ivec3 n = v + step;
+                if (!inside(n) || reached_[index(n)] || occupancy.occupied(n)) continue;
+                reached_[index(n)] = 1;
+                front.push_back(n);
+            }
+        }
+    }
+    bool contains(glm::ivec3 ijk) const { return inside(ijk) && reached_[index(ijk)] != 0; }
+
+private:
+    bool inside(glm::ivec3 v) const {
+        const glm::ivec3 l = v - min_;
+        return l.x >= 0 && l.y >= 0 && l.z >= 0 && l.x < size_.x && l.y < size_.y && l.z < size_.z;
+    }
+    std::size_t index(glm::ivec3 v) const {
+        const glm::ivec3 l = v - min_;
+        return (std::size_t(l.z) * std::size_t(size_.y) + std::size_t(l.y)) * std::size_t(size_.x) + std::size_t(l.x);
+    }
+    // The eye's voxel (an eye outside the box starts from the box's empty rim), or when a
+    // surface passes through it, the nearest empty voxel.
+    glm::ivec3 start(const SparseGeometryVolume& occupancy, glm::vec3 eye) const {
+        const glm::ivec3 v = glm::clamp(occupancy.voxelAt(eye), min_, min_ + size_ - 1);
+        if (!occupancy.occupied(v)) return v;
+        glm::ivec3 best = min_;
+        long long bestDistance = std::numeric_limits<long long>::max();
+        for (int z = 0; z < size_.z; ++z)
+            for (int y = 0; y < size_.y; ++y)
+                for (int x = 0; x < size_.x; ++x) {
+                    const glm::ivec3 c = min_ + glm::ivec3(x, y, z), d = c - v;
+                    const long long distance = 1LL * d.x * d.x + 1LL * d.y * d.y + 1LL * d.z * d.z;
+                    if (distance < bestDistance && !occupancy.occupied(c)) {
+                        bestDistance = distance;
+                        best = c;
+                    }
+                }
+        return best;
+    }
+
+    glm::ivec3 min_{0}, size_{0};
+    std::vector<std::uint8_t> reached_;
+};
+
 }  // namespace
 
 std::vector<Camera> sampleViews(const Scene& scene, const ViewSampling& sampling) {
@@ -63,6 +127,7 @@ std::vector<Camera> sampleViews(const Scene& scene, const ViewSampling& sampling
     VoxelizeSettings settings;
     settings.voxelSize = longest / float(std::max(sampling.voxelsAcross, 4));
     const SparseGeometryVolume occupancy = voxelizeScene(scene, settings);
+    const ReachableSpace reachable(occupancy, scene.camera.eye);
     const RayTracer tracer(scene);
     const std::vector<glm::vec3> probes = probeDirections(64);
     const glm::vec3 up = glm::normalize(scene.camera.up);
@@ -71,9 +136,11 @@ std::vector<Camera> sampleViews(const Scene& scene, const ViewSampling& sampling
     Uniforms u(sampling.seed);
     const long long maxCandidates = 400LL * sampling.count;
     for (long long candidate = 0; candidate < maxCandidates && int(views.size()) < sampling.count; ++candidate) {
-        // An eye in the scene's box, at least a voxel from every surface.
+        // An eye in the scene's box, at least a voxel from every surface, in the space the
+        // scene's camera can reach.
         const glm::vec3 eye = bounds.min + glm::vec3(u.next(), u.next(), u.next()) * extent;
-        if (!clearAround(occupancy, occupancy.voxelAt(eye))) continue;
+        const glm::ivec3 voxel = occupancy.voxelAt(eye);
+        if (!reachable.contains(voxel) || !clearAround(occupancy, voxel)) continue;
         int hits = 0, backFaces = 0;
         for (const glm::vec3& d : probes) {
             const RayHit h = tracer.intersect(eye, d);

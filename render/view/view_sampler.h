@@ -1,6 +1,7 @@
 // Camera views of a scene drawn at random inside its free space, for judging a method over many
 // views instead of the one someone chose (`voxgi eval --views N`). Eyes are drawn in voxels of
-// the scene's occupancy that are empty with all 26 neighbours, and kept when rays from them see
+// the scene's occupancy that are empty with all 26 neighbours and that the scene's own camera
+// reaches through empty voxels (no sealed cavities), and kept when rays from them see
 // the scene around (not the sky through most directions) and few back faces (not inside a
 // closed solid); each looks at the farthest of the front faces that random rays from it hit. The same scene, count
 // and seed give the same views. Views are written and read as a viewer script's camera keys
