@@ -91,6 +91,34 @@ TEST(TriangleBox, SeparatingAxesAgreeWithClipping) {
     EXPECT_GT(overlaps, 2000);
 }
 
+TEST(TriangleBox, SlabsInAnyAxisOrderCutTheSamePiece) {
+    // The voxelizer clips a triangle to its row, the row to a column and the column to a voxel,
+    // along the triangle's own axis order; the piece must be the one a box clip gives.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.5f, 1.5f);
+    const int orders[3][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}};
+    int cut = 0;
+    for (int i = 0; i < 20000; ++i) {
+        glm::vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+        const PolygonMoments box = polygonMoments(clipTriangleToBox(a, b, c, glm::vec3(-0.5f), glm::vec3(0.5f)));
+        for (const auto& order : orders) {
+            ClipPolygon piece;
+            piece.v[0] = a;
+            piece.v[1] = b;
+            piece.v[2] = c;
+            piece.count = 3;
+            for (int axis : order) clipToSlab(piece, axis, -0.5f, 0.5f);
+            const PolygonMoments m = polygonMoments(piece);
+            ASSERT_NEAR(m.area, box.area, 1e-5f * (1.0f + box.area)) << i;
+            if (box.area > 1e-3f) {
+                EXPECT_LT(glm::length(m.centroid - box.centroid), 1e-4f) << i;
+            }
+        }
+        cut += box.area > 0.0f;
+    }
+    EXPECT_GT(cut, 2000);
+}
+
 TEST(Voxelize, AxisAlignedBoxShellIsExactAndClosed) {
     // Faces at 0.05 and 0.95 run through the middle of voxel layers 0 and 9: the shell of the
     // 10^3 block, 10^3 - 8^3 voxels.

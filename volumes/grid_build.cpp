@@ -4,6 +4,7 @@
 #include <map>
 #include <tuple>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "volumes/detail/accumulation.h"
@@ -12,9 +13,7 @@
 namespace voxgi::detail {
 
 AccumLeaf::AccumLeaf(const glm::ivec3& origin)
-    : origin_(origin),
-      leaf_(new OccupancyLeaf(openvdb::Coord(origin.x, origin.y, origin.z), false)),
-      sums_(std::make_unique<DenseSums>()) {}
+    : origin_(origin), leaf_(new OccupancyLeaf(openvdb::Coord(origin.x, origin.y, origin.z), false)) {}
 
 AccumLeaf::~AccumLeaf() {
     if (ownsLeaf_) delete leaf_;
@@ -25,23 +24,14 @@ void AccumLeaf::translate(const glm::ivec3& delta) {
     leaf_->setOrigin(openvdb::Coord(origin_.x, origin_.y, origin_.z));
 }
 
-void AccumLeaf::add(int offset, const VoxelSums& s) {
-    leaf_->setValueOn(openvdb::Index(offset), true);
-    DenseSums& d = *sums_;
-    d.area[offset] += s.area;
-    d.albedoWeight[offset] += s.albedoWeight;
-    d.vectorArea[offset] += s.vectorArea;
-    d.albedoSum[offset] += s.albedoSum;
-}
-
-VoxelSums AccumLeaf::sums(int offset) const {
-    const DenseSums& d = *sums_;
-    VoxelSums s;
-    s.area = d.area[offset];
-    s.albedoWeight = d.albedoWeight[offset];
-    s.vectorArea = d.vectorArea[offset];
-    s.albedoSum = d.albedoSum[offset];
-    return s;
+void AccumLeaf::pack(DenseSums& dense) {
+    packed_ = std::make_unique<VoxelSums[]>(leaf_->onVoxelCount());
+    std::size_t i = 0;
+    for (auto it = leaf_->cbeginValueOn(); it; ++it, ++i) {
+        VoxelSums& v = dense.voxel[it.pos()];
+        packed_[i] = v;
+        v = VoxelSums{};
+    }
 }
 
 void AccumLeaf::moveOccupancyInto(openvdb::BoolTree& tree) {
@@ -51,12 +41,12 @@ void AccumLeaf::moveOccupancyInto(openvdb::BoolTree& tree) {
 
 void AccumLeaf::writeAttributes(LevelGrids& level, BlockerFit fit) const {
     std::size_t index = leaf_->transientData();
-    for (auto it = leaf_->cbeginValueOn(); it; ++it, ++index) {
-        VoxelSums s = sums(int(it.pos()));
+    forEachActive([&](int, const VoxelSums& s) {
         glm::vec3 albedo = s.albedoWeight > 0.0f ? s.albedoSum / s.albedoWeight : glm::vec3(0.0f);
         level.normalC0[index] = glm::vec4(s.vectorArea, blockerFromCoverage(s.area, s.vectorArea, fit)[0]);
         level.albedo[index] = quantizeAlbedo(albedo);
-    }
+        ++index;
+    });
 }
 
 AccumLevel downsample(const AccumLevel& fine) {
@@ -71,21 +61,22 @@ AccumLevel downsample(const AccumLevel& fine) {
     for (auto& [key, children] : parents)
         work.push_back({glm::ivec3(std::get<0>(key), std::get<1>(key), std::get<2>(key)), std::move(children)});
     AccumLevel coarse(work.size());
+    tbb::enumerable_thread_specific<std::unique_ptr<DenseSums>> scratch([] { return std::make_unique<DenseSums>(); });
     tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
+        DenseSums& dense = *scratch.local();
         auto leaf = std::make_unique<AccumLeaf>(work[i].first);
         for (const AccumLeaf* child : work[i].second) {
-            for (int o = 0; o < 512; ++o) {
-                if (!child->on(o)) continue;
+            child->forEachActive([&](int o, VoxelSums s) {
                 glm::ivec3 p = (child->origin() + glm::ivec3(o >> 6, (o >> 3) & 7, o & 7)) >> 1;
-                VoxelSums s = child->sums(o);
                 // Areas are in face units of their level; a coarse face is 4 fine faces.
                 s.area *= 0.25f;
                 s.vectorArea *= 0.25f;
                 s.albedoSum *= 0.25f;
                 s.albedoWeight *= 0.25f;
-                leaf->add(AccumLeaf::offset(p.x, p.y, p.z), s);
-            }
+                leaf->add(AccumLeaf::offset(p.x, p.y, p.z), s, dense);
+            });
         }
+        leaf->pack(dense);
         coarse[i] = std::move(leaf);
     });
     return coarse;

@@ -2,7 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
 
+#include <malloc.h>
 #include <sys/resource.h>
 
 #include <openvdb/tools/MeshToVolume.h>
@@ -20,16 +24,44 @@ double processCpuSeconds() {
            1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
+namespace {
+
+// A "Name:   N kB" line of /proc/self/status in bytes, or NaN.
+double procStatusBytes(const std::string& name) {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.compare(0, name.size() + 1, name + ":") == 0) return 1024.0 * std::stod(line.substr(name.size() + 1));
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+PeakResidentMemory::PeakResidentMemory() {
+    malloc_trim(0);
+    std::ofstream reset("/proc/self/clear_refs");
+    reset << "5";
+    reset.flush();
+    valid_ = bool(reset);
+    startBytes_ = procStatusBytes("VmRSS");
+}
+
+double PeakResidentMemory::peakBytes() const {
+    return valid_ ? procStatusBytes("VmHWM") - startBytes_ : std::numeric_limits<double>::quiet_NaN();
+}
+
 MeshToVolumeRun runMeshToUnsignedDistance(const Scene& scene, float voxelSize, float halfWidth) {
     initializeOpenVdb();
     detail::MeshArrays arrays = detail::collectMeshArrays(scene);
     std::vector<openvdb::Vec4I> quads;
     auto xform = detail::voxelTransform(voxelSize);
+    const PeakResidentMemory memory;
     const double cpuStart = processCpuSeconds();
     auto start = std::chrono::steady_clock::now();
     auto grid = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(*xform, arrays.points,
                                                                                 arrays.triangles, quads, halfWidth);
     MeshToVolumeRun run;
+    run.peakBytes = memory.peakBytes();
     run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     run.cpuSeconds = processCpuSeconds() - cpuStart;
     run.activeVoxels = grid->activeVoxelCount();

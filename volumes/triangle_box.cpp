@@ -63,25 +63,33 @@ void clipAgainst(const ClipPolygon& in, ClipPolygon& out, int axis, float bound,
 
 }  // namespace
 
+void clipToSlab(ClipPolygon& polygon, int axis, float lo, float hi) {
+    // Planes the polygon lies wholly inside of cannot cut it (most planes for small triangles);
+    // clipping by them would return it unchanged.
+    float pmin = 1e30f, pmax = -1e30f;
+    for (int i = 0; i < polygon.count; ++i) {
+        pmin = std::min(pmin, polygon.v[i][axis]);
+        pmax = std::max(pmax, polygon.v[i][axis]);
+    }
+    ClipPolygon cut;
+    if (pmax > hi) {
+        clipAgainst(polygon, cut, axis, hi, 1.0f);
+        if (pmin < lo) clipAgainst(cut, polygon, axis, lo, -1.0f);
+        else polygon = cut;
+    } else if (pmin < lo) {
+        clipAgainst(polygon, cut, axis, lo, -1.0f);
+        polygon = cut;
+    }
+}
+
 ClipPolygon clipTriangleToBox(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                               const glm::vec3& lo, const glm::vec3& hi) {
-    ClipPolygon p, q;
+    ClipPolygon p;
     p.v[0] = a;
     p.v[1] = b;
     p.v[2] = c;
     p.count = 3;
-    // Planes the triangle lies wholly inside of cannot cut it (most planes for small triangles).
-    const glm::vec3 tlo = glm::min(a, glm::min(b, c)), thi = glm::max(a, glm::max(b, c));
-    for (int axis = 0; axis < 3; ++axis) {
-        if (thi[axis] > hi[axis]) {
-            clipAgainst(p, q, axis, hi[axis], 1.0f);
-            std::swap(p, q);
-        }
-        if (tlo[axis] < lo[axis]) {
-            clipAgainst(p, q, axis, lo[axis], -1.0f);
-            std::swap(p, q);
-        }
-    }
+    for (int axis = 0; axis < 3; ++axis) clipToSlab(p, axis, lo[axis], hi[axis]);
     return p;
 }
 

@@ -20,7 +20,9 @@ struct ClipPolygon {
     int count = 0;
 };
 
-// Sutherland-Hodgman clip of the triangle to [lo, hi] (closed box).
+// Sutherland-Hodgman clip of the polygon to lo <= p[axis] <= hi (the upper plane first).
+void clipToSlab(ClipPolygon& polygon, int axis, float lo, float hi);
+// The triangle clipped to [lo, hi] (closed box): slabs along x, then y, then z.
 ClipPolygon clipTriangleToBox(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
                               const glm::vec3& lo, const glm::vec3& hi);
 

@@ -33,7 +33,8 @@ struct Hasher {
 
 // Bumped whenever the voxelizer's output for the same input changes, invalidating caches.
 // 2: the albedo grid holds the diffuse albedo (metallic and specular taken out).
-constexpr int kFormatRevision = 2;
+// 3: pieces clipped row, column, then voxel (the same areas to float rounding).
+constexpr int kFormatRevision = 3;
 
 }  // namespace
 

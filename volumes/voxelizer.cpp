@@ -9,9 +9,11 @@
 #include <cmath>
 #include <unordered_map>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "scenes/errors.h"
+#include "scenes/memory_limit.h"
 #include "shaders/shared/material.h"
 #include "volumes/detail/accumulation.h"
 #include "volumes/detail/voxelizer.h"
@@ -28,6 +30,8 @@ constexpr float kTouchWeight = 1e-6f;  // albedo weight of a voxel a triangle on
 
 struct SmallTexture;
 
+// A triangle as the rasterizer uses it, made from its mesh when a bin needs it (TriangleSource):
+// the list of all triangles holds only references, a tenth of the memory.
 struct PreparedTriangle {
     glm::vec3 p[3];          // world space
     glm::vec3 unitNormal;
@@ -97,9 +101,17 @@ bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y
 int firstVoxel(double lo) { return int(std::ceil(lo - 1.0 - kSlack)); }
 int lastVoxel(double hi) { return int(std::floor(hi + kSlack)); }
 
+constexpr int kBinLeaves = kLeavesPerBin * kLeavesPerBin * kLeavesPerBin;
+
+// A thread's dense sums, one per leaf of a bin, reused from bin to bin (packing zeroes them).
+struct BinScratch {
+    std::unique_ptr<DenseSums[]> leaves = std::make_unique<DenseSums[]>(kBinLeaves);
+};
+
 class BinRasterizer {
 public:
-    BinRasterizer(const glm::ivec3& bin, double voxelSize) : origin_(bin * kBin), h_(voxelSize) {}
+    BinRasterizer(const glm::ivec3& bin, double voxelSize, BinScratch& scratch)
+        : origin_(bin * kBin), h_(voxelSize), scratch_(scratch) {}
 
     void add(const PreparedTriangle& t, std::size_t& tests) {
         glm::vec3 q[3];
@@ -115,8 +127,17 @@ public:
         const float planeOffset = glm::dot(n, q[0]);
         const float dMin = std::min(q[0][d], std::min(q[1][d], q[2][d]));
         const float dMax = std::max(q[0][d], std::max(q[1][d], q[2][d]));
+        // The triangle is clipped to each row of columns once, the row to each column once, and
+        // the column to each voxel: two planes a voxel instead of six.
+        ClipPolygon triangle;
+        triangle.v[0] = q[0];
+        triangle.v[1] = q[1];
+        triangle.v[2] = q[2];
+        triangle.count = 3;
         glm::ivec3 cell;
         for (int iu = lo[u]; iu <= hi[u]; ++iu) {
+            ClipPolygon row = triangle;
+            clipToSlab(row, u, float(iu), float(iu + 1));
             for (int iv = lo[v]; iv <= hi[v]; ++iv) {
                 // The plane's extent along d over this column (|n_d| is the largest component,
                 // so the column holds at most ~3 candidates), cut to the triangle's extent.
@@ -130,38 +151,49 @@ public:
                 }
                 int first = std::max(lo[d], firstVoxel(std::max(colLo, dMin)));
                 int last = std::min(hi[d], lastVoxel(std::min(colHi, dMax)));
+                if (first > last) continue;
+                ClipPolygon column = row;
+                clipToSlab(column, v, float(iv), float(iv + 1));
                 cell[u] = iu;
                 cell[v] = iv;
                 for (int id = first; id <= last; ++id) {
                     cell[d] = id;
                     ++tests;
-                    glm::vec3 boxLo(cell);
-                    if (!triangleOverlapsBox(q[0], q[1], q[2], boxLo + 0.5f, glm::vec3(0.5f), kSlack)) continue;
-                    accumulate(t, q, cell, boxLo);
+                    const glm::vec3 boxLo(cell);
+                    // The clipped piece is needed anyway; a piece with area proves the overlap,
+                    // so the separating-axis test runs only for the rest (touching or outside).
+                    ClipPolygon piece = column;
+                    clipToSlab(piece, d, float(id), float(id + 1));
+                    const PolygonMoments m = polygonMoments(piece);
+                    if (!(m.area > 0.0f) &&
+                        !triangleOverlapsBox(q[0], q[1], q[2], boxLo + 0.5f, glm::vec3(0.5f), kSlack))
+                        continue;
+                    accumulate(t, q, cell, boxLo, piece, m);
                 }
             }
         }
     }
 
-    // Moves the touched leaves out, with origins in global index space.
+    // Packs the touched leaves and moves them out, with origins in global index space.
     void collect(AccumLevel& out) {
-        for (auto& leaf : leaves_)
-            if (leaf) {
+        for (int i = 0; i < kBinLeaves; ++i)
+            if (auto& leaf = leaves_[i]) {
+                leaf->pack(scratch_.leaves[std::size_t(i)]);
                 leaf->translate(origin_);
                 out.push_back(std::move(leaf));
             }
     }
 
 private:
-    void accumulate(const PreparedTriangle& t, const glm::vec3 q[3], const glm::ivec3& cell, const glm::vec3& boxLo) {
+    void accumulate(const PreparedTriangle& t, const glm::vec3 q[3], const glm::ivec3& cell, const glm::vec3& boxLo,
+                    const ClipPolygon& piece, PolygonMoments m) {
         const glm::ivec3 l = cell >> 3;
-        auto& leaf = leaves_[(l.x * kLeavesPerBin + l.y) * kLeavesPerBin + l.z];
+        const int slot = (l.x * kLeavesPerBin + l.y) * kLeavesPerBin + l.z;
+        auto& leaf = leaves_[slot];
         if (!leaf) leaf = std::make_unique<AccumLeaf>(l * 8);
         const int offset = AccumLeaf::offset(cell.x, cell.y, cell.z);
 
         const glm::vec3 boxHi = boxLo + 1.0f;
-        ClipPolygon piece = clipTriangleToBox(q[0], q[1], q[2], boxLo, boxHi);
-        PolygonMoments m = polygonMoments(piece);
         // A piece lying flat on the box's upper face belongs to the neighbour above, whose
         // lower face it is: covered area is counted once, occupancy in both.
         for (int axis = 0; axis < 3 && m.area > 0.0f; ++axis) {
@@ -177,7 +209,7 @@ private:
         const float w = m.area + kTouchWeight;
         s.albedoSum = w * albedo;
         s.albedoWeight = w;
-        leaf->add(offset, s);
+        leaf->add(offset, s, scratch_.leaves[std::size_t(slot)]);
     }
 
     static glm::vec2 uvAt(const PreparedTriangle& t, const glm::vec3 q[3], const glm::vec3& x) {
@@ -190,7 +222,62 @@ private:
 
     glm::ivec3 origin_;
     double h_;
-    std::unique_ptr<AccumLeaf> leaves_[kLeavesPerBin * kLeavesPerBin * kLeavesPerBin];
+    BinScratch& scratch_;
+    std::unique_ptr<AccumLeaf> leaves_[kBinLeaves];
+};
+
+// Where a triangle's data lives: its mesh and face. prepare() makes the rasterizer's record with
+// the same arithmetic every time, so a triangle read twice gives the same voxels.
+struct TriangleRef {
+    std::uint32_t mesh, face;
+};
+
+struct TriangleSource {
+    const Scene& scene;
+    double h;
+    const std::vector<char>& textureUsable;
+    const std::vector<std::unique_ptr<SmallTexture>>& smallTextures;
+
+    const Material* material(const Mesh& mesh, std::size_t f) const {
+        return mesh.materialIds.size() > f && mesh.materialIds[f] < scene.materials.size()
+                   ? &scene.materials[mesh.materialIds[f]] : nullptr;
+    }
+
+    // Positions, normal and the voxels its bounding box touches.
+    PreparedTriangle bounds(const TriangleRef& r) const {
+        const Mesh& mesh = scene.meshes[r.mesh];
+        PreparedTriangle t;
+        for (int i = 0; i < 3; ++i) t.p[i] = mesh.positions[mesh.indices[3 * std::size_t(r.face) + std::size_t(i)]];
+        glm::dvec3 e0 = glm::dvec3(t.p[1]) - glm::dvec3(t.p[0]), e1 = glm::dvec3(t.p[2]) - glm::dvec3(t.p[0]);
+        glm::dvec3 cr = glm::cross(e0, e1);
+        t.unitNormal = glm::vec3(cr / glm::length(cr));
+        glm::dvec3 lo = glm::min(glm::dvec3(t.p[0]), glm::min(glm::dvec3(t.p[1]), glm::dvec3(t.p[2]))) / h;
+        glm::dvec3 hi = glm::max(glm::dvec3(t.p[0]), glm::max(glm::dvec3(t.p[1]), glm::dvec3(t.p[2]))) / h;
+        t.lo = glm::ivec3(firstVoxel(lo.x), firstVoxel(lo.y), firstVoxel(lo.z));
+        t.hi = glm::ivec3(lastVoxel(hi.x), lastVoxel(hi.y), lastVoxel(hi.z));
+        t.texture = nullptr;
+        return t;
+    }
+
+    // bounds() plus the surface: diffuse albedo and texture.
+    PreparedTriangle prepare(const TriangleRef& r) const {
+        PreparedTriangle t = bounds(r);
+        const Mesh& mesh = scene.meshes[r.mesh];
+        const Material* material = this->material(mesh, r.face);
+        // The diffuse albedo: what the voxel's surfaces bounce as Lambert light.
+        t.albedo = material ? shading::diffuseAlbedo(material->albedo, material->metallic, material->specular)
+                            : glm::vec3(0.8f);
+        const int texture = material ? material->albedoTexture : -1;
+        if (texture >= 0 && std::size_t(texture) < scene.textures.size() && textureUsable[std::size_t(texture)]) {
+            if (mesh.uvs.size() == mesh.positions.size()) {
+                t.texture = smallTextures[std::size_t(texture)].get();
+                for (int i = 0; i < 3; ++i) t.uv[i] = mesh.uvs[mesh.indices[3 * std::size_t(r.face) + std::size_t(i)]];
+            } else {
+                t.albedo *= scene.textures[std::size_t(texture)].averageLinear;
+            }
+        }
+        return t;
+    }
 };
 
 }  // namespace
@@ -206,10 +293,12 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
                            t.rgba.size() >= std::size_t(t.width) * std::size_t(t.height) * 4;
     }
     std::vector<std::unique_ptr<SmallTexture>> smallTextures(scene.textures.size());
-    std::vector<PreparedTriangle> triangles;
+    const TriangleSource source{scene, h, textureUsable, smallTextures};
+    std::vector<TriangleRef> triangles;
     triangles.reserve(scene.triangleCount());
     double estimate = 0.0;
-    for (const Mesh& mesh : scene.meshes) {
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
         for (std::size_t f = 0; f < mesh.triangleCount(); ++f) {
             ++stats.triangles;
             std::uint32_t idx[3] = {mesh.indices[3 * f], mesh.indices[3 * f + 1], mesh.indices[3 * f + 2]};
@@ -217,54 +306,40 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
                 ++stats.skippedDegenerate;
                 continue;
             }
-            PreparedTriangle t;
-            for (int i = 0; i < 3; ++i) t.p[i] = mesh.positions[idx[i]];
-            if (!finite(t.p[0]) || !finite(t.p[1]) || !finite(t.p[2])) {
+            glm::vec3 p[3];
+            for (int i = 0; i < 3; ++i) p[i] = mesh.positions[idx[i]];
+            if (!finite(p[0]) || !finite(p[1]) || !finite(p[2])) {
                 ++stats.skippedNonFinite;
                 continue;
             }
-            glm::dvec3 e0 = glm::dvec3(t.p[1]) - glm::dvec3(t.p[0]), e1 = glm::dvec3(t.p[2]) - glm::dvec3(t.p[0]);
-            glm::dvec3 cr = glm::cross(e0, e1);
-            double twiceArea = glm::length(cr);
+            glm::dvec3 e0 = glm::dvec3(p[1]) - glm::dvec3(p[0]), e1 = glm::dvec3(p[2]) - glm::dvec3(p[0]);
+            double twiceArea = glm::length(glm::cross(e0, e1));
             double longest = std::max(glm::dot(e0, e0), std::max(glm::dot(e1, e1), glm::dot(e1 - e0, e1 - e0)));
             // Zero area, repeated vertices, or a sliver whose normal is rounding noise.
             if (!(twiceArea > 1e-7 * longest) || !std::isfinite(twiceArea)) {
                 ++stats.skippedDegenerate;
                 continue;
             }
-            t.unitNormal = glm::vec3(cr / twiceArea);
-            glm::dvec3 lo = glm::min(glm::dvec3(t.p[0]), glm::min(glm::dvec3(t.p[1]), glm::dvec3(t.p[2]))) / h;
-            glm::dvec3 hi = glm::max(glm::dvec3(t.p[0]), glm::max(glm::dvec3(t.p[1]), glm::dvec3(t.p[2]))) / h;
+            glm::dvec3 lo = glm::min(glm::dvec3(p[0]), glm::min(glm::dvec3(p[1]), glm::dvec3(p[2]))) / h;
+            glm::dvec3 hi = glm::max(glm::dvec3(p[0]), glm::max(glm::dvec3(p[1]), glm::dvec3(p[2]))) / h;
             for (int k = 0; k < 3; ++k)
                 if (std::abs(lo[k]) > maxIndex || std::abs(hi[k]) > maxIndex)
                     throw InputError("--voxel-size " + std::to_string(settings.voxelSize) +
                                      ": scene coordinates exceed the index range at this voxel size");
-            t.lo = glm::ivec3(firstVoxel(lo.x), firstVoxel(lo.y), firstVoxel(lo.z));
-            t.hi = glm::ivec3(lastVoxel(hi.x), lastVoxel(hi.y), lastVoxel(hi.z));
+            const TriangleRef ref{std::uint32_t(m), std::uint32_t(f)};
+            const PreparedTriangle t = source.bounds(ref);
             // Voxels a triangle can touch: its area crosses at most ~sqrt(3) voxel layers, its
             // edges add a rim; never more than its bounding box.
             glm::dvec3 ext = glm::dvec3(t.hi - t.lo) + 1.0;
             double perimeter = (glm::length(e0) + glm::length(e1) + glm::length(e1 - e0)) / h;
             estimate += std::min(ext.x * ext.y * ext.z, 1.8 * twiceArea / (h * h) + 2.0 * perimeter + 8.0);
-
-            const Material* material = mesh.materialIds.size() > f && mesh.materialIds[f] < scene.materials.size()
-                                           ? &scene.materials[mesh.materialIds[f]] : nullptr;
-            // The diffuse albedo: what the voxel's surfaces bounce as Lambert light.
-            t.albedo = material ? shading::diffuseAlbedo(material->albedo, material->metallic, material->specular)
-                                : glm::vec3(0.8f);
-            t.texture = nullptr;
+            // Each texture's small copy is made here, before the threads read them.
+            const Material* material = source.material(mesh, f);
             const int texture = material ? material->albedoTexture : -1;
-            if (texture >= 0 && std::size_t(texture) < scene.textures.size() && textureUsable[std::size_t(texture)]) {
-                if (mesh.uvs.size() == mesh.positions.size()) {
-                    auto& small = smallTextures[std::size_t(texture)];
-                    if (!small) small = std::make_unique<SmallTexture>(scene.textures[std::size_t(texture)]);
-                    t.texture = small.get();
-                    for (int i = 0; i < 3; ++i) t.uv[i] = mesh.uvs[idx[i]];
-                } else {
-                    t.albedo *= scene.textures[std::size_t(texture)].averageLinear;
-                }
-            }
-            triangles.push_back(t);
+            if (texture >= 0 && std::size_t(texture) < scene.textures.size() && textureUsable[std::size_t(texture)] &&
+                mesh.uvs.size() == mesh.positions.size() && !smallTextures[std::size_t(texture)])
+                smallTextures[std::size_t(texture)] = std::make_unique<SmallTexture>(scene.textures[std::size_t(texture)]);
+            triangles.push_back(ref);
         }
     }
     stats.trianglesUsed = triangles.size();
@@ -274,13 +349,19 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
         throw InputError("--voxel-size " + std::to_string(settings.voxelSize) + ": about " +
                          std::to_string(levelsEstimate) + " voxels estimated, above --max-voxels " +
                          std::to_string(settings.maxVoxels) + "; use a larger voxel size");
+    // Held at the peak, while a level is finished: every level's packed sums, the finished
+    // level's attributes (normal and c0, albedo halves) and occupancy leaves of ~1/6 fill.
+    const double perVoxel = double(kPackedSumBytes) + 16.0 + 6.0 + 64.0 / 6.0;
+    requireMemory(double(levelsEstimate) * perVoxel, "voxelizing at --voxel-size " + std::to_string(settings.voxelSize) +
+                                                         " (about " + std::to_string(levelsEstimate) + " voxels)");
 
     // Bin lists.
     std::unordered_map<std::uint64_t, std::size_t> binIndex;
     std::vector<std::pair<glm::ivec3, std::vector<std::uint32_t>>> bins;
     std::size_t references = 0;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
-        glm::ivec3 b0 = floorDiv(triangles[i].lo, kBin), b1 = floorDiv(triangles[i].hi, kBin);
+        const PreparedTriangle t = source.bounds(triangles[i]);
+        glm::ivec3 b0 = floorDiv(t.lo, kBin), b1 = floorDiv(t.hi, kBin);
         for (int x = b0.x; x <= b1.x; ++x)
             for (int y = b0.y; y <= b1.y; ++y)
                 for (int z = b0.z; z <= b1.z; ++z) {
@@ -295,11 +376,12 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
 
     std::vector<AccumLevel> perBin(bins.size());
     std::atomic<std::size_t> done{0}, tests{0};
+    tbb::enumerable_thread_specific<BinScratch> scratch;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bins.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t b = r.begin(); b != r.end(); ++b) {
-            BinRasterizer rasterizer(bins[b].first, h);
+            BinRasterizer rasterizer(bins[b].first, h, scratch.local());
             std::size_t localTests = 0;
-            for (std::uint32_t t : bins[b].second) rasterizer.add(triangles[t], localTests);
+            for (std::uint32_t t : bins[b].second) rasterizer.add(source.prepare(triangles[t]), localTests);
             rasterizer.collect(perBin[b]);
             tests += localTests;
             std::size_t now = done += bins[b].second.size();

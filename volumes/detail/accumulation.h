@@ -17,8 +17,25 @@ struct VoxelSums {
     glm::vec3 vectorArea{0.0f};    // sum of clipped area * unit normal / h^2
     glm::vec3 albedoSum{0.0f};     // albedo weighted by area (+ a tiny weight for touch-only)
     float albedoWeight = 0.0f;
+
+    VoxelSums& operator+=(const VoxelSums& s) {
+        area += s.area;
+        vectorArea += s.vectorArea;
+        albedoSum += s.albedoSum;
+        albedoWeight += s.albedoWeight;
+        return *this;
+    }
 };
 
+// One leaf's sums by voxel offset while triangles (or finer voxels) are added to it. A scratch
+// that the adding thread owns and reuses from leaf to leaf: pack() leaves it zero again.
+struct DenseSums {
+    VoxelSums voxel[512];
+};
+
+// A leaf's occupancy and, once packed, the sums of its active voxels only, in offset order:
+// surfaces fill about a sixth of a leaf, so packed sums take a sixth of the 16 KiB a dense
+// leaf would hold until the level is finished.
 class AccumLeaf {
 public:
     explicit AccumLeaf(const glm::ivec3& origin);
@@ -29,9 +46,19 @@ public:
     // Moves the leaf by whole leaves (bins rasterize in local coordinates).
     void translate(const glm::ivec3& delta);
 
-    bool on(int offset) const { return leaf_->isValueOn(openvdb::Index(offset)); }
-    void add(int offset, const VoxelSums& s);
-    VoxelSums sums(int offset) const;
+    // Gathering: marks the voxel occupied and adds to its sums in `dense`.
+    void add(int offset, const VoxelSums& s, DenseSums& dense) {
+        leaf_->setValueOn(openvdb::Index(offset), true);
+        dense.voxel[offset] += s;
+    }
+    // Keeps the active voxels' sums from `dense` and zeroes those entries of it.
+    void pack(DenseSums& dense);
+    // f(offset, sums) for every active voxel, in offset order (once packed).
+    template <typename F>
+    void forEachActive(F&& f) const {
+        std::size_t i = 0;
+        for (auto it = leaf_->cbeginValueOn(); it; ++it, ++i) f(int(it.pos()), packed_[i]);
+    }
 
     // Hands the occupancy leaf to `tree` (it stays reachable for writeAttributes).
     void moveOccupancyInto(openvdb::BoolTree& tree);
@@ -40,19 +67,16 @@ public:
     void writeAttributes(LevelGrids& level, BlockerFit fit) const;
 
 private:
-    struct DenseSums {
-        float area[512];
-        float albedoWeight[512];
-        glm::vec3 vectorArea[512];
-        glm::vec3 albedoSum[512];
-    };
     glm::ivec3 origin_;
     OccupancyLeaf* leaf_;  // owned until moveOccupancyInto
     bool ownsLeaf_ = true;
-    std::unique_ptr<DenseSums> sums_;
+    std::unique_ptr<VoxelSums[]> packed_;
 };
 
 using AccumLevel = std::vector<std::unique_ptr<AccumLeaf>>;
+
+// Bytes per active voxel of a packed leaf's sums (for memory estimates).
+constexpr std::size_t kPackedSumBytes = sizeof(VoxelSums);
 
 // Level L+1 from level L (not yet finished): sums added 2x2x2, areas rescaled to the coarser
 // face area.
