@@ -243,6 +243,13 @@ struct TriangleSource {
                    ? &scene.materials[mesh.materialIds[f]] : nullptr;
     }
 
+    // The face's material's albedo texture when it has pixels to read, else -1.
+    int albedoTexture(const Mesh& mesh, std::size_t f) const {
+        const Material* m = material(mesh, f);
+        const int t = m ? m->albedoTexture : -1;
+        return t >= 0 && std::size_t(t) < scene.textures.size() && textureUsable[std::size_t(t)] ? t : -1;
+    }
+
     // Positions, normal and the voxels its bounding box touches.
     PreparedTriangle bounds(const TriangleRef& r) const {
         const Mesh& mesh = scene.meshes[r.mesh];
@@ -267,8 +274,7 @@ struct TriangleSource {
         // The diffuse albedo: what the voxel's surfaces bounce as Lambert light.
         t.albedo = material ? shading::diffuseAlbedo(material->albedo, material->metallic, material->specular)
                             : glm::vec3(0.8f);
-        const int texture = material ? material->albedoTexture : -1;
-        if (texture >= 0 && std::size_t(texture) < scene.textures.size() && textureUsable[std::size_t(texture)]) {
+        if (const int texture = albedoTexture(mesh, r.face); texture >= 0) {
             if (mesh.uvs.size() == mesh.positions.size()) {
                 t.texture = smallTextures[std::size_t(texture)].get();
                 for (int i = 0; i < 3; ++i) t.uv[i] = mesh.uvs[mesh.indices[3 * std::size_t(r.face) + std::size_t(i)]];
@@ -334,10 +340,8 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
             double perimeter = (glm::length(e0) + glm::length(e1) + glm::length(e1 - e0)) / h;
             estimate += std::min(ext.x * ext.y * ext.z, 1.8 * twiceArea / (h * h) + 2.0 * perimeter + 8.0);
             // Each texture's small copy is made here, before the threads read them.
-            const Material* material = source.material(mesh, f);
-            const int texture = material ? material->albedoTexture : -1;
-            if (texture >= 0 && std::size_t(texture) < scene.textures.size() && textureUsable[std::size_t(texture)] &&
-                mesh.uvs.size() == mesh.positions.size() && !smallTextures[std::size_t(texture)])
+            const int texture = source.albedoTexture(mesh, f);
+            if (texture >= 0 && mesh.uvs.size() == mesh.positions.size() && !smallTextures[std::size_t(texture)])
                 smallTextures[std::size_t(texture)] = std::make_unique<SmallTexture>(scene.textures[std::size_t(texture)]);
             triangles.push_back(ref);
         }
@@ -351,7 +355,7 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
                          std::to_string(settings.maxVoxels) + "; use a larger voxel size");
     // Held at the peak, while a level is finished: every level's packed sums, the finished
     // level's attributes (normal and c0, albedo halves) and occupancy leaves of ~1/6 fill.
-    const double perVoxel = double(kPackedSumBytes) + 16.0 + 6.0 + 64.0 / 6.0;
+    const double perVoxel = double(sizeof(VoxelSums)) + 16.0 + 6.0 + 64.0 / 6.0;
     requireMemory(double(levelsEstimate) * perVoxel, "voxelizing at --voxel-size " + std::to_string(settings.voxelSize) +
                                                          " (about " + std::to_string(levelsEstimate) + " voxels)");
 

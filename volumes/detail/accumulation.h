@@ -75,9 +75,6 @@ private:
 
 using AccumLevel = std::vector<std::unique_ptr<AccumLeaf>>;
 
-// Bytes per active voxel of a packed leaf's sums (for memory estimates).
-constexpr std::size_t kPackedSumBytes = sizeof(VoxelSums);
-
 // Level L+1 from level L (not yet finished): sums added 2x2x2, areas rescaled to the coarser
 // face area.
 AccumLevel downsample(const AccumLevel& fine);
