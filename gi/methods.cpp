@@ -8,7 +8,7 @@
 namespace voxgi {
 
 // Each method folder's description (gi/<method>/<method>_method.cpp).
-MethodInfo directMethod(), ambientMethod(), lpvMethod(), clpvMethod(), ddgiMethod(), isrMethod();
+MethodInfo directMethod(), ambientMethod(), lpvMethod(), clpvMethod(), ddgiMethod(), isrMethod(), hybridMethod();
 
 namespace {
 
@@ -32,7 +32,7 @@ const std::vector<MethodInfo>& methods() {
         planned("ilpv", "incremental LPV: 26-neighbour stochastic transfer, reuse of earlier frames (seed 001)"),
         ddgiMethod(),
         isrMethod(),
-        planned("hybrid", "atmospheric sky, sky-lighting volume, ray-traced reflections and refractions (seed 002)"),
+        hybridMethod(),
     };
     return all;
 }

@@ -38,6 +38,17 @@ struct GBufferView {
     // included (RGBA32F; radiance toward the camera, W/(m^2 sr), times directFrames).
     GLuint directSum = 0;
     int directFrames = 0;
+    // 0: every pixel is seen from `eye`. Else an RGBA32F texture of each pixel's viewer (xyz):
+    // surfaces seen through mirrors and glass (SecondaryLayerView).
+    GLuint viewOrigin = 0;
+};
+
+// Surfaces the camera sees through mirrors and glass (the hybrid method, gi/hybrid/): a G-buffer
+// the frame lights with the same passes as its own, into the layer's light target.
+struct SecondaryLayerView {
+    GBufferView surfaces;
+    GLuint lightFramebuffer = 0;  // cleared by the technique each frame; passes add into it
+    glm::ivec4 scissor{0};        // x, y, width, height: the pixels that hold surfaces (passes draw only there)
 };
 
 // The camera's forward direction (unit, world space) from a perspective view-projection: the
@@ -56,6 +67,9 @@ struct FrameInput {
     const TechniquePlan& plan; // the passes to run (their names are the timer stages)
     // The sky-lighting volume when the frame plan has it (sky_volume), else null.
     const SkyVolumeTexture* sky = nullptr;
+    // The hybrid method traces the mirror-like lobes (shading::smoothLobe): the frame's passes
+    // and the techniques' glossy terms leave those lobes out.
+    bool smoothLobesTraced = false;
 };
 
 class GiTechnique {
@@ -71,6 +85,10 @@ public:
     virtual void dumpVdb(const std::string& path) const;
     // One of the debug views its method declares (empty for a name it does not know).
     virtual DebugDrawing debugView(const std::string& view, const DebugViewContext& context) const;
+    // Surfaces seen through mirrors and glass this frame, lit by the frame's passes after update;
+    // then composite() adds what they bring to the pixels (the hybrid method). None by default.
+    virtual std::vector<SecondaryLayerView> secondaryLayers() const { return {}; }
+    virtual void composite(const FrameInput&, GLuint /*directFramebuffer*/, GLuint /*indirectFramebuffer*/) {}
     // What its last update did, for benchmarks and the viewer.
     virtual std::vector<TechniqueStat> stats() const { return {}; }
     // Techniques whose light builds up over frames: after trackConvergence(), the relative change

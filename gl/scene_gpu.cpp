@@ -50,7 +50,7 @@ SceneGpu::SceneGpu(const Scene& scene) : sky_(uploadSkyTexture(scene.sky)) {
     using shading::MaterialGpu;
     std::vector<MaterialGpu> materials;
     for (const Material& m : scene.materials)
-        materials.push_back({glm::vec4(m.albedo, 1.0f), glm::vec4(m.emission, 0.0f), m.roughness, m.metallic,
+        materials.push_back({glm::vec4(m.albedo, m.transmission), glm::vec4(m.emission, 0.0f), m.roughness, m.metallic,
                              m.specular, m.albedoTexture});
     if (materials.empty()) materials.push_back({glm::vec4(0.8f), glm::vec4(0.0f), 1.0f, 0.0f, 0.0f, -1});
 

@@ -161,10 +161,10 @@ void readCamera(const Reader& r, Camera& cam) {
     if (!(cam.nearPlane > 0.0f && cam.farPlane > cam.nearPlane)) r.child("far").fail("need 0 < near < far");
 }
 
-Material readMaterial(const Reader& r, const std::string& name, const fs::path& dir, Scene& scene) {
+// The fields `r` gives, over what `m` has: a material of the scene file, or one a mesh file
+// brought that the scene adjusts (a "file" mesh's "material_settings").
+void readMaterialFields(const Reader& r, Material& m, const fs::path& dir, Scene& scene) {
     r.requireObject({"albedo", "emission", "roughness", "metallic", "specular", "ior", "transmission", "texture"});
-    Material m;
-    m.name = name;
     m.albedo = r.color("albedo", m.albedo);
     if (m.albedo.x > 1.0f || m.albedo.y > 1.0f || m.albedo.z > 1.0f) r.child("albedo").fail("albedo must be at most 1");
     m.emission = r.color("emission", m.emission);
@@ -188,6 +188,12 @@ Material readMaterial(const Reader& r, const std::string& name, const fs::path& 
         }
         m.albedoTexture = int(scene.textures.size() - 1);
     }
+}
+
+Material readMaterial(const Reader& r, const std::string& name, const fs::path& dir, Scene& scene) {
+    Material m;
+    m.name = name;
+    readMaterialFields(r, m, dir, scene);
     return m;
 }
 
@@ -333,12 +339,28 @@ void readMesh(const Reader& r, const fs::path& dir, Scene& scene,
     Mesh mesh;
     auto mat = std::uint32_t(material);
     if (type == "file") {
-        known({"path"});
+        known({"path", "material_settings"});
         std::string file = r.child("path").string();
+        const std::size_t materialsBefore = scene.materials.size();
         try {
             importMeshFile((dir / file).string(), transform, scene, material);
         } catch (const InputError& e) {
             r.child("path").fail(e.what());
+        }
+        // {"NAME": {fields}}: the file's material NAME with those fields changed (a polished
+        // floor, glass in the windows), every other field as the file has it.
+        if (r.has("material_settings")) {
+            Reader settings = r.child("material_settings");
+            if (!settings.raw().is_object()) settings.fail("expected an object of material names");
+            for (const auto& item : settings.raw().items()) {
+                bool found = false;
+                for (std::size_t i = materialsBefore; i < scene.materials.size(); ++i)
+                    if (scene.materials[i].name == item.key()) {
+                        readMaterialFields(settings.child(item.key()), scene.materials[i], dir, scene);
+                        found = true;
+                    }
+                if (!found) settings.child(item.key()).fail("the mesh file has no material '" + item.key() + "'");
+            }
         }
         return;
     } else if (type == "box") {

@@ -155,6 +155,40 @@ TEST(MeshImport, ObjWithMtlAndTexture) {
     EXPECT_NEAR(s.textures[std::size_t(m.albedoTexture)].averageLinear.x, 0.5f, 1e-3f);
 }
 
+// A scene may change some fields of a mesh file's material by name (a polished floor, glass in
+// the windows), and names a material the file lacks in a one-line error.
+TEST(MeshImport, MaterialSettingsChangeTheFilesMaterialByName) {
+    std::string dir = test::makeTempDir("obj-settings");
+    test::writeFile(dir + "/m.mtl", "newmtl floor\nKd 0.5 0.4 0.3\nnewmtl wall\nKd 0.7 0.7 0.7\n");
+    test::writeFile(dir + "/m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                    "usemtl floor\nf 1 2 3\nusemtl wall\nf 1 3 4\n");
+    auto scene = [&](const std::string& settings) {
+        test::writeFile(dir + "/s.json", R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0]},
+            "meshes": [{"type": "file", "path": "m.obj", "material_settings": )" + settings + "}]}");
+        return loadSceneFile(dir + "/s.json");
+    };
+    const Scene s = scene(R"({"floor": {"roughness": 0, "specular": 0.05}})");
+    int changed = 0;
+    for (const Material& m : s.materials) {
+        if (m.name == "floor") {
+            ++changed;
+            EXPECT_EQ(m.roughness, 0.0f);
+            EXPECT_EQ(m.specular, 0.05f);
+            EXPECT_NEAR(m.albedo.x, 0.5f, 1e-6f);  // the file's own fields stay
+        } else {
+            EXPECT_EQ(m.specular, 0.0f) << m.name;
+        }
+    }
+    EXPECT_EQ(changed, 1);
+    try {
+        scene(R"({"marble": {"roughness": 0}})");
+        ADD_FAILURE() << "an unknown material was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("material_settings/marble"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(scene(R"({"floor": {"roughness": 2}})"), InputError);
+}
+
 TEST(MeshImport, Gltf2EmbeddedBuffer) {
     std::string dir = test::makeTempDir("gltf");
     // One triangle: 3 float3 positions (36 bytes) + 3 uint16 indices (6 bytes, padded to 8).

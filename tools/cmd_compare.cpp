@@ -116,10 +116,11 @@ int runCompare(const std::vector<std::string>& argv) {
                 m.meanError);
     std::printf("  Pearson    %.5f   (seed 003 Eq. 20)\n  HDR-FLIP   %.5f\n", m.pearson, m.flip);
     if (!regions.empty()) {
-        std::printf("  region            pixels    test mean (rgb)            reference mean (rgb)       test/ref\n");
+        std::printf("  region            pixels    test mean (rgb)            reference mean (rgb)       test/ref   relMSE      HDR-FLIP\n");
         for (const RegionMean& r : regions)
-            std::printf("  %-16s %7zu    %8.4g %8.4g %8.4g   %8.4g %8.4g %8.4g   %.3f\n", r.name.c_str(), r.pixels,
-                        r.test.x, r.test.y, r.test.z, r.reference.x, r.reference.y, r.reference.z, r.ratio);
+            std::printf("  %-16s %7zu    %8.4g %8.4g %8.4g   %8.4g %8.4g %8.4g   %-8.3f   %-9.4g   %.4f\n", r.name.c_str(),
+                        r.pixels, r.test.x, r.test.y, r.test.z, r.reference.x, r.reference.y, r.reference.z, r.ratio,
+                        r.relMse, r.flip);
     }
     if (worst > 0) printWorstPixels(test, reference, layer, worst);
     if (auto d = args.value("--diff")) {
@@ -135,7 +136,9 @@ int runCompare(const std::vector<std::string>& argv) {
                                 {"pixels", r.pixels},
                                 {"test", {r.test.x, r.test.y, r.test.z}},
                                 {"reference", {r.reference.x, r.reference.y, r.reference.z}},
-                                {"ratio", std::isfinite(r.ratio) ? nlohmann::ordered_json(r.ratio) : nlohmann::ordered_json()}});
+                                {"ratio", std::isfinite(r.ratio) ? nlohmann::ordered_json(r.ratio) : nlohmann::ordered_json()},
+                                {"relmse", r.pixels ? nlohmann::ordered_json(r.relMse) : nlohmann::ordered_json()},
+                                {"flip", r.pixels ? nlohmann::ordered_json(r.flip) : nlohmann::ordered_json()}});
             json["regions"] = list;
         }
         writeTextAtomically(*j, json.dump(2) + "\n");

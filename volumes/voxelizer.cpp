@@ -272,7 +272,7 @@ struct TriangleSource {
         const Mesh& mesh = scene.meshes[r.mesh];
         const Material* material = this->material(mesh, r.face);
         // The diffuse albedo: what the voxel's surfaces bounce as Lambert light.
-        t.albedo = material ? shading::diffuseAlbedo(material->albedo, material->metallic, material->specular)
+        t.albedo = material ? shading::diffuseAlbedo(material->albedo, material->metallic, material->specular, material->transmission)
                             : glm::vec3(0.8f);
         if (const int texture = albedoTexture(mesh, r.face); texture >= 0) {
             if (mesh.uvs.size() == mesh.positions.size()) {

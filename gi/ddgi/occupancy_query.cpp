@@ -45,7 +45,7 @@ NanoGeometry voxelizeForTracing(const RayTracer& tracer, const ProbeField& field
             if (glm::any(glm::greaterThan(glm::abs(hit.position - centre), glm::vec3(0.5f * h)))) continue;
             const Material& m = scene.materials[hit.material];
             sum += shading::diffuseAlbedo(tracer.albedoInCone(hit, -n, h / std::max(hit.t, 1e-3f * h)), m.metallic,
-                                          m.specular);
+                                          m.specular, m.transmission);
             ++seen;
         }
         if (seen > 0) {

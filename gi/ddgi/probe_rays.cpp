@@ -59,7 +59,7 @@ void toSurfel(const RayTracer& tracer, const Emitters& emitters, const RawHit& r
     if (spread < 0.0f) return;
     const Material& m = tracer.scene().materials[surface.material];
     const glm::vec3 albedo = m.albedoTexture >= 0 ? tracer.albedoInCone(raw, surface, d, spread) : m.albedo;
-    s.setDiffuseAlbedo(shading::diffuseAlbedo(albedo, m.metallic, m.specular));
+    s.setDiffuseAlbedo(shading::diffuseAlbedo(albedo, m.metallic, m.specular, m.transmission));
     s.emitter = emitters.mesh[raw.mesh] ? emitters.material[surface.material] : 0;
 }
 

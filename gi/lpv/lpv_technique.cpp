@@ -53,7 +53,8 @@ SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int targ
             Surfel s;
             s.position = {pos[i], pos[i + 1], pos[i + 2]};
             s.normal = glm::normalize(glm::vec3(nrm[i], nrm[i + 1], nrm[i + 2]));
-            s.albedo = shading::gbufferDiffuseAlbedo(glm::vec4(alb[i], alb[i + 1], alb[i + 2], alb[i + 3]),
+            s.albedo = shading::gbufferDiffuseAlbedo(glm::vec4(pos[i], pos[i + 1], pos[i + 2], pos[i + 3]),
+                                                     glm::vec4(alb[i], alb[i + 1], alb[i + 2], alb[i + 3]),
                                                      glm::vec4(emi[i], emi[i + 1], emi[i + 2], emi[i + 3]));
             glm::vec3 d = s.position - g.eye;
             float dist = glm::length(d);
@@ -381,6 +382,7 @@ public:
         apply.set("uApplyNormalOffset", desc.applyNormalOffset);
         apply.set("uDampening", desc.dampening);
         apply.set("uGlossy", desc.glossy ? 1 : 0);
+        apply.set("uSmoothLobesTraced", input.smoothLobesTraced ? 1 : 0);
         setCascadeUniforms(apply, placements);
         // Every sampler of the arrays needs a 3D texture unit, including unused cascades.
         const char* ringNames[3] = {"uLpvR", "uLpvG", "uLpvB"};

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "gi/metrics/flip.h"
+#include "gi/metrics/image_metrics.h"
 #include "scenes/camera_rays.h"
 #include "scenes/errors.h"
 
@@ -57,12 +59,16 @@ std::vector<RegionMean> regionMeans(const Image& test, const Image& reference, c
     const ImageLayer& t = requireLayer(test, layer, 3, "test");
     const ImageLayer& r = requireLayer(reference, layer, 3, "reference");
     const std::vector<int> region = regionOfPixels(reference, scene);
+    const std::vector<double> relTerms = relativeSquaredErrorPerPixel(t.data, r.data, 3);
+    const flip::HdrResult flipMap = flip::hdrFlip(t.data, r.data, test.width(), test.height());
     std::vector<RegionMean> out(scene.regions.size());
     for (std::size_t k = 0; k < out.size(); ++k) out[k].name = scene.regions[k].name;
     for (std::size_t i = 0; i < region.size(); ++i) {
         if (region[i] < 0) continue;
         RegionMean& m = out[std::size_t(region[i])];
         ++m.pixels;
+        m.relMse += relTerms[i] / 3.0;
+        m.flip += double(flipMap.error[i]);
         for (int c = 0; c < 3; ++c) {
             m.test[c] += double(t.data[3 * i + std::size_t(c)]);
             m.reference[c] += double(r.data[3 * i + std::size_t(c)]);
@@ -75,6 +81,8 @@ std::vector<RegionMean> regionMeans(const Image& test, const Image& reference, c
         }
         m.test /= double(m.pixels);
         m.reference /= double(m.pixels);
+        m.relMse /= double(m.pixels);
+        m.flip /= double(m.pixels);
         const double ref = m.reference.x + m.reference.y + m.reference.z;
         m.ratio = ref > 0.0 ? (m.test.x + m.test.y + m.test.z) / ref : std::numeric_limits<double>::quiet_NaN();
     }

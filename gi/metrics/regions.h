@@ -17,6 +17,9 @@ struct RegionMean {
     std::size_t pixels = 0;       // reference pixels whose surface point lies in the region
     glm::dvec3 test{0.0}, reference{0.0};  // mean of the layer over those pixels
     double ratio = 0.0;           // test / reference, on the sum of the three channels (NaN if 0)
+    // The error over those pixels alone (a mask: mirrors, glass, a wall): relMSE's mean term and
+    // the mean of the whole image's HDR-FLIP map (its exposures from the whole reference).
+    double relMse = 0.0, flip = 0.0;
 };
 
 // Which region each pixel belongs to, from the reference's `depth` and `normal` layers (the path
@@ -24,7 +27,7 @@ struct RegionMean {
 // -1 for none, else the first region (in scene order) containing the pixel centre's point.
 std::vector<int> regionOfPixels(const Image& reference, const Scene& scene);
 
-// Per region of the scene, the mean of `layer` (3 channels) in both images. Throws InputError
+// Per region of the scene, the mean of `layer` (3 channels) in both images and the error. Throws InputError
 // when a layer is missing or the sizes differ.
 std::vector<RegionMean> regionMeans(const Image& test, const Image& reference, const Scene& scene,
                                     const std::string& layer);

@@ -30,13 +30,13 @@ float smithLambda(float cosTheta, float a2) {
     return 0.5f * (-1.0f + std::sqrt(1.0f + a2 * (1.0f - c2) / c2));
 }
 
+}  // namespace
+
 glm::vec3 fresnelSchlick(glm::vec3 f0, float vh) {
     float m = 1.0f - std::clamp(vh, 0.0f, 1.0f);
     float m5 = m * m * m * m * m;
     return f0 + (glm::vec3(1.0f) - f0) * m5;
 }
-
-}  // namespace
 
 float fresnelDielectric(float cosIncident, float eta) {
     cosIncident = std::clamp(cosIncident, 0.0f, 1.0f);
@@ -66,7 +66,7 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
 
     transmission_ = std::clamp(m.transmission, 0.0f, 1.0f);
     opaqueWeight_ = 1.0f - transmission_;
-    diffuse_ = shading::diffuseAlbedo(albedo, m.metallic, m.specular);
+    diffuse_ = shading::diffuseAlbedo(albedo, m.metallic, m.specular, 0.0f);  // opaqueWeight_ carries 1 - transmission
     f0_ = glm::mix(glm::vec3(m.specular), albedo, m.metallic);
     float r2 = m.roughness * m.roughness;
     alpha_ = std::max(r2, kSmoothAlpha);

@@ -10,10 +10,11 @@
 #include <glm/glm.hpp>
 
 #include "scenes/scene.h"
+#include "shaders/shared/material.h"
 
 namespace voxgi::pt {
 
-constexpr float kSmoothAlpha = 1e-3f;  // the GLSL BRDF clamps alpha here too
+using shading::kSmoothAlpha;  // the GLSL BRDF clamps alpha there too
 
 struct BsdfSample {
     glm::vec3 direction{0.0f};
@@ -61,6 +62,10 @@ private:
 
 // Unit t and b completing unit n to a right-handed orthonormal frame.
 void orthonormalBasis(glm::vec3 n, glm::vec3& t, glm::vec3& b);
+
+// Schlick's Fresnel of the opaque GGX lobe (metals and the coat), cosine between the view and
+// the half vector (brdf.glsl's fresnelSchlick).
+glm::vec3 fresnelSchlick(glm::vec3 f0, float cosine);
 
 // Fresnel reflectance of a dielectric interface for unpolarised light; eta = n_incident / n_transmitted.
 float fresnelDielectric(float cosIncident, float eta);

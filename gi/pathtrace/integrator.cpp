@@ -28,12 +28,14 @@ glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, fl
     return p + geometric * (side * kUlps * scale);
 }
 
+float rayOffsetScale(const Scene& scene) {
+    Bounds b = scene.bounds();
+    return b.valid() ? std::max(glm::length(b.extent()), 1e-6f) : 1.0f;
+}
+
 Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces)
     : scene_(scene), tracer_(tracer), lights_(scene), environment_(scene.sky),
-      maxBounces_(maxBounces > 0 ? maxBounces : kBounceGuard) {
-    Bounds b = scene.bounds();
-    sceneScale_ = b.valid() ? std::max(glm::length(b.extent()), 1e-6f) : 1.0f;
-}
+      maxBounces_(maxBounces > 0 ? maxBounces : kBounceGuard), sceneScale_(rayOffsetScale(scene)) {}
 
 bool Integrator::segmentOccluded(glm::vec3 from, glm::vec3 q, glm::vec3 nq) const {
     // The far end leaves the emitter the way rays leave surfaces and the segment stops at that

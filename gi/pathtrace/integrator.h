@@ -59,6 +59,8 @@ private:
     float sceneScale_;
 };
 
+// The scene size offsetOrigin scales with: its bounding box's diagonal.
+float rayOffsetScale(const Scene& scene);
 // Origin offset so a ray leaving a surface does not hit it again: along the geometric normal,
 // on the side the ray leaves to, relative to the scene size and the coordinates' magnitude.
 glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, float sceneScale);

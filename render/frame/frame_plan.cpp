@@ -73,9 +73,9 @@ FramePlan planFrame(const Scene& scene, const std::string& method, int frames) {
             plan.notes.push_back("area lights: one sample point per frame; the frames average them");
             break;
         }
-    if (scene.hasGlossyOrRefractive())
+    if (scene.hasGlossyOrRefractive() && !plan.runs("hybrid.trace"))
         plan.notes.push_back("glossy or refractive materials: the frame shades them with GGX from the lights; "
-                             "reflections of the scene and refraction are not traced");
+                             "reflections of the scene and refraction are not traced (--method hybrid traces mirror-like ones)");
     return plan;
 }
 

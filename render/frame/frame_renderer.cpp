@@ -303,13 +303,33 @@ struct FrameRenderer::Impl {
         glBlendFunc(GL_ONE, GL_ONE);
     }
 
+    // This frame's surfaces seen through mirrors and glass (the hybrid method), lit by the same
+    // passes as the G-buffer into their own targets.
+    std::vector<SecondaryLayerView> layers;
+    bool smoothLobesTraced = false;
+
+    // Draws go to the layer's light target, only where it holds surfaces (until GL_SCISSOR_TEST
+    // is disabled again).
+    void beginLayer(const SecondaryLayerView& layer) {
+        glBindFramebuffer(GL_FRAMEBUFFER, layer.lightFramebuffer);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(layer.scissor.x, layer.scissor.y, layer.scissor.z, layer.scissor.w);
+    }
+
+    // The G-buffer's textures on units 0-3 (and, for a layer, its viewers on unit 9).
+    void bindSurfaces(gl::Program& program, const GBufferView& g) {
+        const char* names[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
+        const GLuint textures[4] = {g.position, g.normal, g.albedo, g.emission};
+        for (int i = 0; i < 4; ++i) {
+            glBindTextureUnit(GLuint(i), textures[i]);
+            program.set(names[i], i);
+        }
+    }
+
     void beginLightPass() {
         beginAdditivePass(accumFbo.id());
         lightProgram.use();
-        glBindTextureUnit(0, gPosition.id());
-        glBindTextureUnit(1, gNormal.id());
-        glBindTextureUnit(2, gAlbedo.id());
-        glBindTextureUnit(3, gEmission.id());
+        bindSurfaces(lightProgram, gbufferView());
         glBindTextureUnit(4, cubeDistance.id());
         glBindTextureUnit(5, shadowDepth.id());
         glBindTextureUnit(6, sunDepth.id());
@@ -317,9 +337,11 @@ struct FrameRenderer::Impl {
         glBindTextureUnit(7, sunDepth.id());
         glBindSampler(7, sunDepthSampler.id());
         glBindTextureUnit(8, sunTileDepth.id());
-        const char* names[9] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uShadowCube", "uShadow2D",
-                                "uSunShadow", "uSunDepth", "uSunTileDepth"};
-        for (int i = 0; i < 9; ++i) lightProgram.set(names[i], i);
+        const char* names[5] = {"uShadowCube", "uShadow2D", "uSunShadow", "uSunDepth", "uSunTileDepth"};
+        for (int i = 0; i < 5; ++i) lightProgram.set(names[i], i + 4);
+        lightProgram.set("uViewOrigin", 9);
+        lightProgram.set("uViewOriginPerPixel", 0);
+        lightProgram.set("uSmoothLobesTraced", smoothLobesTraced ? 1 : 0);
         lightProgram.set("uFrame", frames);
         lightProgram.set("uEye", scene.camera.eye);
         gpu.bindLights();
@@ -338,6 +360,15 @@ struct FrameRenderer::Impl {
         lightProgram.set("uShadowMatrix", shadowMatrix);
         lightProgram.set("uShadowTexel", shadowTexel);
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        // The same light and shadow on the surfaces mirrors and glass show.
+        for (const SecondaryLayerView& layer : layers) {
+            beginLayer(layer);
+            bindSurfaces(lightProgram, layer.surfaces);
+            glBindTextureUnit(9, layer.surfaces.viewOrigin);
+            lightProgram.set("uViewOriginPerPixel", 1);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+        glDisable(GL_SCISSOR_TEST);
         glBindSampler(6, 0);  // the units go back to their textures' own sampling
         glBindSampler(7, 0);
         timers.end();
@@ -420,15 +451,16 @@ struct FrameRenderer::Impl {
         timers.begin("sky_light");
         beginAdditivePass(accumFbo.id());
         skyLightProgram.use();
-        const char* names[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
-        const GLuint gbuffer[4] = {gPosition.id(), gNormal.id(), gAlbedo.id(), gEmission.id()};
-        for (int i = 0; i < 4; ++i) {
-            glBindTextureUnit(GLuint(i), gbuffer[i]);
-            skyLightProgram.set(names[i], i);
-        }
+        bindSurfaces(skyLightProgram, gbufferView());
         skyTexture->bind(skyLightProgram, 4);
         glBindVertexArray(emptyVao.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        for (const SecondaryLayerView& layer : layers) {
+            beginLayer(layer);
+            bindSurfaces(skyLightProgram, layer.surfaces);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+        glDisable(GL_SCISSOR_TEST);
         timers.end();
     }
 
@@ -436,9 +468,11 @@ struct FrameRenderer::Impl {
         gpu.updateLights(scene.lights);
         if (plan.runs("gbuffer")) renderGBuffer();
         if (plan.runs("sky_volume") && !skyTexture) buildSkyVolume();
-        FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get()};
+        smoothLobesTraced = plan.runs("hybrid.trace");
+        FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get(), smoothLobesTraced};
         GBufferView view = gbufferView();
         if (technique) technique->update(input, view);
+        layers = technique ? technique->secondaryLayers() : std::vector<SecondaryLayerView>{};
         if (plan.runs("direct_light"))
             for (std::size_t i = 0; i < scene.lights.size(); ++i) renderLight(scene.lights[i], i);
         if (plan.runs("sky_light")) renderSkyLight();
@@ -449,6 +483,16 @@ struct FrameRenderer::Impl {
             beginAdditivePass(indirectFbo.id());
             glBindVertexArray(emptyVao.id());
             technique->applyIndirect(input, view);
+            for (const SecondaryLayerView& layer : layers) {
+                beginAdditivePass(layer.lightFramebuffer);
+                beginLayer(layer);
+                glBindVertexArray(emptyVao.id());
+                technique->applyIndirect(input, layer.surfaces);
+            }
+            glDisable(GL_SCISSOR_TEST);
+            beginAdditivePass(indirectFbo.id());
+            glBindVertexArray(emptyVao.id());
+            technique->composite(input, accumFbo.id(), indirectFbo.id());
         }
         glDisable(GL_BLEND);
         ++frames;

@@ -14,7 +14,8 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    if (!gbufferHit(texelFetch(uPosition, pixel, 0))) { outColor = vec4(0.0); return; }
-    vec3 diffuse = gbufferDiffuseAlbedo(texelFetch(uAlbedo, pixel, 0), texelFetch(uEmission, pixel, 0));
+    const vec4 position = texelFetch(uPosition, pixel, 0);
+    if (!gbufferHit(position)) { outColor = vec4(0.0); return; }
+    vec3 diffuse = gbufferDiffuseAlbedo(position, texelFetch(uAlbedo, pixel, 0), texelFetch(uEmission, pixel, 0));
     outColor = vec4(diffuse * kInvPi * uIrradiance, 1.0);
 }

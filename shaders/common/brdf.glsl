@@ -11,6 +11,7 @@ struct Surface {
     float roughness;
     float metallic;
     float specular;
+    float transmission;  // the dielectric's share, not shaded here: the opaque lobes get 1 - it
 };
 
 float ggxD(float nh, float a2) {
@@ -33,13 +34,13 @@ vec3 evalBrdf(Surface s, vec3 n, vec3 v, vec3 l) {
     float nl = dot(n, l);
     float nv = dot(n, v);
     if (nl <= 0.0 || nv <= 0.0) return vec3(0.0);
-    vec3 diffuse = diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi;
+    vec3 diffuse = diffuseAlbedo(s.albedo, s.metallic, s.specular, s.transmission) * kInvPi;
     vec3 f0 = mix(vec3(s.specular), s.albedo, s.metallic);
     if (max(f0.r, max(f0.g, f0.b)) <= 0.0) return diffuse;
     vec3 h = normalize(v + l);
-    float alpha = max(s.roughness * s.roughness, 1e-3);
+    float alpha = max(s.roughness * s.roughness, kSmoothAlpha);
     float a2 = alpha * alpha;
     vec3 spec = fresnelSchlick(f0, dot(v, h)) * ggxD(max(dot(n, h), 0.0), a2) * smithVisibility(nl, nv, a2);
-    return diffuse + spec;
+    return diffuse + (1.0 - s.transmission) * spec;
 }
 #endif

@@ -18,5 +18,5 @@ void main() {
     float len = length(toViewer);
     toViewer = len > 0.0 ? toViewer / len : s.normal;
     vec3 e = ddgiSampleIrradiance(s.position, s.normal, toViewer);
-    outColor = vec4(diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * e, 1.0);
+    outColor = vec4(surfaceDiffuseAlbedo(s) * kInvPi * e, 1.0);
 }

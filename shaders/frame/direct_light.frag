@@ -14,6 +14,13 @@ uniform sampler2DShadow uShadow2D;
 uniform int uLight;
 uniform vec2 uQuadSample;       // quad lights: this frame's point of the quad, in [0,1)^2
 uniform vec3 uEye;
+// Surfaces seen through mirrors and glass (the hybrid method's layers): each pixel's viewer is
+// the point its ray left, in uViewOrigin, instead of the eye.
+uniform int uViewOriginPerPixel;
+uniform sampler2D uViewOrigin;
+// The hybrid method traces mirror-like lobes (smoothLobe): their light from the lights is then
+// what its rays find, not a GGX highlight here.
+uniform int uSmoothLobesTraced;
 uniform vec3 uShadowEye;        // the cube map's centre (point light; quad sample lifted off the quad)
 uniform mat4 uShadowMatrix;     // world -> shadow texture space (spot maps)
 uniform float uShadowTexel;     // world size of one shadow texel at unit distance (normal offset)
@@ -46,10 +53,11 @@ void main() {
     GBufferTexels t = fetchGBuffer(pixel);
     if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
     GBufferSurface g = decodeGBuffer(t);
-    Surface s = Surface(g.albedo, g.roughness, g.metallic, g.specular);
+    Surface s = Surface(g.albedo, g.roughness, g.metallic, g.specular, g.transmission);
     vec3 p = g.position;
     vec3 n = g.normal;
-    vec3 v = normalize(uEye - p);
+    vec3 viewer = uViewOriginPerPixel != 0 ? texelFetch(uViewOrigin, pixel, 0).xyz : uEye;
+    vec3 v = normalize(viewer - p);
 
     PackedLight light = lights[uLight];
     IncidentLight incident = evaluateLight(light, p, uQuadSample);
@@ -62,5 +70,6 @@ void main() {
     if (kind == kLightDirectional) vis = sunVisibility(p, n, pixel);
     else if (kind == kLightSpot) vis = mapVisibility(p, n, incident.distance);
     else vis = cubeVisibility(p, n);
-    outColor = vec4(evalBrdf(s, n, v, l) * incident.irradiance * vis * nl, 1.0);
+    vec3 f = uSmoothLobesTraced != 0 && smoothLobe(g.roughness) ? surfaceDiffuseAlbedo(g) * kInvPi : evalBrdf(s, n, v, l);
+    outColor = vec4(f * incident.irradiance * vis * nl, 1.0);
 }

@@ -34,6 +34,7 @@ void main() {
     s.roughness = m.roughness;
     s.metallic = m.metallic;
     s.specular = m.specular;
+    s.transmission = m.albedo.a;
     GBufferTexels t = encodeGBuffer(s);
     outPosition = t.position;
     outNormal = t.normal;

@@ -12,5 +12,5 @@ void main() {
     GBufferTexels t = fetchGBuffer(ivec2(gl_FragCoord.xy));
     if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
     GBufferSurface s = decodeGBuffer(t);
-    outColor = vec4(diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * skyVolumeIrradiance(s.position, s.normal), 1.0);
+    outColor = vec4(surfaceDiffuseAlbedo(s) * kInvPi * skyVolumeIrradiance(s.position, s.normal), 1.0);
 }

@@ -46,7 +46,7 @@ void main() {
     }
     vec4 e = weights > 1e-6 ? sum / weights : nearest;
     float occlusion = clamp(e.w, 0.0, 1.0);
-    vec3 near = diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * e.rgb * (1.0 - uAoStrength * occlusion);
+    vec3 near = surfaceDiffuseAlbedo(s) * kInvPi * e.rgb * (1.0 - uAoStrength * occlusion);
     vec3 far = uHasFarLight ? (1.0 - occlusion) * texelFetch(uFarLight, pixel, 0).rgb : vec3(0.0);
     outColor = vec4(near + far, 1.0);
 }

@@ -60,5 +60,5 @@ void main() {
     outPosition = vec4(s.position, 1.0);
     outNormal = vec4(s.normal, nearest);
     outRadiance = vec4(max(sum / count, vec3(0.0)), isrPatchArea(s.position, s.normal, uEye, uForward, uPatchSolidAngle));
-    outAlbedo = vec4(diffuseAlbedo(s.albedo, s.metallic, s.specular), 0.0);
+    outAlbedo = vec4(surfaceDiffuseAlbedo(s), 0.0);
 }

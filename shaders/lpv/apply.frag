@@ -18,6 +18,7 @@ uniform sampler3D uInnerG[kLpvMaxCascades - 1];
 uniform sampler3D uInnerB[kLpvMaxCascades - 1];
 uniform float uCellSize[kLpvMaxCascades];
 uniform int uCascadeCount;
+uniform int uSmoothLobesTraced;
 uniform vec3 uEye;
 uniform float uApplyNormalOffset;
 uniform float uDampening;
@@ -98,13 +99,15 @@ void main() {
         if (held > 0.0) e += irradiance(c, p, n, held, w);
         outside -= w;
     }
-    vec3 color = diffuseAlbedo(s.albedo, s.metallic, s.specular) * kInvPi * e;
+    vec3 color = surfaceDiffuseAlbedo(s) * kInvPi * e;
     vec3 f0 = mix(vec3(s.specular), s.albedo, s.metallic);
-    if (uGlossy != 0 && max(f0.r, max(f0.g, f0.b)) > 0.0 && s.roughness < 0.6) {
+    // Mirror-like lobes are traced when the hybrid method runs (uSmoothLobesTraced).
+    const bool traced = uSmoothLobesTraced != 0 && smoothLobe(s.roughness);
+    if (uGlossy != 0 && !traced && max(f0.r, max(f0.g, f0.b)) > 0.0 && s.roughness < 0.6) {
         vec3 v = normalize(uEye - s.position);
         vec3 r = reflect(-v, n);
         vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(n, v), 0.0), 5.0);
-        color += fresnel * glossyRadiance(s.position + n * (0.5 * uCellSize[0]), r, s.roughness);
+        color += (1.0 - s.transmission) * fresnel * glossyRadiance(s.position + n * (0.5 * uCellSize[0]), r, s.roughness);
     }
     outColor = vec4(color, 1.0);
 }

@@ -24,7 +24,7 @@ void main() {
         return;
     }
     vec3 n = normalizeExact(texelFetch(uNormal, pixel, 0).xyz);
-    precise vec3 albedo = gbufferDiffuseAlbedo(texelFetch(uAlbedo, pixel, 0), texelFetch(uEmission, pixel, 0));
+    precise vec3 albedo = gbufferDiffuseAlbedo(p4, texelFetch(uAlbedo, pixel, 0), texelFetch(uEmission, pixel, 0));
     precise vec3 d = p4.xyz - uEye;
     precise float dist = sqrt(dotExact(d, d));
     precise vec3 w = d / dist;

@@ -32,7 +32,7 @@ void main() {
     if (dot(n, geometric) < 0.0) n = -n;  // two-sided, like the frame renderer
     vec3 albedo = m.albedo.rgb;
     if (m.textureLayer >= 0) albedo *= texture(uTextures, vec3(vUv.x, 1.0 - vUv.y, float(m.textureLayer))).rgb;
-    vec3 diffuse = diffuseAlbedo(albedo, m.metallic, m.specular);
+    vec3 diffuse = diffuseAlbedo(albedo, m.metallic, m.specular, m.albedo.a);
     float cosSurface = max(dot(n, toLight), 0.0);
 
     vec3 incidentFlux;  // W arriving on the surfel

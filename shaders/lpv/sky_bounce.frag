@@ -33,7 +33,7 @@ void main() {
     vec3 w = d / dist;
     float c = max(dot(w, uForward), 1e-3);
     float area = uTexelSolidAngle * c * c * c * dist * dist / max(abs(dot(s.normal, w)), 0.05);
-    vec3 diffuse = diffuseAlbedo(s.albedo, s.metallic, s.specular);
+    vec3 diffuse = surfaceDiffuseAlbedo(s);
     outPosition = vec4(s.position, area);
     outNormal = vec4(s.normal, 1.0);
     outFlux = vec4(diffuse * skyVolumeIrradiance(s.position, s.normal) * area, 0.0);

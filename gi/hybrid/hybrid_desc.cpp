@@ -1,0 +1,22 @@
+#include "gi/hybrid/hybrid_desc.h"
+
+namespace voxgi {
+
+const SettingsTable<HybridDesc>& hybridSettings() {
+    static const SettingsTable<HybridDesc> table = [] {
+        using D = HybridDesc;
+        SettingsTable<D> t("hybrid");
+        t.choice("diffuse", &D::diffuse,
+                 std::vector<std::pair<std::string, std::string>>{
+                     {"clpv", "clpv"}, {"lpv", "lpv"}, {"ddgi", "ddgi"}, {"none", ""}},
+                 "diffuse GI method lighting the rasterized surfaces and those seen in mirrors and through glass")
+            .main();
+        t.integer("depth", &D::depth, 1, 8, "mirror-like scatterings (reflections, refractions) followed from a pixel").main();
+        return t;
+    }();
+    return table;
+}
+
+HybridDesc readHybridDesc(const GiSettings& gi) { return hybridSettings().read(gi); }
+
+}  // namespace voxgi
