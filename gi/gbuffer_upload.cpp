@@ -3,9 +3,12 @@
 namespace voxgi {
 
 namespace {
+void fill(const gl::Handle& t, const std::vector<glm::vec4>& data, int width, int height) {
+    glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, data.data());
+}
 gl::Handle rgba32f(const std::vector<glm::vec4>& data, int width, int height) {
     gl::Handle t = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-    glTextureSubImage2D(t.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, data.data());
+    fill(t, data, width, height);
     return t;
 }
 }  // namespace
@@ -32,6 +35,16 @@ UploadedGBuffer uploadGBuffer(const std::vector<glm::vec4>& position, const std:
     g.view.height = height;
     g.view.eye = eye;
     return g;
+}
+
+void UploadedGBuffer::refill(const std::vector<glm::vec4>& position, const std::vector<glm::vec4>& normal,
+                             const std::vector<glm::vec4>& albedo, const std::vector<glm::vec4>& emission) {
+    fill(this->position, position, view.width, view.height);
+    fill(this->normal, normal, view.width, view.height);
+    fill(this->albedo, albedo, view.width, view.height);
+    fill(this->emission, emission, view.width, view.height);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, zero);
 }
 
 std::vector<float> UploadedGBuffer::readTarget() const {

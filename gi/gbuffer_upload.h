@@ -16,6 +16,9 @@ struct UploadedGBuffer {
 
     // The target's pixels, RGBA, bottom row first (GL order).
     std::vector<float> readTarget() const;
+    // New contents for the same size, and the target cleared (a G-buffer refilled every frame).
+    void refill(const std::vector<glm::vec4>& position, const std::vector<glm::vec4>& normal,
+                const std::vector<glm::vec4>& albedo, const std::vector<glm::vec4>& emission);
 };
 
 UploadedGBuffer uploadGBuffer(const std::vector<glm::vec4>& position, const std::vector<glm::vec4>& normal,

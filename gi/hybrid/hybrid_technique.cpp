@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "gi/gbuffer_upload.h"
 #include "gi/hybrid/mirror_paths.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gl/program.h"
@@ -11,10 +12,11 @@ namespace voxgi {
 
 namespace {
 
-// One layer's textures on the GPU: the G-buffer the frame lights, each pixel's viewer and
-// weight, and the target the frame's passes add the layer's light into.
+// One layer on the GPU: the G-buffer the frame lights (its target takes the layer's light),
+// each pixel's viewer and weight.
 struct LayerTextures {
-    gl::Handle position, normal, albedo, emission, viewOrigin, weight, light, lightFbo;
+    UploadedGBuffer surfaces;
+    gl::Handle viewOrigin, weight;
 };
 
 void upload(GLuint texture, int width, int height, const glm::vec4* data) {
@@ -55,24 +57,37 @@ public:
         rays_ = paths.rays;
 
         input.timers.begin("hybrid.upload");
-        ensureSize(g.width, g.height, paths.layers.size());
-        upload(emittedDirect_.id(), g.width, g.height, paths.emittedDirect.data());
-        upload(emittedIndirect_.id(), g.width, g.height, paths.emittedIndirect.data());
-        std::vector<glm::vec4> target(std::size_t(g.width) * std::size_t(g.height));
-        const float zero[4] = {0, 0, 0, 0};
+        if (g.width != width_ || g.height != height_) {
+            layers_.clear();
+            width_ = g.width;
+            height_ = g.height;
+            emittedDirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+            emittedIndirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+        }
+        upload(emittedDirect_.id(), width_, height_, paths.emittedDirect.data());
+        upload(emittedIndirect_.id(), width_, height_, paths.emittedIndirect.data());
+        const std::size_t count = std::size_t(width_) * std::size_t(height_);
+        std::vector<glm::vec4> parts[4];
         for (std::size_t l = 0; l < paths.layers.size(); ++l) {
             const SecondaryLayer& layer = paths.layers[l];
-            LayerTextures& t = layers_[l];
-            glm::vec4 shading::GBufferTexels::*parts[4] = {&shading::GBufferTexels::position, &shading::GBufferTexels::normal,
-                                                          &shading::GBufferTexels::albedo, &shading::GBufferTexels::emission};
-            const GLuint textures[4] = {t.position.id(), t.normal.id(), t.albedo.id(), t.emission.id()};
-            for (int k = 0; k < 4; ++k) {
-                for (std::size_t i = 0; i < target.size(); ++i) target[i] = layer.texels[i].*parts[k];
-                upload(textures[k], g.width, g.height, target.data());
+            for (auto& p : parts) p.resize(count);
+            for (std::size_t i = 0; i < count; ++i) {
+                parts[0][i] = layer.texels[i].position;
+                parts[1][i] = layer.texels[i].normal;
+                parts[2][i] = layer.texels[i].albedo;
+                parts[3][i] = layer.texels[i].emission;
             }
-            upload(t.viewOrigin.id(), g.width, g.height, layer.viewOrigin.data());
-            upload(t.weight.id(), g.width, g.height, layer.weight.data());
-            glClearNamedFramebufferfv(t.lightFbo.id(), GL_COLOR, 0, zero);
+            if (l == layers_.size()) {
+                LayerTextures t;
+                t.surfaces = uploadGBuffer(parts[0], parts[1], parts[2], parts[3], width_, height_, g.eye);
+                t.viewOrigin = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+                t.weight = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+                layers_.push_back(std::move(t));
+            } else {
+                layers_[l].surfaces.refill(parts[0], parts[1], parts[2], parts[3]);
+            }
+            upload(layers_[l].viewOrigin.id(), width_, height_, layer.viewOrigin.data());
+            upload(layers_[l].weight.id(), width_, height_, layer.weight.data());
         }
         active_ = paths.layers.size();
         bounds_.clear();
@@ -91,16 +106,11 @@ public:
         for (std::size_t l = 0; l < active_; ++l) {
             const LayerTextures& t = layers_[l];
             SecondaryLayerView v;
-            v.surfaces.position = t.position.id();
-            v.surfaces.normal = t.normal.id();
-            v.surfaces.albedo = t.albedo.id();
-            v.surfaces.emission = t.emission.id();
-            v.surfaces.width = width_;
-            v.surfaces.height = height_;
+            v.surfaces = t.surfaces.view;
             v.surfaces.eye = eye_;
             v.surfaces.viewProjection = viewProjection_;
             v.surfaces.viewOrigin = t.viewOrigin.id();
-            v.lightFramebuffer = t.lightFbo.id();
+            v.lightFramebuffer = t.surfaces.framebuffer.id();
             v.scissor = bounds_[l];
             out.push_back(v);
         }
@@ -123,7 +133,7 @@ public:
         glEnable(GL_SCISSOR_TEST);
         for (std::size_t l = 0; l < active_; ++l) {
             glScissor(bounds_[l].x, bounds_[l].y, bounds_[l].z, bounds_[l].w);
-            draw(indirectFramebuffer, layers_[l].light.id(), layers_[l].weight.id());
+            draw(indirectFramebuffer, layers_[l].surfaces.target.id(), layers_[l].weight.id());
         }
         glDisable(GL_SCISSOR_TEST);
         draw(indirectFramebuffer, emittedIndirect_.id(), 0);
@@ -153,28 +163,6 @@ public:
     }
 
 private:
-    void ensureSize(int width, int height, std::size_t layers) {
-        if (width != width_ || height != height_) {
-            layers_.clear();
-            width_ = width;
-            height_ = height;
-            emittedDirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-            emittedIndirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        }
-        while (layers_.size() < layers) {
-            LayerTextures t;
-            t.position = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-            t.normal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
-            t.albedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
-            t.emission = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-            t.viewOrigin = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-            t.weight = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-            t.light = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-            t.lightFbo = gl::createFramebuffer({t.light.id()}, 0, "hybrid layer light");
-            layers_.push_back(std::move(t));
-        }
-    }
-
     HybridDesc desc_;
     std::unique_ptr<GiTechnique> diffuse_;
     RayTracer tracer_;
