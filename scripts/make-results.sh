@@ -44,6 +44,11 @@ if [ ${#big[@]} -gt 0 ]; then
     --spp 512 --frames 12 --warmup 4 --cache "$cache" -o "$out/large-scenes"
 fi
 
+# Mirrors and glass (docs/hybrid.md): the spheres' Cornell box, the hybrid method against the
+# diffuse methods alone (128^2, 4096 spp: the glass's caustics are noisy in the reference).
+"$voxgi" eval scenes/cornell-spheres.json --methods direct,clpv,ddgi,hybrid --presets medium --width 128 --height 128 \
+  --spp 4096 --cache "$cache" -o "$out/hybrid"
+
 # Seed 003's protocol (docs/eval.md "many views"): the Cornell box, Sibenik and Sponza (when
 # their meshes are present) over 100 camera views each, drawn in the free space their own camera
 # stands in, each view against its own reference (64^2, 256 spp): direct light, the ambient
@@ -80,6 +85,7 @@ elapsed=$(( $(date +%s) - start ))
   else
     echo "- Sibenik and Sponza: not run (../shared/scenes absent)"
   fi
+  echo "- [Mirrors and glass: the spheres' Cornell box with the hybrid method](hybrid/report.md)"
   echo "- [Cornell box, Sibenik and Sponza over 100 views each (direct light, ambient, ISR): spread, share of views beating direct light and the fitted ambient, worst views](views/views.md)"
   echo "- [Cornell box over the same 100 views: LPV and CLPV (medium)](views-methods/views.md)"
   echo "- [Cornell box over 100 views: CLPV, and ISR with CLPV as its far field](views-far-field/views.md)"

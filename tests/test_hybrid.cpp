@@ -90,6 +90,31 @@ TEST_F(Hybrid, PerfectMirrorShowsTheEmitterAbove) {
     EXPECT_NEAR(centre(render(s, "direct", 1), 8).r, 0.0f, 1e-6f);
 }
 
+// Without the hybrid method a mirror still shows a quad light where its reflected ray meets it,
+// every frame (not a GGX spike at one point of the quad a frame): a perfect mirror under a 2 m
+// quad light of radiance (3, 2, 1) shows (3, 2, 1) in the middle, from the first frame on.
+TEST_F(Hybrid, MirrorShowsAQuadLightInTheRasterizedFrame) {
+    Scene s = lookingDown(R"("mirror": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0})",
+                          R"({"type": "quad", "name": "mirror", "material": "mirror",
+                              "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]})",
+                          3);
+    Light quad;
+    quad.type = LightType::Quad;
+    quad.position = {-1.0f, 3.0f, -1.0f};
+    quad.edgeU = {2.0f, 0.0f, 0.0f};
+    quad.edgeV = {0.0f, 0.0f, 2.0f};
+    quad.emission = {3.0f, 2.0f, 1.0f};
+    ASSERT_LT(quad.quadNormal().y, 0.0f);  // emitting downwards
+    s.lights.push_back(quad);
+    s.addQuadLightGeometry();
+    for (int frames : {1, 4}) {
+        const glm::vec3 c = centre(render(s, "direct", frames), 2);
+        EXPECT_NEAR(c.r, 3.0f, 0.03f) << frames;
+        EXPECT_NEAR(c.g, 2.0f, 0.02f) << frames;
+        EXPECT_NEAR(c.b, 1.0f, 0.01f) << frames;
+    }
+}
+
 // Glass (transmission 1, ior 1.5, clear) 0.1 m thick over an emitter: near normal incidence
 // the camera sees (1 - F)^2 of it with F = ((1.5 - 1) / (1.5 + 1))^2 = 0.04, the radiance scaled
 // by eta^2 going in and 1 / eta^2 coming out. Depth 1 stops the ray inside the glass.

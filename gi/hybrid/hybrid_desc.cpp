@@ -12,6 +12,8 @@ const SettingsTable<HybridDesc>& hybridSettings() {
                  "diffuse GI method lighting the rasterized surfaces and those seen in mirrors and through glass")
             .main();
         t.integer("depth", &D::depth, 1, 8, "mirror-like scatterings (reflections, refractions) followed from a pixel").main();
+        t.flag("replay_bare", &D::replayBare,
+               "benchmarks: trace each frame's rays again through bare Embree and report both rates (doubles the tracing)");
         return t;
     }();
     return table;

@@ -16,6 +16,10 @@ struct HybridDesc {
     // Mirror-like scatterings followed from a pixel's surface: 1 is the seed's one reflection;
     // seeing through a glass sphere takes 2 (in and out), a mirror in a mirror 2.
     int depth = 3;
+    // Benchmarks: each frame's rays are traced again through Embree alone (rtcIntersect1) and
+    // both rates reported (stats hybrid.rays_per_s, hybrid.bare_rays_per_s), which doubles the
+    // tracing time.
+    bool replayBare = false;
 };
 
 const SettingsTable<HybridDesc>& hybridSettings();

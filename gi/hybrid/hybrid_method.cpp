@@ -10,6 +10,8 @@
 
 namespace voxgi {
 
+MethodInfo clpvMethod();  // gi/lpv/lpv_method.cpp
+
 namespace {
 // The diffuse method's description, or null for none.
 const MethodInfo* diffuseInfo(const HybridDesc& d) { return d.diffuse.empty() ? nullptr : &findMethod(d.diffuse); }
@@ -58,6 +60,10 @@ MethodInfo hybridMethod() {
         p.notes.push_back("hybrid: the frame's direct light, sky light and the diffuse method also light each layer");
         return p;
     };
+    // Eval's presets are the default diffuse method's (clpv low, medium, high, timed without
+    // reuse), so each row compares with the clpv row of the same name.
+    m.presets = clpvMethod().presets;
+    m.benchVariants = {{"default", {}}, {"embree-share", {{"hybrid.replay_bare", "true"}}}};
     return m;
 }
 

@@ -50,9 +50,20 @@ public:
         in.eye = g.eye;
         in.depth = desc_.depth;
         in.frame = std::uint32_t(input.frameIndex);
+        if (desc_.replayBare) tracer_.startLog();
+        const auto t1 = std::chrono::steady_clock::now();
         const MirrorPaths paths = traceMirrorPaths(tracer_, in);
-        input.timers.addCpu("hybrid.trace",
-                            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        const auto t2 = std::chrono::steady_clock::now();
+        input.timers.addCpu("hybrid.trace", std::chrono::duration<double, std::milli>(t2 - t0).count());
+        if (desc_.replayBare) {
+            const std::vector<LoggedRay> logged = tracer_.stopLog();
+            const auto t3 = std::chrono::steady_clock::now();
+            tracer_.replayBare(logged);
+            const double bare = std::chrono::duration<double>(std::chrono::steady_clock::now() - t3).count();
+            const double traced = std::chrono::duration<double>(t2 - t1).count();
+            raysPerSecond_ = traced > 0.0 ? double(paths.rays) / traced : 0.0;
+            bareRaysPerSecond_ = bare > 0.0 ? double(logged.size()) / bare : 0.0;
+        }
         pixels_ = paths.pixels;
         rays_ = paths.rays;
 
@@ -153,6 +164,10 @@ public:
         out.push_back({"hybrid.pixels", double(pixels_), "pixels with a mirror-like lobe"});
         out.push_back({"hybrid.rays", double(rays_), "rays"});
         out.push_back({"hybrid.layers", double(active_), "layers of surfaces seen through them"});
+        if (desc_.replayBare) {
+            out.push_back({"hybrid.rays_per_s", raysPerSecond_, "rays/s (tracing and hit records, all threads)"});
+            out.push_back({"hybrid.bare_rays_per_s", bareRaysPerSecond_, "rays/s (the same rays, Embree alone)"});
+        }
         return out;
     }
     void trackConvergence() override {
@@ -176,6 +191,7 @@ private:
     glm::mat4 viewProjection_{1.0f};
     std::size_t pixels_ = 0;
     std::uint64_t rays_ = 0;
+    double raysPerSecond_ = 0.0, bareRaysPerSecond_ = 0.0;
 };
 
 }  // namespace

@@ -60,16 +60,32 @@ void main() {
     vec3 v = normalize(viewer - p);
 
     PackedLight light = lights[uLight];
+    int kind = light.kind.x;
+    // A mirror-like lobe (smoothLobe) under a quad light: one point of the quad a frame would
+    // light it with a GGX spike of peak 3e5 at that point alone (fireflies that average out
+    // only in the limit); a mirror sees the quad where its reflected ray meets it, every frame.
+    // With the hybrid method its rays do that (and the reflection of everything else).
+    bool mirror = smoothLobe(g.roughness);
+    bool mirrorSeesQuad = mirror && kind == kLightQuad && uSmoothLobesTraced == 0;
     IncidentLight incident = evaluateLight(light, p, uQuadSample);
-    if (!(incident.falloff > 0.0)) { outColor = vec4(0.0); return; }
     vec3 l = incident.direction;
     float nl = dot(n, l);
-    if (nl <= 0.0) { outColor = vec4(0.0); return; }
-    int kind = light.kind.x;
-    float vis;
-    if (kind == kLightDirectional) vis = sunVisibility(p, n, pixel);
-    else if (kind == kLightSpot) vis = mapVisibility(p, n, incident.distance);
-    else vis = cubeVisibility(p, n);
-    vec3 f = uSmoothLobesTraced != 0 && smoothLobe(g.roughness) ? surfaceDiffuseAlbedo(g) * kInvPi : evalBrdf(s, n, v, l);
-    outColor = vec4(f * incident.irradiance * vis * nl, 1.0);
+    bool lit = incident.falloff > 0.0 && nl > 0.0;
+    float vis = 1.0;
+    if (lit || mirrorSeesQuad) {
+        if (kind == kLightDirectional) vis = sunVisibility(p, n, pixel);
+        else if (kind == kLightSpot) vis = mapVisibility(p, n, incident.distance);
+        else if (lit) vis = cubeVisibility(p, n);  // else the quad is behind p: a mirror sees it unshadowed
+    }
+    vec3 color = vec3(0.0);
+    if (lit) {
+        vec3 f = mirror && (uSmoothLobesTraced != 0 || kind == kLightQuad) ? surfaceDiffuseAlbedo(g) * kInvPi : evalBrdf(s, n, v, l);
+        color = f * incident.irradiance * vis * nl;
+    }
+    if (mirrorSeesQuad) {
+        // The quad's visibility from the frame's point of it stands for the reflected point's.
+        vec3 f0 = mix(vec3(g.specular), g.albedo, g.metallic);
+        color += (1.0 - g.transmission) * fresnelSchlick(f0, dot(n, v)) * quadRadianceAlong(light, p, reflect(-v, n)) * vis;
+    }
+    outColor = vec4(color, 1.0);
 }

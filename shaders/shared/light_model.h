@@ -126,6 +126,24 @@ inline IncidentLight evaluateLight(PackedLight light, vec3 p, vec2 u) {
     return incident;
 }
 
+// The radiance a ray from p along unit r meets on a quad light: its emission where the ray
+// crosses the quad from its emitting side, else 0 (what a mirror at p reflects of it).
+inline vec3 quadRadianceAlong(PackedLight light, vec3 p, vec3 r) {
+    const vec3 n = vec3(light.direction);
+    const float facing = dot(r, n);
+    if (!(facing < 0.0f)) return vec3(0.0f);
+    const float t = dot(vec3(light.position) - p, n) / facing;
+    if (!(t > 0.0f)) return vec3(0.0f);
+    // The hit in the quad's edge coordinates (a parallelogram: solve the 2 x 2 system).
+    const vec3 q = p + t * r - vec3(light.position);
+    const vec3 eu = vec3(light.edgeU), ev = vec3(light.edgeV);
+    const float a = dot(eu, eu), b = dot(eu, ev), c = dot(ev, ev), d = dot(q, eu), e = dot(q, ev);
+    const float det = a * c - b * b;
+    if (!(det > 0.0f)) return vec3(0.0f);
+    const float s = (c * d - b * e) / det, w = (a * e - b * d) / det;
+    return s >= 0.0f && s <= 1.0f && w >= 0.0f && w <= 1.0f ? vec3(light.emission) : vec3(0.0f);
+}
+
 #ifdef __cplusplus
 static_assert(sizeof(PackedLight) == 112, "std430 layout of PackedLight");
 
