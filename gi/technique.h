@@ -67,8 +67,9 @@ struct FrameInput {
     const TechniquePlan& plan; // the passes to run (their names are the timer stages)
     // The sky-lighting volume when the frame plan has it (sky_volume), else null.
     const SkyVolumeTexture* sky = nullptr;
-    // The hybrid method traces the mirror-like lobes (shading::smoothLobe): the frame's passes
-    // and the techniques' glossy terms leave those lobes out.
+    // The hybrid method traces the mirror-like lobes (shading::smoothLobe): the direct-light pass
+    // leaves their reflection of quad lights (emitters its rays meet) to it, the techniques'
+    // glossy terms leave those lobes out.
     bool smoothLobesTraced = false;
 };
 

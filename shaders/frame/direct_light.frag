@@ -18,8 +18,8 @@ uniform vec3 uEye;
 // the point its ray left, in uViewOrigin, instead of the eye.
 uniform int uViewOriginPerPixel;
 uniform sampler2D uViewOrigin;
-// The hybrid method traces mirror-like lobes (smoothLobe): their light from the lights is then
-// what its rays find, not a GGX highlight here.
+// The hybrid method traces mirror-like lobes (smoothLobe): its rays find the quad lights' emitting
+// geometry there, so this pass leaves that reflection to them.
 uniform int uSmoothLobesTraced;
 uniform vec3 uShadowEye;        // the cube map's centre (point light; quad sample lifted off the quad)
 uniform mat4 uShadowMatrix;     // world -> shadow texture space (spot maps)
@@ -64,7 +64,8 @@ void main() {
     // A mirror-like lobe (smoothLobe) under a quad light: one point of the quad a frame would
     // light it with a GGX spike of peak 3e5 at that point alone (fireflies that average out
     // only in the limit); a mirror sees the quad where its reflected ray meets it, every frame.
-    // With the hybrid method its rays do that (and the reflection of everything else).
+    // With the hybrid method its rays do that (and the reflection of everything else). Point,
+    // spot and directional lights, which no ray can hit, keep their GGX highlight.
     bool mirror = smoothLobe(g.roughness);
     bool mirrorSeesQuad = mirror && kind == kLightQuad && uSmoothLobesTraced == 0;
     IncidentLight incident = evaluateLight(light, p, uQuadSample);
@@ -79,7 +80,7 @@ void main() {
     }
     vec3 color = vec3(0.0);
     if (lit) {
-        vec3 f = mirror && (uSmoothLobesTraced != 0 || kind == kLightQuad) ? surfaceDiffuseAlbedo(g) * kInvPi : evalBrdf(s, n, v, l);
+        vec3 f = mirror && kind == kLightQuad ? surfaceDiffuseAlbedo(g) * kInvPi : evalBrdf(s, n, v, l);
         color = f * incident.irradiance * vis * nl;
     }
     if (mirrorSeesQuad) {
