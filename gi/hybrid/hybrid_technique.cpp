@@ -77,25 +77,16 @@ public:
         }
         upload(emittedDirect_.id(), width_, height_, paths.emittedDirect.data());
         upload(emittedIndirect_.id(), width_, height_, paths.emittedIndirect.data());
-        const std::size_t count = std::size_t(width_) * std::size_t(height_);
-        std::vector<glm::vec4> parts[4];
         for (std::size_t l = 0; l < paths.layers.size(); ++l) {
             const SecondaryLayer& layer = paths.layers[l];
-            for (auto& p : parts) p.resize(count);
-            for (std::size_t i = 0; i < count; ++i) {
-                parts[0][i] = layer.texels[i].position;
-                parts[1][i] = layer.texels[i].normal;
-                parts[2][i] = layer.texels[i].albedo;
-                parts[3][i] = layer.texels[i].emission;
-            }
             if (l == layers_.size()) {
                 LayerTextures t;
-                t.surfaces = uploadGBuffer(parts[0], parts[1], parts[2], parts[3], width_, height_, g.eye);
+                t.surfaces = uploadGBuffer(layer.position, layer.normal, layer.albedo, layer.emission, width_, height_, g.eye);
                 t.viewOrigin = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
                 t.weight = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
                 layers_.push_back(std::move(t));
             } else {
-                layers_[l].surfaces.refill(parts[0], parts[1], parts[2], parts[3]);
+                layers_[l].surfaces.refill(layer.position, layer.normal, layer.albedo, layer.emission);
             }
             upload(layers_[l].viewOrigin.id(), width_, height_, layer.viewOrigin.data());
             upload(layers_[l].weight.id(), width_, height_, layer.weight.data());

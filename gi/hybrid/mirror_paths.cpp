@@ -26,46 +26,36 @@ struct Lobe {
     glm::vec3 weight{0.0f};
 };
 
-// The surface at a hit as the path tracer's Bsdf orients it: normals on the side of `wo`.
-struct Oriented {
-    glm::vec3 geometric, shading;
-};
-Oriented orient(const RayHit& hit, glm::vec3 wo) {
-    Oriented o;
-    o.geometric = glm::dot(hit.geometricNormal, wo) < 0.0f ? -hit.geometricNormal : hit.geometricNormal;
-    o.shading = glm::dot(hit.shadingNormal, o.geometric) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
-    return o;
-}
-
-// The mirror-like lobes of the material at `hit` seen from `wo` (at most a reflection and a
-// refraction), with the weights of the path tracer's material (gi/pathtrace/bsdf.h): the
-// opaque part's coat or metal by Schlick's Fresnel at the clamped alpha (a mirror to within
-// its Smith term), the smooth dielectric's reflection and refraction by the exact Fresnel
-// term, refraction tinted by the albedo and scaled by eta^2 (radiance squeezed into the denser
-// medium). Directions that land on the wrong geometric side are dropped, as the path tracer does.
-int mirrorLobes(const Material& m, glm::vec3 albedo, const RayHit& hit, glm::vec3 wo, Lobe out[2]) {
+// The mirror-like lobes of the material at a hit, `bsdf` there seen from `wo` (at most a
+// reflection and a refraction), with the path tracer's weights: the opaque part's coat or metal
+// by Schlick's Fresnel at the clamped alpha (a mirror to within its Smith term), and the smooth
+// dielectric's delta pair as its own sampling gives them (gi/pathtrace/bsdf.h: exact Fresnel,
+// refraction tinted and scaled by eta^2, directions on the wrong geometric side dropped), each
+// sample's weight times its probability.
+int mirrorLobes(const Material& m, glm::vec3 albedo, const pt::Bsdf& bsdf, glm::vec3 wo, Lobe out[2]) {
     if (!shading::smoothLobe(m.roughness)) return 0;
-    const Oriented o = orient(hit, wo);
-    const float cosine = glm::dot(o.shading, wo);
+    const glm::vec3 n = bsdf.shadingNormal(), ng = bsdf.geometricNormal();
+    const float cosine = glm::dot(n, wo);
     if (!(cosine > 0.0f)) return 0;
     const float t = std::clamp(m.transmission, 0.0f, 1.0f);
     const glm::vec3 f0 = coatF0(m, albedo);
     glm::vec3 reflect(0.0f);
     if (t < 1.0f && maxComponent(f0) > 0.0f) reflect += (1.0f - t) * pt::fresnelSchlick(f0, cosine);
-    int n = 0;
+    int count = 0;
     if (t > 0.0f) {
-        const float eta = hit.frontFace ? 1.0f / m.ior : m.ior;
-        const float F = pt::fresnelDielectric(cosine, eta);
-        reflect += glm::vec3(t * F);
-        const float sin2t = eta * eta * (1.0f - cosine * cosine);
-        if (sin2t < 1.0f && F < 1.0f) {
-            const glm::vec3 d = glm::normalize(-eta * wo + (eta * cosine - std::sqrt(1.0f - sin2t)) * o.shading);
-            if (glm::dot(o.geometric, d) < 0.0f) out[n++] = {d, t * (1.0f - F) * albedo * (eta * eta)};
+        // u.z = 0 picks the dielectric; u.x below F reflects, above refracts (at total internal
+        // reflection the second sample reflects again and is not counted twice).
+        for (const float choose : {0.0f, 0.99999994f}) {
+            pt::BsdfSample s;
+            if (!bsdf.sample(glm::vec3(choose, 0.0f, 0.0f), s) || !s.delta) continue;
+            const bool reflected = glm::dot(ng, s.direction) > 0.0f;
+            if (!reflected) out[count++] = {s.direction, s.weight * s.pdf};
+            else if (choose == 0.0f) reflect += s.weight * s.pdf;
         }
     }
-    const glm::vec3 r = 2.0f * cosine * o.shading - wo;
-    if (maxComponent(reflect) > 0.0f && glm::dot(o.geometric, r) > 0.0f) out[n++] = {r, reflect};
-    return n;
+    const glm::vec3 r = 2.0f * cosine * n - wo;
+    if (maxComponent(reflect) > 0.0f && glm::dot(ng, r) > 0.0f) out[count++] = {r, reflect};
+    return count;
 }
 
 // Whether the frame's passes have anything to shade at this surface besides its mirror-like
@@ -123,8 +113,12 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
             // pixel keeps what the rasterizer shaded.
             if (!primary.hit || std::abs(primary.t - distance) > 1e-3f * distance + 1e-5f * offsetScale) continue;
             const Material& pm = scene.materials[primary.material];
+            const glm::vec3 primaryAlbedo = tracer.albedoAt(primary);
             Lobe lobes[2];
-            const int branches = mirrorLobes(pm, tracer.albedoAt(primary), primary, -view, lobes);
+            const int branches = mirrorLobes(pm, primaryAlbedo,
+                                             pt::Bsdf(pm, primaryAlbedo, -view, primary.geometricNormal,
+                                                      primary.shadingNormal, primary.frontFace),
+                                             -view, lobes);
             if (branches == 0) continue;
             ++rowPixels;
             int slot = 0;
@@ -143,11 +137,12 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
                     const Material& m = scene.materials[hit.material];
                     const glm::vec3 albedo = tracer.albedoAt(hit);
                     if (hit.frontFace && m.isEmissive()) emitted[i] += glm::vec4(weight * m.emission, 0.0f);
+                    // The surface as the path tracer orients it: normals on the side the ray came from.
+                    const pt::Bsdf bsdf(m, albedo, -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
                     if (slot < maxSlots && shadeable(m, albedo)) {
-                        const Oriented o = orient(hit, -direction);
                         shading::GBufferSurface s;
                         s.position = hit.position;
-                        s.normal = o.shading;
+                        s.normal = bsdf.shadingNormal();
                         s.albedo = albedo;
                         s.emission = glm::vec3(0.0f);  // added above, with the path's weight
                         s.roughness = m.roughness;
@@ -158,7 +153,7 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
                     }
                     if (vertex == in.depth) break;
                     Lobe next[2];
-                    const int n = mirrorLobes(m, albedo, hit, -direction, next);
+                    const int n = mirrorLobes(m, albedo, bsdf, -direction, next);
                     if (n == 0) break;
                     // Past the pixel's own surface one lobe is followed, chosen in proportion to
                     // its weight's luminance (the frames average the choices).
@@ -187,11 +182,9 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
     for (const auto& row : rows)
         for (const Found& f : row) layers = std::max(layers, f.slot + 1);
     out.layers.resize(std::size_t(layers));
-    for (SecondaryLayer& l : out.layers) {
-        l.texels.assign(count, shading::GBufferTexels{glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f)});
-        l.viewOrigin.assign(count, glm::vec4(0.0f));
-        l.weight.assign(count, glm::vec4(0.0f));
-    }
+    for (SecondaryLayer& l : out.layers)
+        for (std::vector<glm::vec4>* v : {&l.position, &l.normal, &l.albedo, &l.emission, &l.viewOrigin, &l.weight})
+            v->assign(count, glm::vec4(0.0f));
     std::vector<glm::ivec4> box(out.layers.size(), glm::ivec4(in.width, in.height, -1, -1));  // x0 y0 x1 y1, inclusive
     for (const auto& row : rows)
         for (const Found& f : row) {
@@ -199,7 +192,10 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
             const glm::ivec2 p(int(f.pixel % std::size_t(in.width)), int(f.pixel / std::size_t(in.width)));
             glm::ivec4& b = box[std::size_t(f.slot)];
             b = glm::ivec4(glm::min(glm::ivec2(b), p), glm::max(glm::ivec2(b.z, b.w), p));
-            l.texels[f.pixel] = f.texels;
+            l.position[f.pixel] = f.texels.position;
+            l.normal[f.pixel] = f.texels.normal;
+            l.albedo[f.pixel] = f.texels.albedo;
+            l.emission[f.pixel] = f.texels.emission;
             l.viewOrigin[f.pixel] = glm::vec4(f.viewOrigin, 1.0f);
             l.weight[f.pixel] = glm::vec4(f.weight, 1.0f);
         }

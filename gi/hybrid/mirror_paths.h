@@ -19,9 +19,11 @@ namespace voxgi {
 
 class RayTracer;
 
-// One layer of secondary surfaces, a value per pixel in GL's row order (bottom row first).
+// One layer of secondary surfaces, a value per pixel in GL's row order (bottom row first): the
+// four G-buffer targets as shaders/shared/gbuffer.h encodes them (position.w = 0 where the layer
+// holds no surface), ready to upload.
 struct SecondaryLayer {
-    std::vector<shading::GBufferTexels> texels;  // position.w = 0 where the layer holds no surface
+    std::vector<glm::vec4> position, normal, albedo, emission;
     std::vector<glm::vec4> viewOrigin;           // xyz: the point the ray to the surface left
     std::vector<glm::vec4> weight;               // rgb: the surface's outgoing radiance times this reaches the pixel
     glm::ivec4 bounds{0};                        // the pixels holding surfaces: x, y, width, height

@@ -306,7 +306,6 @@ struct FrameRenderer::Impl {
     // This frame's surfaces seen through mirrors and glass (the hybrid method), lit by the same
     // passes as the G-buffer into their own targets.
     std::vector<SecondaryLayerView> layers;
-    bool smoothLobesTraced = false;
 
     // Draws go to the layer's light target, only where it holds surfaces (until GL_SCISSOR_TEST
     // is disabled again).
@@ -341,7 +340,7 @@ struct FrameRenderer::Impl {
         for (int i = 0; i < 5; ++i) lightProgram.set(names[i], i + 4);
         lightProgram.set("uViewOrigin", 9);
         lightProgram.set("uViewOriginPerPixel", 0);
-        lightProgram.set("uSmoothLobesTraced", smoothLobesTraced ? 1 : 0);
+        lightProgram.set("uSmoothLobesTraced", plan.runs("hybrid.trace") ? 1 : 0);
         lightProgram.set("uFrame", frames);
         lightProgram.set("uEye", scene.camera.eye);
         gpu.bindLights();
@@ -468,8 +467,7 @@ struct FrameRenderer::Impl {
         gpu.updateLights(scene.lights);
         if (plan.runs("gbuffer")) renderGBuffer();
         if (plan.runs("sky_volume") && !skyTexture) buildSkyVolume();
-        smoothLobesTraced = plan.runs("hybrid.trace");
-        FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get(), smoothLobesTraced};
+        FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get(), plan.runs("hybrid.trace")};
         GBufferView view = gbufferView();
         if (technique) technique->update(input, view);
         layers = technique ? technique->secondaryLayers() : std::vector<SecondaryLayerView>{};
