@@ -20,6 +20,10 @@
 
 namespace voxgi {
 
+namespace gl {
+class Program;
+}
+
 class SceneGpu;
 class SkyVolumeTexture;
 
@@ -41,7 +45,16 @@ struct GBufferView {
     // 0: every pixel is seen from `eye`. Else an RGBA32F texture of each pixel's viewer (xyz):
     // surfaces seen through mirrors and glass (SecondaryLayerView).
     GLuint viewOrigin = 0;
+    // The roughest GGX lobe whose reflection rays trace at these pixels (shading::tracedLobe:
+    // < 0 none, 0 mirror-like lobes only; the hybrid method): the direct-light pass leaves those
+    // lobes' reflection of quad lights (emitters the rays meet) to the rays, and the techniques'
+    // glossy terms leave those lobes out.
+    float tracedRoughness = -1.0f;
 };
+
+// Binds the G-buffer's four textures to units 0-3 under the names
+// shaders/common/gbuffer_textures.glsl declares, and sets uTracedRoughness, for any deferred pass.
+void bindGBufferTextures(const gl::Program& program, const GBufferView& g);
 
 // Surfaces the camera sees through mirrors and glass (the hybrid method, gi/hybrid/): a G-buffer
 // the frame lights with the same passes as its own, into the layer's light target.
@@ -67,10 +80,6 @@ struct FrameInput {
     const TechniquePlan& plan; // the passes to run (their names are the timer stages)
     // The sky-lighting volume when the frame plan has it (sky_volume), else null.
     const SkyVolumeTexture* sky = nullptr;
-    // The hybrid method traces the mirror-like lobes (shading::smoothLobe): the direct-light pass
-    // leaves their reflection of quad lights (emitters its rays meet) to it, the techniques'
-    // glossy terms leave those lobes out.
-    bool smoothLobesTraced = false;
 };
 
 class GiTechnique {
@@ -90,6 +99,9 @@ public:
     // then composite() adds what they bring to the pixels (the hybrid method). None by default.
     virtual std::vector<SecondaryLayerView> secondaryLayers() const { return {}; }
     virtual void composite(const FrameInput&, GLuint /*directFramebuffer*/, GLuint /*indirectFramebuffer*/) {}
+    // The roughest lobe whose reflection the technique traces at the frame's pixels when the
+    // plan runs hybrid.trace (GBufferView::tracedRoughness); none by default.
+    virtual float tracedRoughness() const { return -1.0f; }
     // What its last update did, for benchmarks and the viewer.
     virtual std::vector<TechniqueStat> stats() const { return {}; }
     // Techniques whose light builds up over frames: after trackConvergence(), the relative change

@@ -1,5 +1,7 @@
 #include "gi/hybrid/hybrid_desc.h"
 
+#include "gi/hybrid/mirror_paths.h"
+
 namespace voxgi {
 
 const SettingsTable<HybridDesc>& hybridSettings() {
@@ -12,6 +14,12 @@ const SettingsTable<HybridDesc>& hybridSettings() {
                  "diffuse GI method lighting the rasterized surfaces and those seen in mirrors and through glass")
             .main();
         t.integer("depth", &D::depth, 1, 8, "mirror-like scatterings (reflections, refractions) followed from a pixel").main();
+        t.number("glossy_roughness", &D::glossyRoughness, 0.0, 1.0,
+                 "perceptual roughness up to which coats' and metals' GGX reflections are traced (0: mirrors only)")
+            .main();
+        t.integer("glossy_rays", &D::glossyRays, 1, kMaxGlossyRays, "rays per glossy pixel and frame");
+        t.integer("denoise_radius", &D::denoiseRadius, 0, 8,
+                  "half width in pixels of the edge-aware filter of glossy reflections (0: off)");
         t.flag("replay_bare", &D::replayBare,
                "benchmarks: trace each frame's rays again through bare Embree and report both rates (doubles the tracing)");
         return t;

@@ -16,6 +16,16 @@ struct HybridDesc {
     // Mirror-like scatterings followed from a pixel's surface: 1 is the seed's one reflection;
     // seeing through a glass sphere takes 2 (in and out), a mirror in a mirror 2.
     int depth = 3;
+    // Glossy reflections: the GGX lobes of coats and metals up to this perceptual roughness are
+    // traced too, by rays sampled from the lobe (below it the LPV glossy march and the lights'
+    // GGX highlights stay). 0: mirror-like lobes only. At 0.3 (alpha 0.09) half the lobe's
+    // energy lies within about 5 degrees of the mirror direction.
+    float glossyRoughness = 0.3f;
+    // Rays per glossy pixel and frame (the frames average them; the denoiser smooths each frame).
+    int glossyRays = 1;
+    // Half width in pixels of the glossy reflections' edge-aware filter (depth, normal and
+    // roughness stop it at edges); 0 leaves each pixel's rays alone. Mirrors are never filtered.
+    int denoiseRadius = 3;
     // Benchmarks: each frame's rays are traced again through Embree alone (rtcIntersect1) and
     // both rates reported (stats hybrid.rays_per_s, hybrid.bare_rays_per_s), which doubles the
     // tracing time.

@@ -16,9 +16,10 @@ namespace {
 // The diffuse method's description, or null for none.
 const MethodInfo* diffuseInfo(const HybridDesc& d) { return d.diffuse.empty() ? nullptr : &findMethod(d.diffuse); }
 
-bool hasMirrorLobes(const Scene& s) {
+// Whether some material has a lobe the method traces (mirror-like, or glossy up to the setting).
+bool hasTracedLobes(const Scene& s, const HybridDesc& d) {
     for (const Material& m : s.materials)
-        if (shading::hasMirrorLobe(m.roughness, m.metallic, m.specular, m.transmission)) return true;
+        if (shading::tracedLobe(m.roughness, m.metallic, m.specular, m.transmission, d.glossyRoughness)) return true;
     return false;
 }
 }  // namespace
@@ -48,15 +49,18 @@ MethodInfo hybridMethod() {
             p = diffuse->plan(s);
             p.notes.push_back("hybrid: diffuse light by " + diffuse->name + ", on the frame and on what mirrors and glass show");
         }
-        if (!hasMirrorLobes(s)) {
+        if (!hasTracedLobes(s, d)) {
             for (const char* pass : {"hybrid.trace", "hybrid.upload", "hybrid.composite"})
-                p.skipped.push_back({pass, "no mirror-like material (roughness^2 < 1e-3 with a coat, metal or transmission)"});
+                p.skipped.push_back({pass, "no mirror-like material (roughness^2 < 1e-3 with a coat, metal or transmission) "
+                                           "and no coat or metal of roughness <= hybrid.glossy_roughness"});
             return p;
         }
         p.update.push_back({"hybrid.trace", "Embree rays from mirror-like pixels through up to " + std::to_string(d.depth) +
-                                                " reflections and refractions (CPU)"});
+                                                " reflections and refractions, " + std::to_string(d.glossyRays) +
+                                                " GGX-sampled ray(s) per glossy pixel (CPU)"});
         p.update.push_back({"hybrid.upload", "the surfaces they reach as layers of G-buffers"});
-        p.apply.push_back({"hybrid.composite", "each layer's light times its Fresnel weight, and the emitters and sky the rays met"});
+        p.apply.push_back({"hybrid.composite", "each layer's light times its Fresnel weight, and the emitters and sky the rays met; "
+                                               "glossy pixels through an edge-aware filter"});
         p.notes.push_back("hybrid: the frame's direct light, sky light and the diffuse method also light each layer");
         return p;
     };

@@ -27,9 +27,11 @@ class HybridTechnique final : public GiTechnique {
 public:
     HybridTechnique(const Scene& scene, const HybridDesc& desc, std::unique_ptr<GiTechnique> diffuse)
         : desc_(desc), diffuse_(std::move(diffuse)), tracer_(scene),
-          composite_(gl::Program::graphics("frame/fullscreen.vert", "hybrid/composite.frag")) {}
+          composite_(gl::Program::graphics("frame/fullscreen.vert", "hybrid/composite.frag")),
+          resolve_(gl::Program::graphics("frame/fullscreen.vert", "hybrid/resolve.frag")) {}
 
     std::string name() const override { return "hybrid"; }
+    float tracedRoughness() const override { return desc_.glossyRoughness; }
 
     void update(const FrameInput& input, const GBufferView& g) override {
         if (diffuse_) diffuse_->update(input, g);
@@ -50,6 +52,8 @@ public:
         in.eye = g.eye;
         in.depth = desc_.depth;
         in.frame = std::uint32_t(input.frameIndex);
+        in.glossyRoughness = desc_.glossyRoughness;
+        in.glossyRays = desc_.glossyRays;
         if (desc_.replayBare) tracer_.startLog();
         const auto t1 = std::chrono::steady_clock::now();
         const MirrorPaths paths = traceMirrorPaths(tracer_, in);
@@ -65,6 +69,7 @@ public:
             bareRaysPerSecond_ = bare > 0.0 ? double(logged.size()) / bare : 0.0;
         }
         pixels_ = paths.pixels;
+        glossyPixels_ = paths.glossyPixels;
         rays_ = paths.rays;
 
         input.timers.begin("hybrid.upload");
@@ -74,6 +79,10 @@ public:
             height_ = g.height;
             emittedDirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
             emittedIndirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+            for (int k = 0; k < 2; ++k) {
+                reflection_[k] = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+                reflectionFramebuffer_[k] = gl::createFramebuffer({reflection_[k].id()}, 0, "hybrid reflection target");
+            }
         }
         upload(emittedDirect_.id(), width_, height_, paths.emittedDirect.data());
         upload(emittedIndirect_.id(), width_, height_, paths.emittedIndirect.data());
@@ -96,6 +105,7 @@ public:
         for (const SecondaryLayer& layer : paths.layers) bounds_.push_back(layer.bounds);
         eye_ = g.eye;
         viewProjection_ = g.viewProjection;
+        primary_ = g;
         input.timers.end();
     }
 
@@ -112,6 +122,8 @@ public:
             v.surfaces.eye = eye_;
             v.surfaces.viewProjection = viewProjection_;
             v.surfaces.viewOrigin = t.viewOrigin.id();
+            // Rays go on from these surfaces only through mirror-like lobes.
+            v.surfaces.tracedRoughness = 0.0f;
             v.lightFramebuffer = t.surfaces.framebuffer.id();
             v.scissor = bounds_[l];
             out.push_back(v);
@@ -119,9 +131,14 @@ public:
         return out;
     }
 
+    // The rays' light is gathered per pixel into two targets (direct: emitters and sky after one
+    // scattering; indirect: the rest), then resolved into the frame, glossy pixels through the
+    // edge-aware filter (hybrid/resolve.frag). The caller has set additive blending.
     void composite(const FrameInput& input, GLuint directFramebuffer, GLuint indirectFramebuffer) override {
         if (!input.plan.runs("hybrid.composite") || width_ == 0) return;
         input.timers.begin("hybrid.composite");
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        for (const gl::Handle& f : reflectionFramebuffer_) glClearNamedFramebufferfv(f.id(), GL_COLOR, 0, zero);
         composite_.use();
         composite_.set("uRadiance", 0);
         composite_.set("uWeight", 1);
@@ -132,14 +149,27 @@ public:
             composite_.set("uWeighted", weight ? 1 : 0);
             glDrawArrays(GL_TRIANGLES, 0, 3);
         };
+        const GLuint direct = reflectionFramebuffer_[0].id(), indirect = reflectionFramebuffer_[1].id();
         glEnable(GL_SCISSOR_TEST);
         for (std::size_t l = 0; l < active_; ++l) {
             glScissor(bounds_[l].x, bounds_[l].y, bounds_[l].z, bounds_[l].w);
-            draw(indirectFramebuffer, layers_[l].surfaces.target.id(), layers_[l].weight.id());
+            draw(indirect, layers_[l].surfaces.target.id(), layers_[l].weight.id());
         }
         glDisable(GL_SCISSOR_TEST);
-        draw(indirectFramebuffer, emittedIndirect_.id(), 0);
-        draw(directFramebuffer, emittedDirect_.id(), 0);
+        draw(indirect, emittedIndirect_.id(), 0);
+        draw(direct, emittedDirect_.id(), 0);
+
+        resolve_.use();
+        bindGBufferTextures(resolve_, primary_);
+        resolve_.set("uReflection", 4);
+        resolve_.set("uEye", eye_);
+        resolve_.set("uGlossyRoughness", desc_.glossyRoughness);
+        resolve_.set("uRadius", desc_.denoiseRadius);
+        for (int k = 0; k < 2; ++k) {
+            glBindFramebuffer(GL_FRAMEBUFFER, k == 0 ? directFramebuffer : indirectFramebuffer);
+            glBindTextureUnit(4, reflection_[k].id());
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
         input.timers.end();
     }
 
@@ -153,6 +183,7 @@ public:
     std::vector<TechniqueStat> stats() const override {
         std::vector<TechniqueStat> out = diffuse_ ? diffuse_->stats() : std::vector<TechniqueStat>{};
         out.push_back({"hybrid.pixels", double(pixels_), "pixels with a mirror-like lobe"});
+        out.push_back({"hybrid.glossy_pixels", double(glossyPixels_), "pixels with a traced glossy lobe"});
         out.push_back({"hybrid.rays", double(rays_), "rays"});
         out.push_back({"hybrid.layers", double(active_), "layers of surfaces seen through them"});
         if (desc_.replayBare) {
@@ -172,15 +203,17 @@ private:
     HybridDesc desc_;
     std::unique_ptr<GiTechnique> diffuse_;
     RayTracer tracer_;
-    gl::Program composite_;
+    gl::Program composite_, resolve_;
     std::vector<LayerTextures> layers_;
     gl::Handle emittedDirect_, emittedIndirect_;
+    gl::Handle reflection_[2], reflectionFramebuffer_[2];  // the rays' light per pixel: direct, indirect
+    GBufferView primary_;
     int width_ = 0, height_ = 0;
     std::size_t active_ = 0;
     std::vector<glm::ivec4> bounds_;  // per active layer
     glm::vec3 eye_{0.0f};
     glm::mat4 viewProjection_{1.0f};
-    std::size_t pixels_ = 0;
+    std::size_t pixels_ = 0, glossyPixels_ = 0;
     std::uint64_t rays_ = 0;
     double raysPerSecond_ = 0.0, bareRaysPerSecond_ = 0.0;
 };

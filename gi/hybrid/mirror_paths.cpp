@@ -74,6 +74,21 @@ struct Found {
     glm::vec3 viewOrigin, weight;
 };
 
+// Per material: whether it is the geometry of one of the scene's quad lights, which the
+// rasterized direct pass samples itself (Scene::addQuadLightGeometry).
+std::vector<bool> quadLightMaterials(const Scene& scene) {
+    std::vector<bool> out(scene.materials.size(), false);
+    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+        if (scene.lights[l].type != LightType::Quad) continue;
+        const std::string name = scene.quadLightMeshName(l);
+        for (const Mesh& mesh : scene.meshes)
+            if (mesh.name == name)
+                for (const std::uint32_t m : mesh.materialIds)
+                    if (m < out.size()) out[m] = true;
+    }
+    return out;
+}
+
 }  // namespace
 
 bool tracesMirrorLobe(const shading::GBufferSurface& s) {
@@ -83,7 +98,9 @@ bool tracesMirrorLobe(const shading::GBufferSurface& s) {
 MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in) {
     const Scene& scene = tracer.scene();
     const float offsetScale = pt::rayOffsetScale(scene);
-    const int maxSlots = 2 * std::max(in.depth, 1);
+    const int glossyRays = std::clamp(in.glossyRays, 1, kMaxGlossyRays);
+    const int maxSlots = std::max(2, glossyRays) * std::max(in.depth, 1);
+    const std::vector<bool> quadLight = quadLightMaterials(scene);
     MirrorPaths out;
     out.width = in.width;
     out.height = in.height;
@@ -92,16 +109,22 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
     out.emittedIndirect.assign(count, glm::vec4(0.0f));
     std::vector<std::vector<Found>> rows(std::size_t(std::max(in.height, 0)));
     std::atomic<std::uint64_t> rays{0};
-    std::atomic<std::size_t> pixels{0};
+    std::atomic<std::size_t> pixels{0}, glossyPixels{0};
 
     tbb::parallel_for(0, in.height, [&](int y) {
         std::uint64_t rowRays = 0;
-        std::size_t rowPixels = 0;
+        std::size_t rowPixels = 0, rowGlossy = 0;
         for (int x = 0; x < in.width; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(in.width) + std::size_t(x);
             auto texel = [&](const float* p) { return glm::vec4(p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]); };
             const shading::GBufferTexels t{texel(in.position), texel(in.normal), texel(in.albedo), texel(in.emission)};
-            if (!shading::gbufferHit(t.position) || !tracesMirrorLobe(shading::decodeGBuffer(t))) continue;
+            if (!shading::gbufferHit(t.position)) continue;
+            // The G-buffer decides which pixels are traced, as the rasterized passes decide which
+            // lobes they leave to the rays (shading::tracedLobe on the same values).
+            const shading::GBufferSurface gs = shading::decodeGBuffer(t);
+            const bool glossy = shading::glossyLobe(gs.roughness, gs.metallic, gs.specular, gs.transmission,
+                                                    in.glossyRoughness);
+            if (!glossy && !tracesMirrorLobe(gs)) continue;
             // The pixel's surface again, with Embree: its exact material, sides and normals.
             const glm::vec3 toSurface = glm::vec3(t.position) - in.eye;
             const float distance = glm::length(toSurface);
@@ -114,13 +137,28 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
             if (!primary.hit || std::abs(primary.t - distance) > 1e-3f * distance + 1e-5f * offsetScale) continue;
             const Material& pm = scene.materials[primary.material];
             const glm::vec3 primaryAlbedo = tracer.albedoAt(primary);
-            Lobe lobes[2];
-            const int branches = mirrorLobes(pm, primaryAlbedo,
-                                             pt::Bsdf(pm, primaryAlbedo, -view, primary.geometricNormal,
-                                                      primary.shadingNormal, primary.frontFace),
-                                             -view, lobes);
+            const pt::Bsdf primaryBsdf(pm, primaryAlbedo, -view, primary.geometricNormal, primary.shadingNormal,
+                                       primary.frontFace);
+            Lobe lobes[std::max(2, kMaxGlossyRays)];
+            int branches = 0;
+            if (glossy) {
+                // Rays sampled from the GGX lobe, each weighted f cos / (pdf N): the frames average
+                // the directions.
+                for (int r = 0; r < glossyRays; ++r) {
+                    const std::uint32_t key = hash32(std::uint32_t(i) ^ hash32(in.frame * std::uint32_t(kMaxGlossyRays) +
+                                                                               std::uint32_t(r)));
+                    const glm::vec2 u(float(key >> 8) * (1.0f / 16777216.0f),
+                                      float(hash32(key) >> 8) * (1.0f / 16777216.0f));
+                    pt::BsdfSample sample;
+                    if (primaryBsdf.sampleGlossy(u, sample))
+                        lobes[branches++] = {sample.direction, sample.weight / float(glossyRays)};
+                }
+                ++rowGlossy;
+            } else {
+                branches = mirrorLobes(pm, primaryAlbedo, primaryBsdf, -view, lobes);
+                if (branches > 0) ++rowPixels;
+            }
             if (branches == 0) continue;
-            ++rowPixels;
             int slot = 0;
             for (int b = 0; b < branches; ++b) {
                 RayHit from = primary;
@@ -136,7 +174,12 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
                     }
                     const Material& m = scene.materials[hit.material];
                     const glm::vec3 albedo = tracer.albedoAt(hit);
-                    if (hit.frontFace && m.isEmissive()) emitted[i] += glm::vec4(weight * m.emission, 0.0f);
+                    // A glossy lobe's highlight of a quad light is the rasterized pass's (it samples
+                    // the quad, with far less noise than rays that must hit it); rays bring
+                    // everything else, and a mirror's reflection of the quad.
+                    const bool sampledByRasterizer = glossy && vertex == 1 && quadLight[hit.material];
+                    if (hit.frontFace && m.isEmissive() && !sampledByRasterizer)
+                        emitted[i] += glm::vec4(weight * m.emission, 0.0f);
                     // The surface as the path tracer orients it: normals on the side the ray came from.
                     const pt::Bsdf bsdf(m, albedo, -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
                     if (slot < maxSlots && shadeable(m, albedo)) {
@@ -163,7 +206,7 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
                         const float l0 = shading::luminanceRec709(next[0].weight), l1 = shading::luminanceRec709(next[1].weight);
                         const float p0 = l0 + l1 > 0.0f ? l0 / (l0 + l1) : 0.5f;
                         const std::uint32_t key =
-                            hash32(std::uint32_t(i) ^ hash32(in.frame * 16u + std::uint32_t(b * 8 + vertex)));
+                            hash32(std::uint32_t(i) ^ hash32(in.frame * 256u + std::uint32_t(b * 8 + vertex)));
                         const float u = float(key >> 8) * (1.0f / 16777216.0f);
                         pick = u < p0 ? 0 : 1;
                         probability = pick == 0 ? p0 : 1.0f - p0;
@@ -176,6 +219,7 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
         }
         rays += rowRays;
         pixels += rowPixels;
+        glossyPixels += rowGlossy;
     });
 
     int layers = 0;
@@ -203,6 +247,7 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
         out.layers[l].bounds = glm::ivec4(box[l].x, box[l].y, box[l].z - box[l].x + 1, box[l].w - box[l].y + 1);
     out.rays = rays;
     out.pixels = pixels;
+    out.glossyPixels = glossyPixels;
     return out;
 }
 

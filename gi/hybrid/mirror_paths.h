@@ -4,8 +4,9 @@
 // lobes until they reach surfaces the frame's deferred passes can shade. Those surfaces become
 // layers of secondary G-buffers, each pixel with the weight its light reaches the camera by
 // (Fresnel of every interface on the way, glass tint); emitters and the sky met on the way are
-// added here. Only the lobes the path tracer treats as mirrors are traced: rough reflection
-// stays with the rasterized GGX highlight (docs/hybrid.md).
+// added here. Glossy lobes (shading::glossyLobe, up to a roughness) send rays sampled from their
+// GGX distribution, one layer slot each; rougher lobes stay with the rasterized GGX highlight
+// (docs/hybrid.md).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,9 @@ struct SecondaryLayer {
     glm::ivec4 bounds{0};                        // the pixels holding surfaces: x, y, width, height
 };
 
+// The most rays a glossy pixel sends per frame.
+constexpr int kMaxGlossyRays = 16;
+
 struct MirrorPaths {
     int width = 0, height = 0;
     // Layer k holds, per pixel, the k-th shadeable surface found (the reflection's first).
@@ -36,7 +40,8 @@ struct MirrorPaths {
     // Emitters and sky met by the rays, times their weights: after one mirror-like scattering
     // (the path tracer's direct layer), and after more (its indirect layer).
     std::vector<glm::vec4> emittedDirect, emittedIndirect;
-    std::size_t pixels = 0;  // pixels with a mirror-like lobe
+    std::size_t pixels = 0;        // pixels with a mirror-like lobe
+    std::size_t glossyPixels = 0;  // pixels with a traced glossy lobe
     std::uint64_t rays = 0;
 };
 
@@ -48,10 +53,12 @@ struct MirrorPathInput {
     const float* emission = nullptr;
     glm::vec3 eye{0.0f};
     int depth = 3;           // mirror-like scatterings followed from the pixel's surface, at most
-    std::uint32_t frame = 0; // seeds the choice between reflection and refraction past the first
+    std::uint32_t frame = 0; // seeds the glossy rays and the choice between reflection and refraction
+    float glossyRoughness = 0.0f;  // glossy lobes up to this perceptual roughness are traced too
+    int glossyRays = 1;            // per glossy pixel, at most kMaxGlossyRays
 };
 
-// Whether a decoded G-buffer surface has a lobe the hybrid method traces.
+// Whether a decoded G-buffer surface has a mirror-like lobe the hybrid method traces.
 bool tracesMirrorLobe(const shading::GBufferSurface& s);
 
 MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& input);

@@ -371,18 +371,12 @@ public:
         if (!input.plan.runs("lpv.apply") || placements.empty()) return;
         input.timers.begin("lpv.apply");
         apply.use();
-        const char* gbufferNames[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
-        const GLuint gbufferTextures[4] = {g.position, g.normal, g.albedo, g.emission};
-        for (int i = 0; i < 4; ++i) {
-            glBindTextureUnit(GLuint(i), gbufferTextures[i]);
-            apply.set(gbufferNames[i], i);
-        }
+        bindGBufferTextures(apply, g);
         apply.set("uCascadeCount", int(placements.size()));
         apply.set("uEye", g.eye);
         apply.set("uApplyNormalOffset", desc.applyNormalOffset);
         apply.set("uDampening", desc.dampening);
         apply.set("uGlossy", desc.glossy ? 1 : 0);
-        apply.set("uSmoothLobesTraced", input.smoothLobesTraced ? 1 : 0);
         setCascadeUniforms(apply, placements);
         // Every sampler of the arrays needs a 3D texture unit, including unused cascades.
         const char* ringNames[3] = {"uLpvR", "uLpvG", "uLpvB"};

@@ -23,12 +23,7 @@ const RsmFace& SkyBounceFace::render(const GBufferView& g, const Camera& camera,
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     program_.use();
-    const char* names[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
-    const GLuint textures[4] = {g.position, g.normal, g.albedo, g.emission};
-    for (int i = 0; i < 4; ++i) {
-        glBindTextureUnit(GLuint(i), textures[i]);
-        program_.set(names[i], i);
-    }
+    bindGBufferTextures(program_, g);
     sky.bind(program_, 4);
     // One texel covers (width / size) x (height / size) pixels of pixelEdge^2 each on the image
     // plane at unit distance.

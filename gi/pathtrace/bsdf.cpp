@@ -228,6 +228,24 @@ bool Bsdf::sampleDielectric(glm::vec3 u, BsdfSample& out) const {
     return true;
 }
 
+bool Bsdf::sampleGlossy(glm::vec2 u, BsdfSample& out) const {
+    out = BsdfSample{};
+    const float nv = glm::dot(n_, wo_);
+    if (!(opaqueWeight_ > 0.0f) || !(specularProbability_ > 0.0f) || nv <= 0.0f) return false;
+    const float a2 = alpha_ * alpha_;
+    const glm::vec3 hl = sampleGgxLocal(u.x, u.y, a2);
+    const glm::vec3 h = hl.x * t_ + hl.y * b_ + hl.z * n_;
+    const float vh = glm::dot(wo_, h), nh = hl.z;
+    const glm::vec3 wi = 2.0f * vh * h - wo_;
+    const float nl = glm::dot(n_, wi);
+    if (vh <= 0.0f || nl <= 0.0f || nh <= 0.0f || glm::dot(ng_, wi) <= 0.0f) return false;
+    // f cos / pdf with pdf = D (n.h) / (4 v.h): D cancels.
+    out.direction = wi;
+    out.pdf = ggxD(nh, a2) * nh / (4.0f * vh);
+    out.weight = opaqueWeight_ * fresnelSchlick(f0_, vh) * (smithVisibility(nl, nv, a2) * nl * 4.0f * vh / nh);
+    return out.weight.r > 0.0f || out.weight.g > 0.0f || out.weight.b > 0.0f;
+}
+
 bool Bsdf::sample(glm::vec3 u, BsdfSample& out) const {
     out = BsdfSample{};
     bool ok;

@@ -38,6 +38,10 @@ public:
     glm::vec3 evalPdf(glm::vec3 wi, float* pdf) const;
     // u in [0,1)^3. False when the sample carries no energy (below the horizon...).
     bool sample(glm::vec3 u, BsdfSample& out) const;
+    // The opaque part's GGX lobe alone (metals and the coat; no diffuse, no transmission),
+    // sampled in proportion to D(h)(n.h): out.weight = (1 - transmission) f_ggx cos / pdf_ggx,
+    // out.pdf that lobe's own density. The hybrid method traces glossy reflections with it.
+    bool sampleGlossy(glm::vec2 u, BsdfSample& out) const;
     // True when eval can be non-zero somewhere (a light sample is worth tracing).
     bool hasSmoothPart() const { return opaqueWeight_ > 0.0f || (transmission_ > 0.0f && !smoothDielectric_); }
     // Normals oriented to the side of wo (two-sided shading).

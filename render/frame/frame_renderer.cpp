@@ -170,6 +170,7 @@ struct FrameRenderer::Impl {
         v.height = height;
         v.eye = scene.camera.eye;
         v.viewProjection = lastViewProjection;
+        v.tracedRoughness = technique && plan.runs("hybrid.trace") ? technique->tracedRoughness() : -1.0f;
         return v;
     }
 
@@ -316,14 +317,7 @@ struct FrameRenderer::Impl {
     }
 
     // The G-buffer's textures on units 0-3 (and, for a layer, its viewers on unit 9).
-    void bindSurfaces(gl::Program& program, const GBufferView& g) {
-        const char* names[4] = {"uPosition", "uNormal", "uAlbedo", "uEmission"};
-        const GLuint textures[4] = {g.position, g.normal, g.albedo, g.emission};
-        for (int i = 0; i < 4; ++i) {
-            glBindTextureUnit(GLuint(i), textures[i]);
-            program.set(names[i], i);
-        }
-    }
+    void bindSurfaces(gl::Program& program, const GBufferView& g) { bindGBufferTextures(program, g); }
 
     void beginLightPass() {
         beginAdditivePass(accumFbo.id());
@@ -340,7 +334,6 @@ struct FrameRenderer::Impl {
         for (int i = 0; i < 5; ++i) lightProgram.set(names[i], i + 4);
         lightProgram.set("uViewOrigin", 9);
         lightProgram.set("uViewOriginPerPixel", 0);
-        lightProgram.set("uSmoothLobesTraced", plan.runs("hybrid.trace") ? 1 : 0);
         lightProgram.set("uFrame", frames);
         lightProgram.set("uEye", scene.camera.eye);
         gpu.bindLights();
@@ -467,7 +460,7 @@ struct FrameRenderer::Impl {
         gpu.updateLights(scene.lights);
         if (plan.runs("gbuffer")) renderGBuffer();
         if (plan.runs("sky_volume") && !skyTexture) buildSkyVolume();
-        FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get(), plan.runs("hybrid.trace")};
+        FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get()};
         GBufferView view = gbufferView();
         if (technique) technique->update(input, view);
         layers = technique ? technique->secondaryLayers() : std::vector<SecondaryLayerView>{};

@@ -20,7 +20,7 @@ uniform int uViewOriginPerPixel;
 uniform sampler2D uViewOrigin;
 // The hybrid method traces mirror-like lobes (smoothLobe): its rays find the quad lights' emitting
 // geometry there, so this pass leaves that reflection to them.
-uniform int uSmoothLobesTraced;
+uniform float uTracedRoughness;
 uniform vec3 uShadowEye;        // the cube map's centre (point light; quad sample lifted off the quad)
 uniform mat4 uShadowMatrix;     // world -> shadow texture space (spot maps)
 uniform float uShadowTexel;     // world size of one shadow texel at unit distance (normal offset)
@@ -65,9 +65,12 @@ void main() {
     // light it with a GGX spike of peak 3e5 at that point alone (fireflies that average out
     // only in the limit); a mirror sees the quad where its reflected ray meets it, every frame.
     // With the hybrid method its rays do that (and the reflection of everything else). Point,
-    // spot and directional lights, which no ray can hit, keep their GGX highlight.
+    // spot and directional lights, which no ray can hit, keep their GGX highlight, and so do
+    // quad lights on glossy lobes the hybrid traces: one quad point a frame is far less noisy
+    // there than rays that must hit the quad, so its rays leave the quad to this pass.
     bool mirror = smoothLobe(g.roughness);
-    bool mirrorSeesQuad = mirror && kind == kLightQuad && uSmoothLobesTraced == 0;
+    bool traced = tracedLobe(g.roughness, g.metallic, g.specular, g.transmission, uTracedRoughness);
+    bool mirrorSeesQuad = mirror && kind == kLightQuad && !traced;
     IncidentLight incident = evaluateLight(light, p, uQuadSample);
     vec3 l = incident.direction;
     float nl = dot(n, l);

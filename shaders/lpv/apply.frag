@@ -18,7 +18,7 @@ uniform sampler3D uInnerG[kLpvMaxCascades - 1];
 uniform sampler3D uInnerB[kLpvMaxCascades - 1];
 uniform float uCellSize[kLpvMaxCascades];
 uniform int uCascadeCount;
-uniform int uSmoothLobesTraced;
+uniform float uTracedRoughness;
 uniform vec3 uEye;
 uniform float uApplyNormalOffset;
 uniform float uDampening;
@@ -101,8 +101,8 @@ void main() {
     }
     vec3 color = surfaceDiffuseAlbedo(s) * kInvPi * e;
     vec3 f0 = mix(vec3(s.specular), s.albedo, s.metallic);
-    // Mirror-like lobes are traced when the hybrid method runs (uSmoothLobesTraced).
-    const bool traced = uSmoothLobesTraced != 0 && smoothLobe(s.roughness);
+    // Lobes the hybrid method's rays trace (uTracedRoughness) get their glossy light from them.
+    const bool traced = tracedLobe(s.roughness, s.metallic, s.specular, s.transmission, uTracedRoughness);
     if (uGlossy != 0 && !traced && max(f0.r, max(f0.g, f0.b)) > 0.0 && s.roughness < 0.6) {
         vec3 v = normalize(uEye - s.position);
         vec3 r = reflect(-v, n);

@@ -36,6 +36,21 @@ inline bool hasMirrorLobe(float roughness, float metallic, float specular, float
     return smoothLobe(roughness) && (transmission > 0.0f || metallic > 0.0f || specular > 0.0f);
 }
 
+// A glossy lobe the hybrid method traces (gi/hybrid/): the opaque part's GGX lobe of a coat or a
+// metal, rougher than a mirror but no rougher than maxRoughness (perceptual roughness).
+inline bool glossyLobe(float roughness, float metallic, float specular, float transmission, float maxRoughness) {
+    return !smoothLobe(roughness) && roughness <= maxRoughness && transmission < 1.0f &&
+           (metallic > 0.0f || specular > 0.0f);
+}
+
+// Whether rays trace this surface's reflection when the hybrid method traces lobes up to
+// maxRoughness (< 0: nothing is traced; 0: mirror-like lobes only). The rasterized passes then
+// leave its reflection of quad lights and its glossy indirect light to the rays.
+inline bool tracedLobe(float roughness, float metallic, float specular, float transmission, float maxRoughness) {
+    return maxRoughness >= 0.0f && (hasMirrorLobe(roughness, metallic, specular, transmission) ||
+                                    glossyLobe(roughness, metallic, specular, transmission, maxRoughness));
+}
+
 // The albedo of the Lambert lobe: what a surface scatters diffusely, the rest going to the GGX
 // lobe (metals and the dielectric coat's F0) and through the surface (transmission). Every
 // diffuse bounce (probe-ray hits, RSM texels, LPV blockers, voxel albedo, the apply passes) uses this.
