@@ -123,14 +123,19 @@ std::string Scene::quadLightMeshName(std::size_t light) const {
     return "quad_light_" + (lights[light].name.empty() ? std::to_string(light) : lights[light].name);
 }
 
+const Mesh* Scene::quadLightMesh(std::size_t light) const {
+    if (lights[light].type != LightType::Quad) return nullptr;
+    const std::string name = quadLightMeshName(light);
+    auto mesh = std::find_if(meshes.begin(), meshes.end(), [&](const Mesh& m) { return m.name == name; });
+    return mesh == meshes.end() ? nullptr : &*mesh;
+}
+
 void Scene::addQuadLightGeometry() {
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const Light& l = lights[i];
         if (l.type != LightType::Quad) continue;
+        if (quadLightMesh(i)) continue;
         std::string meshName = quadLightMeshName(i);
-        bool present = std::any_of(meshes.begin(), meshes.end(),
-                                   [&](const Mesh& m) { return m.name == meshName; });
-        if (present) continue;
         Material emitter;
         emitter.name = meshName;
         emitter.albedo = glm::vec3(0.0f);

@@ -160,6 +160,8 @@ struct Scene {
     void addQuadLightGeometry();
     // The name of the mesh addQuadLightGeometry gives quad light `light` (an index into lights).
     std::string quadLightMeshName(std::size_t light) const;
+    // That mesh, or null before addQuadLightGeometry (or for a light of another type).
+    const Mesh* quadLightMesh(std::size_t light) const;
 };
 
 }  // namespace voxgi

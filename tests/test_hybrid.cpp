@@ -50,6 +50,20 @@ Scene lookingDown(const std::string& materials, const std::string& meshes, int d
     return s;
 }
 
+// A 2 x 2 m quad light of radiance (3, 2, 1) 3 m above the origin, emitting downwards, with its
+// emitting geometry.
+void addQuadLightAbove(Scene& s) {
+    Light quad;
+    quad.type = LightType::Quad;
+    quad.position = {-1.0f, 3.0f, -1.0f};
+    quad.edgeU = {2.0f, 0.0f, 0.0f};
+    quad.edgeV = {0.0f, 0.0f, 2.0f};
+    quad.emission = {3.0f, 2.0f, 1.0f};
+    ASSERT_LT(quad.quadNormal().y, 0.0f);
+    s.lights.push_back(quad);
+    s.addQuadLightGeometry();
+}
+
 }  // namespace
 
 TEST(MirrorPaths, OnlySmoothCoatsMetalsAndGlassAreTraced) {
@@ -98,15 +112,7 @@ TEST_F(Hybrid, MirrorShowsAQuadLightInTheRasterizedFrame) {
                           R"({"type": "quad", "name": "mirror", "material": "mirror",
                               "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]})",
                           3);
-    Light quad;
-    quad.type = LightType::Quad;
-    quad.position = {-1.0f, 3.0f, -1.0f};
-    quad.edgeU = {2.0f, 0.0f, 0.0f};
-    quad.edgeV = {0.0f, 0.0f, 2.0f};
-    quad.emission = {3.0f, 2.0f, 1.0f};
-    ASSERT_LT(quad.quadNormal().y, 0.0f);  // emitting downwards
-    s.lights.push_back(quad);
-    s.addQuadLightGeometry();
+    addQuadLightAbove(s);
     for (int frames : {1, 4}) {
         const glm::vec3 c = centre(render(s, "direct", frames), 2);
         EXPECT_NEAR(c.r, 3.0f, 0.03f) << frames;
@@ -204,14 +210,17 @@ TEST(GlossySampling, WeightsAverageToTheLobesAlbedo) {
 }
 
 namespace {
-// A rough metal floor (albedo 1) under an emitter 2 x 2 m at 3 m, seen from 1 m above.
-Scene glossyFloor(float roughness, int denoiseRadius) {
+// A rough metal floor (albedo 1) seen from 1 m above, under a square emitter of half width
+// `lampHalf` and radiance `emission` (JSON) at 3 m.
+Scene glossyFloor(float roughness, int denoiseRadius, float lampHalf, const std::string& emission) {
+    const std::string h = std::to_string(lampHalf);
     Scene s = lookingDown(R"("metal": {"albedo": [1, 1, 1], "metallic": 1, "roughness": )" + std::to_string(roughness) + R"(},
-                             "lamp": {"albedo": [0, 0, 0], "emission": [2, 1, 0.5]})",
+                             "lamp": {"albedo": [0, 0, 0], "emission": )" + emission + "}",
                           R"({"type": "quad", "name": "floor", "material": "metal",
                               "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]},
                              {"type": "quad", "name": "lamp", "material": "lamp",
-                              "corners": [[-50, 3, -50], [50, 3, -50], [50, 3, 50], [-50, 3, 50]]})",
+                              "corners": [[-)" + h + ", 3, -" + h + "], [" + h + ", 3, -" + h + "], [" + h + ", 3, " + h +
+                              "], [-" + h + ", 3, " + h + "]]}",
                           3);
     s.gi.set("hybrid.denoise_radius", std::to_string(denoiseRadius));
     return s;
@@ -239,13 +248,13 @@ TEST_F(Hybrid, GlossyMetalReflectsTheEmitterByItsAlbedo) {
     const pt::Bsdf up(m, m.albedo, glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), true);
     const float albedo = hemisphereIntegral(up, 2000).g;
     for (const int radius : {0, 3}) {
-        const Image img = render(glossyFloor(0.25f, radius), "hybrid", 16);
+        const Image img = render(glossyFloor(0.25f, radius, 50.0f, "[2, 1, 0.5]"), "hybrid", 16);
         const glm::vec3 c = centre(img, 4);
         EXPECT_NEAR(c.r, 2.0f * albedo, 0.02f * albedo) << radius;
         EXPECT_NEAR(c.b, 0.5f * albedo, 0.005f * albedo) << radius;
         EXPECT_NEAR(img.rgb("indirect", 16, 16).g, 0.0f, 1e-6f) << radius;
     }
-    Scene off = glossyFloor(0.25f, 3);
+    Scene off = glossyFloor(0.25f, 3, 50.0f, "[2, 1, 0.5]");
     off.gi.set("hybrid.glossy_roughness", "0");
     EXPECT_FALSE(planFrame(off, "hybrid", 1).runs("hybrid.trace"));
     EXPECT_NEAR(centre(render(off, "hybrid", 1), 4).g, 0.0f, 1e-6f);
@@ -254,17 +263,7 @@ TEST_F(Hybrid, GlossyMetalReflectsTheEmitterByItsAlbedo) {
 // A small emitter makes one ray a pixel noisy: the edge-aware filter lowers one frame's spread
 // across a flat glossy floor and keeps its mean (64 frames, with and without).
 TEST_F(Hybrid, FilterSmoothsGlossyNoiseAndKeepsTheMean) {
-    auto smallLamp = [](int radius) {
-        Scene s = lookingDown(R"("metal": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0.3},
-                                 "lamp": {"albedo": [0, 0, 0], "emission": [20, 20, 20]})",
-                              R"({"type": "quad", "name": "floor", "material": "metal",
-                                  "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]},
-                                 {"type": "quad", "name": "lamp", "material": "lamp",
-                                  "corners": [[-0.5, 3, -0.5], [0.5, 3, -0.5], [0.5, 3, 0.5], [-0.5, 3, 0.5]]})",
-                              3);
-        s.gi.set("hybrid.denoise_radius", std::to_string(radius));
-        return s;
-    };
+    auto smallLamp = [](int radius) { return glossyFloor(0.3f, radius, 0.5f, "[20, 20, 20]"); };
     const float raw = centreSpread(render(smallLamp(0), "hybrid", 1), 6);
     const float filtered = centreSpread(render(smallLamp(3), "hybrid", 1), 6);
     EXPECT_GT(raw, 0.0f);
@@ -281,14 +280,7 @@ TEST_F(Hybrid, GlossyLobeUnderAQuadLightMatchesTheRasterizedHighlight) {
                           R"({"type": "quad", "name": "floor", "material": "metal",
                               "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]})",
                           3);
-    Light quad;
-    quad.type = LightType::Quad;
-    quad.position = {-1.0f, 3.0f, -1.0f};
-    quad.edgeU = {2.0f, 0.0f, 0.0f};
-    quad.edgeV = {0.0f, 0.0f, 2.0f};
-    quad.emission = {3.0f, 2.0f, 1.0f};
-    s.lights.push_back(quad);
-    s.addQuadLightGeometry();
+    addQuadLightAbove(s);
     const float rasterized = centre(render(s, "direct", 64), 3).g;
     const float traced = centre(render(s, "hybrid", 64), 3).g;
     EXPECT_GT(rasterized, 0.1f);

@@ -18,8 +18,9 @@ struct HybridDesc {
     int depth = 3;
     // Glossy reflections: the GGX lobes of coats and metals up to this perceptual roughness are
     // traced too, by rays sampled from the lobe (below it the LPV glossy march and the lights'
-    // GGX highlights stay). 0: mirror-like lobes only. At 0.3 (alpha 0.09) half the lobe's
-    // energy lies within about 5 degrees of the mirror direction.
+    // GGX highlights stay). 0: mirror-like lobes only. At 0.3 (alpha 0.09) half of GGX's
+    // sampled half vectors lie within atan(alpha) = 5 degrees of the normal, so half the rays
+    // leave within about 10 degrees of the mirror direction.
     float glossyRoughness = 0.3f;
     // Rays per glossy pixel and frame (the frames average them; the denoiser smooths each frame).
     int glossyRays = 1;

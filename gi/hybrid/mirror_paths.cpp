@@ -78,14 +78,10 @@ struct Found {
 // rasterized direct pass samples itself (Scene::addQuadLightGeometry).
 std::vector<bool> quadLightMaterials(const Scene& scene) {
     std::vector<bool> out(scene.materials.size(), false);
-    for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-        if (scene.lights[l].type != LightType::Quad) continue;
-        const std::string name = scene.quadLightMeshName(l);
-        for (const Mesh& mesh : scene.meshes)
-            if (mesh.name == name)
-                for (const std::uint32_t m : mesh.materialIds)
-                    if (m < out.size()) out[m] = true;
-    }
+    for (std::size_t l = 0; l < scene.lights.size(); ++l)
+        if (const Mesh* mesh = scene.quadLightMesh(l))
+            for (const std::uint32_t m : mesh->materialIds)
+                if (m < out.size()) out[m] = true;
     return out;
 }
 

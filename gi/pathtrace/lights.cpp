@@ -135,10 +135,9 @@ LightSampler::LightSampler(const Scene& scene) {
         const float w = glm::length(l.edgeU), h = glm::length(l.edgeV);
         // Parallelograms that are not rectangles keep per-triangle area sampling.
         if (!(w > 0.0f && h > 0.0f) || std::abs(glm::dot(l.edgeU, l.edgeV)) > 1e-4f * w * h) continue;
-        const std::string name = scene.quadLightMeshName(i);
-        auto mesh = std::find_if(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) { return m.name == name; });
-        if (mesh == scene.meshes.end() || luminanceRec709(l.emission) <= 0.0f) continue;
-        meshRectangle_[std::size_t(mesh - scene.meshes.begin())] = std::int32_t(rectangles_.size());
+        const Mesh* mesh = scene.quadLightMesh(i);
+        if (!mesh || luminanceRec709(l.emission) <= 0.0f) continue;
+        meshRectangle_[std::size_t(mesh - scene.meshes.data())] = std::int32_t(rectangles_.size());
         rectangles_.push_back({l.position, l.edgeU / w, l.edgeV / h, l.quadNormal(), w, h, l.emission});
         emitters_.push_back({true, std::uint32_t(rectangles_.size() - 1), 0.0f});
         power.push_back(double(w) * double(h) * double(luminanceRec709(l.emission)));

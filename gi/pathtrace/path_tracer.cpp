@@ -33,12 +33,8 @@ constexpr std::uint64_t kLightStream = 0xFFFF000000000000ull;
 
 // Whether every quad light already has its emitting mesh (Scene::addQuadLightGeometry).
 bool hasQuadGeometry(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-        if (scene.lights[i].type != LightType::Quad) continue;
-        const std::string name = scene.quadLightMeshName(i);
-        if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [&](const Mesh& m) { return m.name == name; }))
-            return false;
-    }
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].type == LightType::Quad && !scene.quadLightMesh(i)) return false;
     return true;
 }
 
