@@ -148,3 +148,23 @@ TEST(Cli, MethodsListsMethodsAndSettings) {
     EXPECT_EQ(refused.exitCode, 2);
     EXPECT_NE(refused.output.find("gi.lpv.resolution"), std::string::npos) << refused.output;
 }
+
+TEST(Cli, BenchPropagationAndLimitsPrintTheirRatiosAndRejectBadLists) {
+    auto r = runVoxgi("bench propagation --resolutions 12,16 --threads 1 --repeats 1 --steps 2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("Mcell/s"), std::string::npos) << r.output;
+    // One row per resolution, with its share of the triad's limit.
+    EXPECT_NE(r.output.find("\n   12       1 |"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\n   16       1 |"), std::string::npos) << r.output;
+    r = runVoxgi("bench limits --scenes cornell-box --size 16 --spp 1 --threads 1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("GB/s"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("cornell-box"), std::string::npos) << r.output;
+    for (const char* bad : {"bench propagation --resolutions 4", "bench propagation --threads x",
+                            "bench limits --threads -1"}) {
+        r = runVoxgi(bad);
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+        EXPECT_EQ(lineCount(r.output), 1) << r.output;
+        EXPECT_NE(r.output.find("--"), std::string::npos) << r.output;
+    }
+}

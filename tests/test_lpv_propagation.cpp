@@ -344,9 +344,10 @@ TEST(LpvPropagation, EverySimdPathGivesTheSameStep) {
             to.reset(layout);
             acc.reset(layout);
             const int bricks = (n + kLanes - 1) / kLanes;
+            const std::vector<std::uint8_t> active(std::size_t(layout.runsX), 1);
+            std::vector<float> sent(std::size_t(layout.runsX));
             for (int z = 0; z < bricks; ++z)
-                for (int y = 0; y < bricks; ++y)
-                    for (int x = 0; x < layout.runsX; ++x) propagateBrick(op, from, to, acc, {x, y, z}, level);
+                for (int y = 0; y < bricks; ++y) propagateColumn(op, from, to, acc, {y, z}, active.data(), sent.data(), level);
             return to.data;
         };
         const std::vector<float> baseline = run(SimdLevel::Baseline);

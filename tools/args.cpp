@@ -80,6 +80,22 @@ int Args::integer(const std::string& name, int fallback, int min, int max) const
     return int(x);
 }
 
+std::vector<int> Args::integers(const std::string& name, const std::string& fallback, int min, int max) const {
+    const std::string text = value(name, fallback);
+    std::vector<int> out;
+    for (const std::string& item : splitList(text)) {
+        char* end = nullptr;
+        errno = 0;
+        const long x = std::strtol(item.c_str(), &end, 10);
+        if (end == item.c_str() || *end != '\0' || errno == ERANGE || x < min || x > max)
+            throw InputError(name + ": expected comma-separated integers in [" + std::to_string(min) + ", " +
+                             std::to_string(max) + "], got '" + text + "'");
+        out.push_back(int(x));
+    }
+    if (out.empty()) throw InputError(name + ": expected comma-separated integers, got '" + text + "'");
+    return out;
+}
+
 double Args::number(const std::string& name, double fallback, double min, double max) const {
     auto v = value(name);
     if (!v) return fallback;

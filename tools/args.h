@@ -29,6 +29,8 @@ public:
     std::string value(const std::string& name, const std::string& fallback) const;
     std::vector<std::string> values(const std::string& name) const;
     int integer(const std::string& name, int fallback, int min, int max) const;
+    // A comma list of integers in [min, max] (--resolutions 32,64), `fallback` when absent.
+    std::vector<int> integers(const std::string& name, const std::string& fallback, int min, int max) const;
     double number(const std::string& name, double fallback, double min, double max) const;
     // Exactly `count` positional arguments, else InputError with `usage`.
     void requirePositional(std::size_t count, const std::string& usage) const;

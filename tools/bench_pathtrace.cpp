@@ -2,15 +2,12 @@
 // error (RMSE of the beauty layer) that a fixed time buys against a cached high-spp reference,
 // next to the rays per second the path tracer reaches. Time is the process's CPU time (all
 // threads), so a busy machine changes the wall clock but not the figures.
-#include <sys/resource.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include <tbb/info.h>
-#include <tbb/parallel_for.h>
 
 #include "gi/metrics/image_metrics.h"
 #include "gi/pathtrace/path_tracer.h"
@@ -19,6 +16,7 @@
 #include "scenes/scene_loader.h"
 #include "tools/args.h"
 #include "tools/bench_registry.h"
+#include "tools/embree_share.h"
 #include "tools/eval_run.h"
 #include "tools/scene_arg.h"
 
@@ -36,38 +34,6 @@ const char* kUsage =
     "  --unidirectional: without the light-vertex connections (gi/pathtrace/light_paths.h).\n"
     "  --cache: reference cache (default $VOXGI_EVAL_CACHE, else out/eval-cache). Scenes whose\n"
     "  meshes are absent are skipped.";
-
-double cpuSeconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_sec) +
-           1e-6 * double(u.ru_stime.tv_usec);
-}
-
-// The path tracer's rays per CPU second against Embree's alone on the very same rays: `n` more
-// samples per pixel are rendered and timed, traced again with the ray log on (samples are
-// deterministic: the same paths), and the logged rays replayed through rtcIntersect1 and
-// rtcOccluded1 alone.
-void embreeShare(PathTracer& tracer, int n) {
-    const int first = tracer.samplesPerPixel();
-    const std::uint64_t raysBefore = tracer.raysTraced();
-    double start = cpuSeconds();
-    tracer.render(n);
-    const double pathCpu = cpuSeconds() - start;
-    const double rays = double(tracer.raysTraced() - raysBefore);
-    tracer.rayTracer().startLog();
-    tbb::parallel_for(0, tracer.height(), [&](int y) {
-        for (int x = 0; x < tracer.width(); ++x)
-            for (int s = first; s < first + n; ++s) tracer.samplePixel(x, y, std::uint64_t(s));
-    });
-    const std::vector<LoggedRay> logged = tracer.rayTracer().stopLog();
-    start = cpuSeconds();
-    tracer.rayTracer().replayBare(logged);
-    const double bareCpu = cpuSeconds() - start;
-    const double path = rays / pathCpu, bare = double(logged.size()) / bareCpu;
-    std::printf("  the same %.3g rays (%d spp): path tracer %.2f M rays per CPU s, Embree alone %.2f M: %.0f %%\n",
-                double(logged.size()), n, path * 1e-6, bare * 1e-6, 100.0 * path / bare);
-}
 
 void benchScene(const std::string& name, Scene scene, int size, int referenceSpp, double budget, bool lightPaths,
                 const std::string& cache, std::ostringstream& csv) {
@@ -100,7 +66,11 @@ void benchScene(const std::string& name, Scene scene, int size, int referenceSpp
             << "," << referenceSpp << "," << (lightPaths ? 1 : 0) << "\n";
         std::fflush(stdout);
     }
-    embreeShare(tracer, std::max(1, tracer.samplesPerPixel() / 8));
+    const int n = std::max(1, tracer.samplesPerPixel() / 8);
+    const EmbreeShare share = measureEmbreeShare(tracer, n);
+    std::printf("  the same %.3g rays (%d spp): path tracer %.2f M rays per CPU s, Embree alone %.2f M: %.0f %%\n",
+                share.rays, n, share.pathPerCpuS * 1e-6, share.barePerCpuS * 1e-6,
+                100.0 * share.pathPerCpuS / share.barePerCpuS);
 }
 
 int runBench(const std::vector<std::string>& argv) {

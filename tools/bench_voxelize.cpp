@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 #include "tools/args.h"
 #include "tools/bench_registry.h"
@@ -23,23 +22,6 @@ const char* kUsage =
     "  SCENE defaults to ../shared/scenes/crytek-sponza/sponza.obj; resolutions are voxels across\n"
     "  the longest side; each timing is the best of N runs (default 3)";
 
-std::vector<int> parseResolutions(const std::string& text) {
-    std::vector<int> out;
-    std::size_t pos = 0;
-    while (pos <= text.size()) {
-        std::size_t comma = text.find(',', pos);
-        std::string item = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-        char* end = nullptr;
-        long v = std::strtol(item.c_str(), &end, 10);
-        if (item.empty() || *end != '\0' || v < 1 || v > 8192)
-            throw InputError("--resolutions: expected comma-separated integers in [1, 8192], got '" + text + "'");
-        out.push_back(int(v));
-        if (comma == std::string::npos) break;
-        pos = comma + 1;
-    }
-    return out;
-}
-
 // $VOXGI_SCENES, else the shared scene folder beside the source tree.
 std::string defaultScene() {
     std::filesystem::path dir;
@@ -53,7 +35,7 @@ double mib(std::uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
 int benchVoxelize(const std::vector<std::string>& argv) {
     Args args(argv, {"--resolutions", "--repeats"}, {});
     std::string scenePath = args.positional().empty() ? defaultScene() : args.positional()[0];
-    std::vector<int> resolutions = parseResolutions(args.value("--resolutions", "128,256,512"));
+    std::vector<int> resolutions = args.integers("--resolutions", "128,256,512", 1, 8192);
     int repeats = args.integer("--repeats", 3, 1, 100);
 
     auto loadStart = std::chrono::steady_clock::now();

@@ -126,8 +126,7 @@ void clearBrick(lpv_detail::SoaLight& light, glm::ivec3 b) {
     const auto& l = light.layout;
     for (int z = b.z * kLanes; z < std::min(l.n, (b.z + 1) * kLanes); ++z)
         for (int y = b.y * kLanes; y < std::min(l.n, (b.y + 1) * kLanes); ++y)
-            for (int c = 0; c < lpv_detail::kChannels; ++c)
-                std::fill_n(light.channel(c) + l.index(b.x * kLanes, y, z), kLanes, 0.0f);
+            std::fill_n(light.data.begin() + std::ptrdiff_t(l.block(b.x, y, z)), lpv_detail::kRunFloats, 0.0f);
 }
 
 }  // namespace
@@ -160,10 +159,12 @@ void CpuPropagator::step(const LightVolume& in, const BlockerVolume& geometry, c
     from.fromVolume(in);
     const PropagationOperator op(geometry, grid, options);
     const BrickGrid bricks(layout);
-    tbb::parallel_for(std::size_t(0), bricks.size(), [&](std::size_t i) {
-        const glm::ivec3 b(int(i % std::size_t(bricks.count.x)), int(i / std::size_t(bricks.count.x)) % bricks.count.y,
-                           int(i / (std::size_t(bricks.count.x) * std::size_t(bricks.count.y))));
-        propagateBrick(op, from, to, acc, b);
+    const std::vector<std::uint8_t> active(bricks.size(), 1);
+    std::vector<float> sent(bricks.size());
+    tbb::parallel_for(0, bricks.count.y * bricks.count.z, [&](int column) {
+        const std::size_t first = std::size_t(column) * std::size_t(bricks.count.x);
+        propagateColumn(op, from, to, acc, {column % bricks.count.y, column / bricks.count.y}, &active[first],
+                        &sent[first]);
     });
     if (out.r.size() != grid.cellCount()) out.reset(grid);
     out.grid = grid;
@@ -216,17 +217,28 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
         w.operatorOptions = options;
     }
     const PropagationOperator& op = *w.op;
+    stats_.runs = op.pass.size() / 6;
+    stats_.occludedRuns = stats_.bounceRuns = 0;
+    for (std::size_t r = 0; r < stats_.runs; ++r) {
+        bool occluded = false;
+        for (int a = 0; a < 6; ++a) occluded |= op.pass[r * 6 + std::size_t(a)] != nullptr;
+        stats_.occludedRuns += occluded ? 1 : 0;
+        stats_.bounceRuns += op.bounce[r] != nullptr ? 1 : 0;
+    }
     auto t1 = std::chrono::steady_clock::now();
     stats_.operatorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
 
-    std::vector<glm::ivec3> active;
+    std::vector<std::uint8_t> active(bricks.size(), 0);
+    std::vector<int> columns;                      // columns (y + z count.y) with an active brick
     std::vector<float> sent(bricks.size(), 0.0f);  // each brick's output magnitude this step
     std::vector<double> stepLight;                 // each step's output, summed over bricks
     stats_.stepsRun = 0;
     for (int iteration = 0; iteration < steps; ++iteration) {
-        active.clear();
+        columns.clear();
+        stats_.activeBricks = 0;
         for (int z = 0; z < bricks.count.z; ++z)
-            for (int y = 0; y < bricks.count.y; ++y)
+            for (int y = 0; y < bricks.count.y; ++y) {
+                bool any = false;
                 for (int x = 0; x < bricks.count.x; ++x) {
                     const glm::ivec3 b(x, y, z);
                     bool on = !sparse || lit[bricks.index(b)];
@@ -235,14 +247,20 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
                         const glm::ivec3 nbr = b + propagationTables().axes[std::size_t(a)];
                         on = bricks.contains(nbr) && lit[bricks.index(nbr)];
                     }
-                    if (on) active.push_back(b);
-                    else if (pongLit[bricks.index(b)]) clearBrick(w.pong, b);
+                    active[bricks.index(b)] = on ? 1 : 0;
+                    any |= on;
+                    stats_.activeBricks += on ? 1 : 0;
+                    if (!on && pongLit[bricks.index(b)]) clearBrick(w.pong, b);
                 }
+                if (any) columns.push_back(z * bricks.count.y + y);
+            }
         std::fill(sent.begin(), sent.end(), 0.0f);
-        tbb::parallel_for(std::size_t(0), active.size(), [&](std::size_t ai) {
-            sent[bricks.index(active[ai])] = propagateBrick(op, w.ping, w.pong, w.acc, active[ai]);
+        tbb::parallel_for(std::size_t(0), columns.size(), [&](std::size_t ci) {
+            const int column = columns[ci];
+            const std::size_t first = std::size_t(column) * std::size_t(bricks.count.x);
+            propagateColumn(op, w.ping, w.pong, w.acc, {column % bricks.count.y, column / bricks.count.y},
+                            &active[first], &sent[first]);
         });
-        stats_.activeBricks = active.size();
         std::swap(w.ping, w.pong);
         pongLit = lit;
         double light = 0.0;

@@ -67,6 +67,9 @@ struct PropagationStats {
     int stepsRun = 0;              // steps taken: fewer than asked once propagation converged
     bool operatorBuilt = false;    // the operator was built for this call (else kept from the last)
     double operatorMs = 0.0;       // building the transfer matrices from the geometry volume
+    // The operator's size: runs of 8 cells, those with an occluded side and those next to a
+    // reflecting blocker (they cost more per step and carry their factors through memory).
+    std::size_t runs = 0, occludedRuns = 0, bounceRuns = 0;
     double stepsMs = 0.0;          // the iterations
 };
 

@@ -12,12 +12,12 @@
 namespace voxgi::lpv_detail {
 
 SoaLayout::SoaLayout(int resolution)
-    : n(resolution), runsX((resolution + kLanes - 1) / kLanes), sx(std::size_t(runsX) * kLanes + 2),
-      sy(std::size_t(resolution) + 2), channelSize(sx * sy * sy) {}
+    : n(resolution), runsX((resolution + kLanes - 1) / kLanes), rowRuns(std::size_t(runsX) + 2),
+      sy(std::size_t(resolution) + 2), rowStride(rowRuns * kRunFloats), size(rowStride * sy * sy) {}
 
 void SoaLight::reset(const SoaLayout& l) {
     layout = l;
-    data.assign(std::size_t(kChannels) * l.channelSize, 0.0f);
+    data.assign(l.size, 0.0f);
 }
 
 void SoaLight::fromVolume(const LightVolume& v) {
@@ -25,13 +25,10 @@ void SoaLight::fromVolume(const LightVolume& v) {
     const std::vector<glm::vec4>* colours[3] = {&v.r, &v.g, &v.b};
     tbb::parallel_for(0, n, [&](int z) {
         for (int y = 0; y < n; ++y) {
-            const std::size_t from = v.grid.index({0, y, z}), to = layout.index(0, y, z);
-            for (int c = 0; c < 3; ++c)
-                for (int k = 0; k < 4; ++k) {
-                    float* dst = channel(c * 4 + k) + to;
-                    const glm::vec4* src = colours[c]->data() + from;
-                    for (int x = 0; x < n; ++x) dst[x] = src[x][k];
-                }
+            const std::size_t from = v.grid.index({0, y, z});
+            for (int x = 0; x < n; ++x)
+                for (int c = 0; c < 3; ++c)
+                    for (int k = 0; k < 4; ++k) data[layout.cell(x, y, z, c * 4 + k)] = (*colours[c])[from + std::size_t(x)][k];
         }
     });
 }
@@ -41,13 +38,10 @@ void SoaLight::toVolume(LightVolume& v) const {
     std::vector<glm::vec4>* colours[3] = {&v.r, &v.g, &v.b};
     tbb::parallel_for(0, n, [&](int z) {
         for (int y = 0; y < n; ++y) {
-            const std::size_t to = v.grid.index({0, y, z}), from = layout.index(0, y, z);
-            for (int c = 0; c < 3; ++c)
-                for (int k = 0; k < 4; ++k) {
-                    const float* src = channel(c * 4 + k) + from;
-                    glm::vec4* dst = colours[c]->data() + to;
-                    for (int x = 0; x < n; ++x) dst[x][k] = src[x];
-                }
+            const std::size_t to = v.grid.index({0, y, z});
+            for (int x = 0; x < n; ++x)
+                for (int c = 0; c < 3; ++c)
+                    for (int k = 0; k < 4; ++k) (*colours[c])[to + std::size_t(x)][k] = data[layout.cell(x, y, z, c * 4 + k)];
         }
     });
 }

@@ -79,114 +79,199 @@ const Constants& constants() {
     return c;
 }
 
-// o += the light arriving along axis A from the source cells at `src` (colour channel 0;
-// channel i at src + i * stride); `pass` is null for an open face, else the 5 faces' pass
-// factors (see PropagationOperator::pass).
-template <int A>
-VOXGI_INLINE void gatherAxis(const AxisConstants& K, const float* src, std::size_t stride, const float* pass,
-                             v8 o[4]) {
+// One colour's 4 SH coefficients of a run's output, as named registers: an array indexed by the
+// axes' template constants kept them on the stack (zeroed by rep stos, stored in halves), which
+// cost a third of the kernel's time.
+struct Coefficients {
+    v8 c0{}, c1{}, c2{}, c3{};
+    template <int I>
+    VOXGI_INLINE v8& c() {
+        if constexpr (I == 0) return c0;
+        else if constexpr (I == 1) return c1;
+        else if constexpr (I == 2) return c2;
+        else return c3;
+    }
+};
+
+// Every lane moved one to the right, lane 0 taken from lane 7 of `before` (the cells at x - 1
+// of a run), and one to the left, lane 7 taken from lane 0 of `after` (the cells at x + 1).
+VOXGI_INLINE v8 shiftedRight(v8 before, v8 run) {
+#if defined(__clang__)
+    return __builtin_shufflevector(before, run, 7, 8, 9, 10, 11, 12, 13, 14);
+#else
+    return __builtin_shuffle(before, run, m8{7, 8, 9, 10, 11, 12, 13, 14});
+#endif
+}
+VOXGI_INLINE v8 shiftedLeft(v8 run, v8 after) {
+#if defined(__clang__)
+    return __builtin_shufflevector(run, after, 1, 2, 3, 4, 5, 6, 7, 8);
+#else
+    return __builtin_shuffle(run, after, m8{1, 2, 3, 4, 5, 6, 7, 8});
+#endif
+}
+
+// The 8 cells a run gathers from along one axis, coefficient Ch of one colour (`at` points at
+// the colour's first coefficient in the run's block; SoaLayout): the run beside it along y or z,
+// or its own cells moved by one along x, the end lane from the run before or after.
+struct RunSource {
+    const float* at;
+    template <int Ch>
+    VOXGI_INLINE v8 get() const { return load8(at + Ch * kLanes); }
+};
+struct CellsBefore {
+    const float* at;
+    template <int Ch>
+    VOXGI_INLINE v8 get() const { return shiftedRight(load8(at - kRunFloats + Ch * kLanes), load8(at + Ch * kLanes)); }
+};
+struct CellsAfter {
+    const float* at;
+    template <int Ch>
+    VOXGI_INLINE v8 get() const { return shiftedLeft(load8(at + Ch * kLanes), load8(at + kRunFloats + Ch * kLanes)); }
+};
+
+// o += the light arriving along axis A from the source cells `src`; `pass` is null for an open
+// face, else the 5 faces' pass factors (see PropagationOperator::pass).
+template <int A, class Source>
+VOXGI_INLINE void gatherAxis(const AxisConstants& K, const Source& src, const float* pass, Coefficients& o) {
     constexpr int k = A / 2, ca = shOf(k), c1 = shOf(otherDim(k, 0)), c2 = shOf(otherDim(k, 1));
-    const v8 i0 = load8(src), ia = load8(src + ca * stride);
-    const v8 i1 = load8(src + c1 * stride), i2 = load8(src + c2 * stride);
+    const v8 i0 = src.template get<0>(), ia = src.template get<ca>();
+    const v8 i1 = src.template get<c1>(), i2 = src.template get<c2>();
     if (!pass) {
-        o[0] += K.m00 * i0 + K.m0a * ia;
-        o[ca] += K.ma0 * i0 + K.maa * ia;
-        o[c1] += K.m11 * i1;
-        o[c2] += K.m22 * i2;
+        o.c<0>() += K.m00 * i0 + K.m0a * ia;
+        o.c<ca>() += K.ma0 * i0 + K.maa * ia;
+        o.c<c1>() += K.m11 * i1;
+        o.c<c2>() += K.m22 * i2;
         return;
     }
     v8 t = (K.s0[0] * i0 + K.sa[0] * ia) * load8(pass);
-    o[0] += K.l0[0] * t;
-    o[ca] += K.ln[0] * t;
+    o.c<0>() += K.l0[0] * t;
+    o.c<ca>() += K.ln[0] * t;
     t = (K.s0[1] * i0 + K.sa[1] * ia + K.sn[1] * i1) * load8(pass + kLanes);
-    o[0] += K.l0[1] * t;
-    o[c1] += K.ln[1] * t;
+    o.c<0>() += K.l0[1] * t;
+    o.c<c1>() += K.ln[1] * t;
     t = (K.s0[2] * i0 + K.sa[2] * ia + K.sn[2] * i1) * load8(pass + 2 * kLanes);
-    o[0] += K.l0[2] * t;
-    o[c1] += K.ln[2] * t;
+    o.c<0>() += K.l0[2] * t;
+    o.c<c1>() += K.ln[2] * t;
     t = (K.s0[3] * i0 + K.sa[3] * ia + K.sn[3] * i2) * load8(pass + 3 * kLanes);
-    o[0] += K.l0[3] * t;
-    o[c2] += K.ln[3] * t;
+    o.c<0>() += K.l0[3] * t;
+    o.c<c2>() += K.ln[3] * t;
     t = (K.s0[4] * i0 + K.sa[4] * ia + K.sn[4] * i2) * load8(pass + 4 * kLanes);
-    o[0] += K.l0[4] * t;
-    o[c2] += K.ln[4] * t;
+    o.c<0>() += K.l0[4] * t;
+    o.c<c2>() += K.ln[4] * t;
 }
 
-VOXGI_INLINE float brickKernel(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                              glm::ivec3 brick) {
-    const SoaLayout& L = op.layout;
-    const std::size_t cs = L.channelSize;
-    const auto sx = std::ptrdiff_t(L.sx), sxy = std::ptrdiff_t(L.sx * L.sy);
+// One run of 8 cells, whose blocks (SoaLayout::block) start at in, out and acc: out =
+// transfer(in), acc += out; returns |out| per lane. sy, sz: floats to the next run along y, z.
+VOXGI_INLINE v8 runKernel(const PropagationOperator& op, const float* in, float* out, float* acc, std::size_t run,
+                         std::ptrdiff_t sy, std::ptrdiff_t sz, const v8* keep) {
     const AxisConstants* K = constants().axis;
-    // Lanes past the grid's end (resolutions that are not whole runs) must stay dark.
-    v8 keep;
-    for (int l = 0; l < kLanes; ++l) keep[l] = brick.x * kLanes + l < L.n ? 1.0f : 0.0f;
-    const bool partial = (brick.x + 1) * kLanes > L.n;
+    const float* const* pass = &op.pass[run * 6];
+    const float* bounce = op.bounce[run];
     v8 total{};
-    const int y1 = std::min(L.n, (brick.y + 1) * kLanes), z1 = std::min(L.n, (brick.z + 1) * kLanes);
-    for (int z = brick.z * kLanes; z < z1; ++z)
-        for (int y = brick.y * kLanes; y < y1; ++y) {
-            const std::size_t i = L.index(brick.x * kLanes, y, z);
-            const std::size_t run = L.run(brick.x, y, z);
-            const float* const* pass = &op.pass[run * 6];
-            const float* bounce = op.bounce[run];
-            for (int c = 0; c < 3; ++c) {
-                const float* base = in.channel(4 * c) + i;
-                v8 o[4] = {};
-                // The source of light arriving along +x is the cell at -x, and so on.
-                gatherAxis<0>(K[0], base - 1, cs, pass[0], o);
-                gatherAxis<1>(K[1], base + 1, cs, pass[1], o);
-                gatherAxis<2>(K[2], base - sx, cs, pass[2], o);
-                gatherAxis<3>(K[3], base + sx, cs, pass[3], o);
-                gatherAxis<4>(K[4], base - sxy, cs, pass[4], o);
-                gatherAxis<5>(K[5], base + sxy, cs, pass[5], o);
-                if (bounce) {
-                    const float* m = bounce + c * 16 * kLanes;
-                    const v8 own[4] = {load8(base), load8(base + cs), load8(base + 2 * cs), load8(base + 3 * cs)};
-                    for (int col = 0; col < 4; ++col)
-                        for (int row = 0; row < 4; ++row) o[row] += load8(m + (col * 4 + row) * kLanes) * own[col];
-                }
-                for (int k = 0; k < 4; ++k) {
-                    if (partial) o[k] *= keep;
-                    const std::size_t channelOffset = std::size_t(4 * c + k) * cs + i;
-                    store8(out.data.data() + channelOffset, o[k]);
-                    float* a = acc.data.data() + channelOffset;
-                    store8(a, load8(a) + o[k]);
-                    total += v8(m8(o[k]) & 0x7fffffff);  // |o[k]|
-                }
+    for (int c = 0; c < 3; ++c) {
+        const std::size_t colour = std::size_t(4 * c * kLanes);
+        const float* base = in + colour;
+        Coefficients o;
+        // The source of light arriving along +x is the cell at -x, and so on.
+        gatherAxis<0>(K[0], CellsBefore{base}, pass[0], o);
+        gatherAxis<1>(K[1], CellsAfter{base}, pass[1], o);
+        gatherAxis<2>(K[2], RunSource{base - sy}, pass[2], o);
+        gatherAxis<3>(K[3], RunSource{base + sy}, pass[3], o);
+        gatherAxis<4>(K[4], RunSource{base - sz}, pass[4], o);
+        gatherAxis<5>(K[5], RunSource{base + sz}, pass[5], o);
+        if (bounce) {
+            const float* m = bounce + c * 16 * kLanes;
+            for (int col = 0; col < 4; ++col) {
+                const v8 own = load8(base + col * kLanes);
+                o.c0 += load8(m + (col * 4 + 0) * kLanes) * own;
+                o.c1 += load8(m + (col * 4 + 1) * kLanes) * own;
+                o.c2 += load8(m + (col * 4 + 2) * kLanes) * own;
+                o.c3 += load8(m + (col * 4 + 3) * kLanes) * own;
             }
         }
-    float sum = 0.0f;
-    for (int l = 0; l < kLanes; ++l) sum += total[l];
-    return sum;
+        if (keep) {
+            o.c0 *= *keep;
+            o.c1 *= *keep;
+            o.c2 *= *keep;
+            o.c3 *= *keep;
+        }
+        const v8* coefficients[4] = {&o.c0, &o.c1, &o.c2, &o.c3};
+        for (int k = 0; k < 4; ++k) {
+            const v8 v = *coefficients[k];
+            const std::size_t at = colour + std::size_t(k * kLanes);
+            store8(out + at, v);
+            store8(acc + at, load8(acc + at) + v);
+            total += v8(m8(v) & 0x7fffffff);  // |o_k|
+        }
+    }
+    return total;
+}
+
+// The bricks of one column (every brick at (by, bz)) whose flag in `active` (count.x of them,
+// by brick x) is set, row after row: a row of the light is contiguous (SoaLayout), so each row
+// of the input, output and sum streams through once per step. sent[bx] gets the brick's sum of
+// output magnitudes.
+VOXGI_INLINE void columnKernel(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+                               glm::ivec2 column, const std::uint8_t* active, float* sent) {
+    const SoaLayout& L = op.layout;
+    const auto sy = std::ptrdiff_t(L.rowStride), sz = std::ptrdiff_t(L.rowStride * L.sy);
+    // Lanes past the grid's end (resolutions that are not whole runs) must stay dark.
+    const int lastRun = L.runsX - 1;
+    v8 keep;
+    for (int l = 0; l < kLanes; ++l) keep[l] = lastRun * kLanes + l < L.n ? 1.0f : 0.0f;
+    const bool partial = L.runsX * kLanes > L.n;
+    // Per run, per lane: the output magnitudes summed over the column's rows (floats, as a vector
+    // type's 32-byte alignment is more than the allocator promises).
+    std::vector<float> totals(std::size_t(L.runsX) * kLanes, 0.0f);
+    const int y1 = std::min(L.n, (column.x + 1) * kLanes), z1 = std::min(L.n, (column.y + 1) * kLanes);
+    for (int z = column.y * kLanes; z < z1; ++z)
+        for (int y = column.x * kLanes; y < y1; ++y)
+            for (int rx = 0; rx < L.runsX; ++rx) {
+                if (!active[rx]) continue;
+                const std::size_t i = L.block(rx, y, z);
+                float* total = &totals[std::size_t(rx) * kLanes];
+                store8(total, load8(total) + runKernel(op, in.data.data() + i, out.data.data() + i,
+                                                       acc.data.data() + i, L.run(rx, y, z), sy, sz,
+                                                       partial && rx == lastRun ? &keep : nullptr));
+            }
+    for (int rx = 0; rx < L.runsX; ++rx) {
+        if (!active[rx]) continue;
+        float sum = 0.0f;
+        for (int l = 0; l < kLanes; ++l) sum += totals[std::size_t(rx) * kLanes + std::size_t(l)];
+        sent[rx] = sum;
+    }
 }
 
 #if defined(__x86_64__)
 // AVX-512VL keeps 256-bit vectors but gives 32 registers and broadcast operands.
-__attribute__((target("avx512f,avx512vl,avx2,fma"))) float brickAvx512(const PropagationOperator& op, const SoaLight& in,
-                                                                     SoaLight& out, SoaLight& acc, glm::ivec3 brick) {
-    return brickKernel(op, in, out, acc, brick);
+__attribute__((target("avx512f,avx512vl,avx2,fma"))) void columnAvx512(const PropagationOperator& op, const SoaLight& in,
+                                                                      SoaLight& out, SoaLight& acc, glm::ivec2 column,
+                                                                      const std::uint8_t* active, float* sent) {
+    columnKernel(op, in, out, acc, column, active, sent);
 }
 
-__attribute__((target("avx2,fma"))) float brickAvx2(const PropagationOperator& op, const SoaLight& in, SoaLight& out,
-                                                   SoaLight& acc, glm::ivec3 brick) {
-    return brickKernel(op, in, out, acc, brick);
+__attribute__((target("avx2,fma"))) void columnAvx2(const PropagationOperator& op, const SoaLight& in, SoaLight& out,
+                                                    SoaLight& acc, glm::ivec2 column, const std::uint8_t* active,
+                                                    float* sent) {
+    columnKernel(op, in, out, acc, column, active, sent);
 }
 #endif
 
-float brickBaseline(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc, glm::ivec3 brick) {
-    return brickKernel(op, in, out, acc, brick);
+void columnBaseline(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc, glm::ivec2 column,
+                    const std::uint8_t* active, float* sent) {
+    columnKernel(op, in, out, acc, column, active, sent);
 }
 
-using BrickFn = float (*)(const PropagationOperator&, const SoaLight&, SoaLight&, SoaLight&, glm::ivec3);
+using ColumnFn = void (*)(const PropagationOperator&, const SoaLight&, SoaLight&, SoaLight&, glm::ivec2,
+                          const std::uint8_t*, float*);
 
-BrickFn brickFn(SimdLevel level) {
+ColumnFn columnFn(SimdLevel level) {
     switch (level) {
 #if defined(__x86_64__)
-        case SimdLevel::Avx512: return brickAvx512;
-        case SimdLevel::Avx2: return brickAvx2;
+        case SimdLevel::Avx512: return columnAvx512;
+        case SimdLevel::Avx2: return columnAvx2;
 #endif
-        default: return brickBaseline;
+        default: return columnBaseline;
     }
 }
 
@@ -222,18 +307,18 @@ SimdLevel bestSimdLevel() {
     return SimdLevel::Baseline;
 }
 
-float propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                    glm::ivec3 brick) {
-    static const BrickFn fn = brickFn(bestSimdLevel());
+void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+                     glm::ivec2 column, const std::uint8_t* active, float* sent) {
+    static const ColumnFn fn = columnFn(bestSimdLevel());
     const SubnormalsFlushed flushed;
-    return fn(op, in, out, acc, brick);
+    fn(op, in, out, acc, column, active, sent);
 }
 
-float propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                    glm::ivec3 brick, SimdLevel level) {
+void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+                     glm::ivec2 column, const std::uint8_t* active, float* sent, SimdLevel level) {
     if (!simdLevelSupported(level)) throw std::logic_error("LPV propagation: SIMD level not supported by this CPU");
     const SubnormalsFlushed flushed;
-    return brickFn(level)(op, in, out, acc, brick);
+    columnFn(level)(op, in, out, acc, column, active, sent);
 }
 
 }  // namespace voxgi::lpv_detail

@@ -32,19 +32,39 @@ constexpr int shOf(int d) { return d == 0 ? 3 : d == 1 ? 1 : 2; }
 // propagationTables: faces 1, 2 lie along the first, 3, 4 along the second).
 constexpr int otherDim(int k, int i) { return i == 0 ? (k == 0 ? 1 : 0) : (k == 2 ? 1 : 2); }
 
-// Cells (x, y, z) of an n^3 cascade in arrays padded by one zero cell on every side and with
-// x rounded up to whole runs: neighbours outside the grid read zero without a branch.
+constexpr int kRunFloats = kChannels * kLanes;    // one run's light: 12 channels of 8 lanes
+
+// The light of an n^3 cascade as blocks of one run each (8 cells along x): a block holds its
+// 12 channels one after another, 8 lanes each, and the blocks of a row (y, z) follow each other
+// along x. A zero block at both ends of every row and a zero row on every side make neighbours
+// outside the grid read zero without a branch.
+//
+// Why this shape: a step reads a run's sources, writes its output and adds it to the running
+// sum; with these blocks each of those is one sequential stream through memory (7 in all: the
+// rows at y +- 1 and z +- 1, the row itself, the output, the sum), which the hardware prefetchers
+// follow. With 12 channel planes per volume, a step walked 3 x 12 streams, more than they track,
+// and waited on memory at 20-30 % of the bandwidth. The neighbours along x are the run's own
+// lanes moved by one (two shuffles).
 struct SoaLayout {
     int n = 0;
     int runsX = 0;
-    std::size_t sx = 0, sy = 0, channelSize = 0;
+    std::size_t rowRuns = 0;    // runsX + 2
+    std::size_t sy = 0;         // rows along y (and planes along z): n + 2
+    std::size_t rowStride = 0;  // floats from one row to the next along y: rowRuns * kRunFloats
+    std::size_t size = 0;       // floats in all: rowStride * sy * sy
 
     SoaLayout() = default;
     explicit SoaLayout(int resolution);
-    std::size_t index(int x, int y, int z) const {
-        return ((std::size_t(z) + 1) * sy + std::size_t(y) + 1) * sx + std::size_t(x) + 1;
+    // The first float of run rx's block in row (y, z).
+    std::size_t block(int rx, int y, int z) const {
+        return (((std::size_t(z) + 1) * sy + std::size_t(y) + 1) * rowRuns + std::size_t(rx) + 1) * kRunFloats;
+    }
+    // Channel c (colour * 4 + SH coefficient) of cell (x, y, z).
+    std::size_t cell(int x, int y, int z, int c) const {
+        return block(x / kLanes, y, z) + std::size_t(c * kLanes + x % kLanes);
     }
     std::size_t runCount() const { return std::size_t(runsX) * std::size_t(n) * std::size_t(n); }
+    // Run (rx, y, z) in the operator's numbering (no padding).
     std::size_t run(int rx, int y, int z) const {
         return (std::size_t(z) * std::size_t(n) + std::size_t(y)) * std::size_t(runsX) + std::size_t(rx);
     }
@@ -53,11 +73,9 @@ struct SoaLayout {
 
 struct SoaLight {
     SoaLayout layout;
-    std::vector<float> data;  // kChannels * channelSize
+    std::vector<float> data;  // layout.size
 
     void reset(const SoaLayout& l);
-    float* channel(int c) { return data.data() + std::size_t(c) * layout.channelSize; }
-    const float* channel(int c) const { return data.data() + std::size_t(c) * layout.channelSize; }
     void fromVolume(const LightVolume& v);
     void toVolume(LightVolume& v) const;
 };
@@ -79,17 +97,18 @@ private:
     std::vector<std::vector<float>> passRows_, bounceRows_;
 };
 
-// One step for the cells of the 8^3 brick `brick` (in bricks): out = transfer(in), acc += out.
-// Returns the sum of the magnitudes of its output coefficients (0: the brick sent out no light,
-// as light below FLT_MIN is flushed to zero). Runs the widest instruction set the CPU has; the
-// overload with a level is for tests that compare them.
+// One step for the bricks of one column: the bricks (bx, column.x, column.y), 8^3 cells where
+// the resolution allows, whose active[bx] is set (runsX flags): out = transfer(in), acc += out,
+// and sent[bx] = the sum of the magnitudes of the brick's output coefficients (0: it sent out
+// no light, as light below FLT_MIN is flushed to zero). Runs the widest instruction set the CPU
+// has; the overload with a level is for tests that compare them.
 enum class SimdLevel { Baseline, Avx2, Avx512 };
 bool simdLevelSupported(SimdLevel level);
 SimdLevel bestSimdLevel();
-float propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                    glm::ivec3 brick);
-float propagateBrick(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                    glm::ivec3 brick, SimdLevel level);
+void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+                     glm::ivec2 column, const std::uint8_t* active, float* sent);
+void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
+                     glm::ivec2 column, const std::uint8_t* active, float* sent, SimdLevel level);
 
 }  // namespace lpv_detail
 
