@@ -11,6 +11,7 @@
 
 #include "gi/lpv/propagation.h"
 #include "gi/lpv/static_blockers.h"
+#include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 #include "tools/args.h"
 #include "tools/bench_registry.h"
@@ -24,12 +25,14 @@ namespace {
 
 const char* kUsage =
     "voxgi bench propagation [SCENE] [--resolutions 32,64,128] [--steps 16] [--threads 1,0] [--repeats 3]\n"
-    "       [--open]\n"
+    "       [--open] [--pairs auto|never|always]\n"
     "  CPU LPV propagation of one cascade over SCENE's bounds (default cornell-box) with its static\n"
     "  blockers and light in every cell: million cell-steps per second and the share of the limit\n"
     "  that the STREAM triad (measured in the same run, same threads) puts on them at the 192 bytes\n"
     "  a cell-step must move (12 floats read, 12 written, 12 accumulated). --threads: a list (0: all);\n"
-    "  each timing is the best of N runs. --open: no blockers (the light's own traffic alone)";
+    "  each timing is the best of N runs. --open: no blockers (the light's own traffic alone);\n"
+    "  --pairs: two steps per pass through memory (CpuPropagator::setStepPairs; auto: from\n"
+    "  the resolution)";
 
 // Bytes one cell-step must move at the least: the source cell's 12 coefficients read (its
 // neighbours' come from cache), the output's 12 written and the running sum's 12 read and written.
@@ -64,7 +67,7 @@ Cascade fitCascade(const Scene& scene, int resolution) {
 }
 
 int benchPropagation(const std::vector<std::string>& argv) {
-    Args args(argv, {"--resolutions", "--steps", "--threads", "--repeats"}, {"--open"});
+    Args args(argv, {"--resolutions", "--steps", "--threads", "--repeats", "--pairs"}, {"--open"});
     const std::string sceneName = args.positional().empty() ? "cornell-box" : args.positional()[0];
     const std::vector<int> resolutions = args.integers("--resolutions", "32,64,128", 8, 512);
     const std::vector<int> threads = args.integers("--threads", "1,0", 0, 1024);
@@ -73,6 +76,12 @@ int benchPropagation(const std::vector<std::string>& argv) {
     const Scene scene = loadSceneArgument(sceneName);
     PropagationOptions options;
     options.occlusion = !args.flag("--open");
+    const std::string pairsName = args.value("--pairs", "auto");
+    if (pairsName != "auto" && pairsName != "never" && pairsName != "always")
+        throw InputError("--pairs: expected auto, never or always, got '" + pairsName + "'");
+    const auto pairs = pairsName == "never"    ? CpuPropagator::StepPairs::Never
+                       : pairsName == "always" ? CpuPropagator::StepPairs::Always
+                                               : CpuPropagator::StepPairs::Auto;
 
     std::printf("%s: %zu triangles%s; %d steps, best of %d; %.0f bytes per cell-step\n", sceneName.c_str(),
                 scene.triangleCount(), options.occlusion ? "" : " (not blocking: --open)", steps, repeats,
@@ -87,6 +96,7 @@ int benchPropagation(const std::vector<std::string>& argv) {
         for (int res : resolutions) {
             const Cascade cascade = fitCascade(scene, res);
             CpuPropagator propagator;
+            propagator.setStepPairs(pairs);
             LightVolume accumulated;
             double best = 1e30, operatorMs = 0.0;
             int stepsRun = 0;

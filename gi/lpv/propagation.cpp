@@ -117,6 +117,10 @@ struct BrickGrid {
     std::size_t index(glm::ivec3 b) const {
         return (std::size_t(b.z) * std::size_t(count.y) + std::size_t(b.y)) * std::size_t(count.x) + std::size_t(b.x);
     }
+    glm::ivec3 brick(std::size_t i) const {
+        const auto cx = std::size_t(count.x), cy = std::size_t(count.y);
+        return {int(i % cx), int(i / cx % cy), int(i / (cx * cy))};
+    }
     bool contains(glm::ivec3 b) const { return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && glm::all(glm::lessThan(b, count)); }
 };
 
@@ -127,6 +131,52 @@ void clearBrick(lpv_detail::SoaLight& light, glm::ivec3 b) {
     for (int z = b.z * kLanes; z < std::min(l.n, (b.z + 1) * kLanes); ++z)
         for (int y = b.y * kLanes; y < std::min(l.n, (b.y + 1) * kLanes); ++y)
             std::fill_n(light.data.begin() + std::ptrdiff_t(l.block(b.x, y, z)), lpv_detail::kRunFloats, 0.0f);
+}
+
+// One step over every active brick, one task per column of bricks (8 x 8 rows).
+void runStep(const lpv_detail::PropagationOperator& op, const lpv_detail::StepBuffers& buffers,
+             const lpv_detail::StepBricks& bricks) {
+    using lpv_detail::kLanes;
+    const int n = op.layout.n;
+    tbb::parallel_for(0, bricks.count.y * bricks.count.z, [&](int column) {
+        const int by = column % bricks.count.y, bz = column / bricks.count.y;
+        const std::uint8_t* row = bricks.active + std::size_t(column) * std::size_t(bricks.count.x);
+        if (std::none_of(row, row + bricks.count.x, [](std::uint8_t on) { return on != 0; })) return;
+        for (int z = bz * kLanes; z < std::min(n, (bz + 1) * kLanes); ++z)
+            propagateRows(op, buffers, bricks, z, by * kLanes, std::min(n, (by + 1) * kLanes));
+    });
+}
+
+// Two steps in one pass through memory: planes along z in order, the second step two planes
+// behind the first, so the first step's output is read back from cache and the sum is read and
+// written once for both. The first step writes `first.out`; the second reads it and writes
+// `second.out`, which may be the first step's input: by the time the second step writes plane
+// z, the first has read plane z for the last time (at plane z + 1). One task per row of bricks
+// and plane; each wave waits for the last (the second step at z needs the first at z + 1 whole).
+void runStepPair(const lpv_detail::PropagationOperator& op, const lpv_detail::StepBuffers& first,
+                 const lpv_detail::StepBricks& firstBricks, const lpv_detail::StepBuffers& second,
+                 const lpv_detail::StepBricks& secondBricks) {
+    using lpv_detail::kLanes;
+    const int n = op.layout.n, rows = firstBricks.count.y;
+    for (int wave = 0; wave < n + 2; ++wave) {
+        tbb::parallel_for(0, 2 * rows, [&](int task) {
+            const bool isFirst = task < rows;
+            const int z = isFirst ? wave : wave - 2, by = task % rows;
+            if (z < 0 || z >= n) return;
+            propagateRows(op, isFirst ? first : second, isFirst ? firstBricks : secondBricks, z, by * kLanes,
+                          std::min(n, (by + 1) * kLanes));
+        });
+    }
+}
+
+// A paired pass keeps about 8 planes in flight (the input's around the first step, the first
+// step's output around the second). Pairs paid on the 2-core EPYC VM at 32^3 and 64^3 (0.6 and
+// 2 MiB in flight) and lost a little at 128^3 (7.2 MiB; docs/lpv.md), so up to 4 MiB, a core's
+// share of a last-level cache (the size the OS reports is often the host's: 64 MiB here).
+bool pairedPassFitsCache(const lpv_detail::SoaLayout& layout) {
+    constexpr double kPairedPassBytes = 4.0 * 1024.0 * 1024.0;
+    const double plane = double(layout.rowStride) * double(layout.sy) * double(sizeof(float));
+    return 8.0 * plane <= kPairedPassBytes;
 }
 
 }  // namespace
@@ -160,12 +210,8 @@ void CpuPropagator::step(const LightVolume& in, const BlockerVolume& geometry, c
     const PropagationOperator op(geometry, grid, options);
     const BrickGrid bricks(layout);
     const std::vector<std::uint8_t> active(bricks.size(), 1);
-    std::vector<float> sent(bricks.size());
-    tbb::parallel_for(0, bricks.count.y * bricks.count.z, [&](int column) {
-        const std::size_t first = std::size_t(column) * std::size_t(bricks.count.x);
-        propagateColumn(op, from, to, acc, {column % bricks.count.y, column / bricks.count.y}, &active[first],
-                        &sent[first]);
-    });
+    std::vector<float> laneTotals(bricks.size() * kLanes, 0.0f);
+    runStep(op, {&from, &to, &acc, nullptr, nullptr}, {bricks.count, active.data(), laneTotals.data()});
     if (out.r.size() != grid.cellCount()) out.reset(grid);
     out.grid = grid;
     to.toVolume(out);
@@ -228,50 +274,74 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
     auto t1 = std::chrono::steady_clock::now();
     stats_.operatorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
 
-    std::vector<std::uint8_t> active(bricks.size(), 0);
-    std::vector<int> columns;                      // columns (y + z count.y) with an active brick
-    std::vector<float> sent(bricks.size(), 0.0f);  // each brick's output magnitude this step
-    std::vector<double> stepLight;                 // each step's output, summed over bricks
-    stats_.stepsRun = 0;
-    for (int iteration = 0; iteration < steps; ++iteration) {
-        columns.clear();
-        stats_.activeBricks = 0;
+    // The bricks a step runs: those holding light and their face neighbours (light moves one
+    // cell per step; bounces make a lit cell's own light feed back), every brick when dense.
+    auto dilate = [&](const std::vector<std::uint8_t>& from, std::vector<std::uint8_t>& to) {
+        std::size_t count = 0;
         for (int z = 0; z < bricks.count.z; ++z)
-            for (int y = 0; y < bricks.count.y; ++y) {
-                bool any = false;
+            for (int y = 0; y < bricks.count.y; ++y)
                 for (int x = 0; x < bricks.count.x; ++x) {
                     const glm::ivec3 b(x, y, z);
-                    bool on = !sparse || lit[bricks.index(b)];
-                    // Bounces make a cell's own light feed back, so a lit brick stays active.
+                    bool on = !sparse || from[bricks.index(b)];
                     for (int a = 0; a < 6 && !on; ++a) {
                         const glm::ivec3 nbr = b + propagationTables().axes[std::size_t(a)];
-                        on = bricks.contains(nbr) && lit[bricks.index(nbr)];
+                        on = bricks.contains(nbr) && from[bricks.index(nbr)];
                     }
-                    active[bricks.index(b)] = on ? 1 : 0;
-                    any |= on;
-                    stats_.activeBricks += on ? 1 : 0;
-                    if (!on && pongLit[bricks.index(b)]) clearBrick(w.pong, b);
+                    to[bricks.index(b)] = on ? 1 : 0;
+                    count += on ? 1 : 0;
                 }
-                if (any) columns.push_back(z * bricks.count.y + y);
-            }
-        std::fill(sent.begin(), sent.end(), 0.0f);
-        tbb::parallel_for(std::size_t(0), columns.size(), [&](std::size_t ci) {
-            const int column = columns[ci];
-            const std::size_t first = std::size_t(column) * std::size_t(bricks.count.x);
-            propagateColumn(op, w.ping, w.pong, w.acc, {column % bricks.count.y, column / bricks.count.y},
-                            &active[first], &sent[first]);
-        });
-        std::swap(w.ping, w.pong);
-        pongLit = lit;
+        return count;
+    };
+    // Each brick's output magnitude from its lane sums (lit: it sent light), and the step's total.
+    auto sentLight = [&](const std::vector<float>& laneTotals, std::vector<std::uint8_t>& litOut) {
         double light = 0.0;
-        for (std::size_t b = 0; b < sent.size(); ++b) {
-            lit[b] = sent[b] > 0.0f ? 1 : 0;
-            light += sent[b];
+        for (std::size_t b = 0; b < bricks.size(); ++b) {
+            float sent = 0.0f;
+            for (int l = 0; l < kLanes; ++l) sent += laneTotals[b * kLanes + std::size_t(l)];
+            litOut[b] = sent > 0.0f ? 1 : 0;
+            light += double(sent);
         }
+        return light;
+    };
+    const bool pairs = pairs_ == StepPairs::Always || (pairs_ == StepPairs::Auto && pairedPassFitsCache(layout));
+    std::vector<std::uint8_t> active(bricks.size(), 0), secondActive(bricks.size(), 0), firstLit(bricks.size(), 0);
+    std::vector<float> totals(bricks.size() * kLanes), secondTotals(bricks.size() * kLanes);
+    std::vector<double> stepLight;  // each step's output, summed over bricks
+    stats_.stepsRun = 0;
+    // Records one step's light; true once propagation has converged.
+    auto record = [&](double light) {
         lightSoFar += light;
         stepLight.push_back(light);
         ++stats_.stepsRun;
-        if (propagationConverged(stepLight, lightSoFar)) break;
+        return propagationConverged(stepLight, lightSoFar);
+    };
+    while (stats_.stepsRun < steps) {
+        stats_.activeBricks = dilate(lit, active);
+        // Bricks this step skips must not hold the light of two steps ago (their neighbours read it).
+        for (std::size_t b = 0; b < bricks.size(); ++b)
+            if (!active[b] && pongLit[b]) clearBrick(w.pong, bricks.brick(b));
+        std::fill(totals.begin(), totals.end(), 0.0f);
+        if (!pairs || steps - stats_.stepsRun < 2) {
+            runStep(op, {&w.ping, &w.pong, &w.acc, nullptr, nullptr}, {bricks.count, active.data(), totals.data()});
+            std::swap(w.ping, w.pong);
+            pongLit = lit;
+            if (record(sentLight(totals, lit))) break;
+            continue;
+        }
+        // The second step may run every brick beside one the first ran: more than the bricks
+        // its light reaches, which read zeros and write zeros, as a skipped brick holds.
+        stats_.activeBricks = dilate(active, secondActive);
+        std::fill(secondTotals.begin(), secondTotals.end(), 0.0f);
+        runStepPair(op, {&w.ping, &w.pong, nullptr, nullptr, nullptr}, {bricks.count, active.data(), totals.data()},
+                    {&w.pong, &w.ping, &w.acc, &w.pong, active.data()},
+                    {bricks.count, secondActive.data(), secondTotals.data()});
+        // ping holds the second step's output (the next input), pong the first's.
+        const double firstLight = sentLight(totals, firstLit);
+        const double secondLight = sentLight(secondTotals, lit);
+        pongLit = firstLit;
+        // A stop after the first step keeps the second's light, which the test bounds.
+        const bool converged = record(firstLight);
+        if (record(secondLight) || converged) break;
     }
     if (accumulated.r.size() != grid.cellCount()) accumulated.reset(grid);
     accumulated.grid = grid;

@@ -101,10 +101,20 @@ public:
                      LightVolume& out);
     const PropagationStats& stats() const { return stats_; }
 
+    // Steps run two at a time in one pass through memory where the planes such a pass keeps in
+    // flight fit in cache (up to about 90^3 cells): the sum is read and written once for both
+    // steps and the first step's output is read back from cache (20-30 % faster steps at 32^3
+    // and 64^3 on one thread; 0-10 % slower at 128^3, where they spill). The light is the same
+    // to the bit, except that a stop after the first step of a pair (propagation converged) keeps
+    // the second's light, which the convergence test bounds. Tests force either way.
+    enum class StepPairs { Auto, Never, Always };
+    void setStepPairs(StepPairs pairs) { pairs_ = pairs; }
+
 private:
     struct Work;  // the operator and the working volumes, kept between calls
     std::unique_ptr<Work> work_;
     PropagationStats stats_;
+    StepPairs pairs_ = StepPairs::Auto;
 };
 
 }  // namespace voxgi

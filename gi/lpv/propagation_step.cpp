@@ -160,10 +160,12 @@ VOXGI_INLINE void gatherAxis(const AxisConstants& K, const Source& src, const fl
     o.c<c2>() += K.ln[4] * t;
 }
 
-// One run of 8 cells, whose blocks (SoaLayout::block) start at in, out and acc: out =
-// transfer(in), acc += out; returns |out| per lane. sy, sz: floats to the next run along y, z.
-VOXGI_INLINE v8 runKernel(const PropagationOperator& op, const float* in, float* out, float* acc, std::size_t run,
-                         std::ptrdiff_t sy, std::ptrdiff_t sz, const v8* keep) {
+// One run of 8 cells, whose blocks (SoaLayout::block) start at in and out: out = transfer(in);
+// with acc, acc = (acc + carried) + out (carried: null, or the previous step's output of the same
+// run, added here as that step left the sum alone); returns |out| per lane. sy, sz: floats to the
+// next run along y, z.
+VOXGI_INLINE v8 runKernel(const PropagationOperator& op, const float* in, float* out, float* acc,
+                         const float* carried, std::size_t run, std::ptrdiff_t sy, std::ptrdiff_t sz, const v8* keep) {
     const AxisConstants* K = constants().axis;
     const float* const* pass = &op.pass[run * 6];
     const float* bounce = op.bounce[run];
@@ -200,19 +202,21 @@ VOXGI_INLINE v8 runKernel(const PropagationOperator& op, const float* in, float*
             const v8 v = *coefficients[k];
             const std::size_t at = colour + std::size_t(k * kLanes);
             store8(out + at, v);
-            store8(acc + at, load8(acc + at) + v);
+            if (acc) {
+                v8 sum = load8(acc + at);
+                if (carried) sum += load8(carried + at);
+                store8(acc + at, sum + v);
+            }
             total += v8(m8(v) & 0x7fffffff);  // |o_k|
         }
     }
     return total;
 }
 
-// The bricks of one column (every brick at (by, bz)) whose flag in `active` (count.x of them,
-// by brick x) is set, row after row: a row of the light is contiguous (SoaLayout), so each row
-// of the input, output and sum streams through once per step. sent[bx] gets the brick's sum of
-// output magnitudes.
-VOXGI_INLINE void columnKernel(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                               glm::ivec2 column, const std::uint8_t* active, float* sent) {
+// Rows [y0, y1) of plane z: the runs of the step's active bricks, row after row (a row of the
+// light is contiguous, SoaLayout, so each row of the input, output and sum streams through once).
+VOXGI_INLINE void rowsKernel(const PropagationOperator& op, const StepBuffers& b, const StepBricks& bricks, int z,
+                             int y0, int y1) {
     const SoaLayout& L = op.layout;
     const auto sy = std::ptrdiff_t(L.rowStride), sz = std::ptrdiff_t(L.rowStride * L.sy);
     // Lanes past the grid's end (resolutions that are not whole runs) must stay dark.
@@ -220,58 +224,51 @@ VOXGI_INLINE void columnKernel(const PropagationOperator& op, const SoaLight& in
     v8 keep;
     for (int l = 0; l < kLanes; ++l) keep[l] = lastRun * kLanes + l < L.n ? 1.0f : 0.0f;
     const bool partial = L.runsX * kLanes > L.n;
-    // Per run, per lane: the output magnitudes summed over the column's rows (floats, as a vector
-    // type's 32-byte alignment is more than the allocator promises).
-    std::vector<float> totals(std::size_t(L.runsX) * kLanes, 0.0f);
-    const int y1 = std::min(L.n, (column.x + 1) * kLanes), z1 = std::min(L.n, (column.y + 1) * kLanes);
-    for (int z = column.y * kLanes; z < z1; ++z)
-        for (int y = column.x * kLanes; y < y1; ++y)
-            for (int rx = 0; rx < L.runsX; ++rx) {
-                if (!active[rx]) continue;
-                const std::size_t i = L.block(rx, y, z);
-                float* total = &totals[std::size_t(rx) * kLanes];
-                store8(total, load8(total) + runKernel(op, in.data.data() + i, out.data.data() + i,
-                                                       acc.data.data() + i, L.run(rx, y, z), sy, sz,
-                                                       partial && rx == lastRun ? &keep : nullptr));
-            }
-    for (int rx = 0; rx < L.runsX; ++rx) {
-        if (!active[rx]) continue;
-        float sum = 0.0f;
-        for (int l = 0; l < kLanes; ++l) sum += totals[std::size_t(rx) * kLanes + std::size_t(l)];
-        sent[rx] = sum;
+    const float* in = b.in->data.data();
+    float* out = b.out->data.data();
+    float* acc = b.acc ? b.acc->data.data() : nullptr;
+    const float* carried = b.carried ? b.carried->data.data() : nullptr;
+    for (int y = y0; y < y1; ++y) {
+        const std::size_t brickRow = (std::size_t(z / kLanes) * std::size_t(bricks.count.y) + std::size_t(y / kLanes)) *
+                                     std::size_t(bricks.count.x);
+        for (int rx = 0; rx < L.runsX; ++rx) {
+            const std::size_t brick = brickRow + std::size_t(rx);
+            if (!bricks.active[brick]) continue;
+            const std::size_t i = L.block(rx, y, z);
+            float* total = bricks.laneTotals + brick * kLanes;
+            const float* carry = carried && b.carriedActive[brick] ? carried + i : nullptr;
+            store8(total, load8(total) + runKernel(op, in + i, out + i, acc ? acc + i : nullptr, carry, L.run(rx, y, z),
+                                                   sy, sz, partial && rx == lastRun ? &keep : nullptr));
+        }
     }
 }
 
 #if defined(__x86_64__)
 // AVX-512VL keeps 256-bit vectors but gives 32 registers and broadcast operands.
-__attribute__((target("avx512f,avx512vl,avx2,fma"))) void columnAvx512(const PropagationOperator& op, const SoaLight& in,
-                                                                      SoaLight& out, SoaLight& acc, glm::ivec2 column,
-                                                                      const std::uint8_t* active, float* sent) {
-    columnKernel(op, in, out, acc, column, active, sent);
+__attribute__((target("avx512f,avx512vl,avx2,fma"))) void rowsAvx512(const PropagationOperator& op, const StepBuffers& b,
+                                                                    const StepBricks& bricks, int z, int y0, int y1) {
+    rowsKernel(op, b, bricks, z, y0, y1);
 }
 
-__attribute__((target("avx2,fma"))) void columnAvx2(const PropagationOperator& op, const SoaLight& in, SoaLight& out,
-                                                    SoaLight& acc, glm::ivec2 column, const std::uint8_t* active,
-                                                    float* sent) {
-    columnKernel(op, in, out, acc, column, active, sent);
+__attribute__((target("avx2,fma"))) void rowsAvx2(const PropagationOperator& op, const StepBuffers& b,
+                                                  const StepBricks& bricks, int z, int y0, int y1) {
+    rowsKernel(op, b, bricks, z, y0, y1);
 }
 #endif
 
-void columnBaseline(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc, glm::ivec2 column,
-                    const std::uint8_t* active, float* sent) {
-    columnKernel(op, in, out, acc, column, active, sent);
+void rowsBaseline(const PropagationOperator& op, const StepBuffers& b, const StepBricks& bricks, int z, int y0, int y1) {
+    rowsKernel(op, b, bricks, z, y0, y1);
 }
 
-using ColumnFn = void (*)(const PropagationOperator&, const SoaLight&, SoaLight&, SoaLight&, glm::ivec2,
-                          const std::uint8_t*, float*);
+using RowsFn = void (*)(const PropagationOperator&, const StepBuffers&, const StepBricks&, int, int, int);
 
-ColumnFn columnFn(SimdLevel level) {
+RowsFn rowsFn(SimdLevel level) {
     switch (level) {
 #if defined(__x86_64__)
-        case SimdLevel::Avx512: return columnAvx512;
-        case SimdLevel::Avx2: return columnAvx2;
+        case SimdLevel::Avx512: return rowsAvx512;
+        case SimdLevel::Avx2: return rowsAvx2;
 #endif
-        default: return columnBaseline;
+        default: return rowsBaseline;
     }
 }
 
@@ -307,18 +304,18 @@ SimdLevel bestSimdLevel() {
     return SimdLevel::Baseline;
 }
 
-void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                     glm::ivec2 column, const std::uint8_t* active, float* sent) {
-    static const ColumnFn fn = columnFn(bestSimdLevel());
+void propagateRows(const PropagationOperator& op, const StepBuffers& buffers, const StepBricks& bricks, int z, int y0,
+                   int y1) {
+    static const RowsFn fn = rowsFn(bestSimdLevel());
     const SubnormalsFlushed flushed;
-    fn(op, in, out, acc, column, active, sent);
+    fn(op, buffers, bricks, z, y0, y1);
 }
 
-void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                     glm::ivec2 column, const std::uint8_t* active, float* sent, SimdLevel level) {
+void propagateRows(const PropagationOperator& op, const StepBuffers& buffers, const StepBricks& bricks, int z, int y0,
+                   int y1, SimdLevel level) {
     if (!simdLevelSupported(level)) throw std::logic_error("LPV propagation: SIMD level not supported by this CPU");
     const SubnormalsFlushed flushed;
-    columnFn(level)(op, in, out, acc, column, active, sent);
+    rowsFn(level)(op, buffers, bricks, z, y0, y1);
 }
 
 }  // namespace voxgi::lpv_detail

@@ -97,18 +97,35 @@ private:
     std::vector<std::vector<float>> passRows_, bounceRows_;
 };
 
-// One step for the bricks of one column: the bricks (bx, column.x, column.y), 8^3 cells where
-// the resolution allows, whose active[bx] is set (runsX flags): out = transfer(in), acc += out,
-// and sent[bx] = the sum of the magnitudes of the brick's output coefficients (0: it sent out
-// no light, as light below FLT_MIN is flushed to zero). Runs the widest instruction set the CPU
-// has; the overload with a level is for tests that compare them.
+// What one step reads and writes: out = transfer(in); with acc, acc = (acc + carried) + out,
+// where carried (optional) is the previous step's output, added by this step for the bricks
+// whose carriedActive flag is set (two steps fused in one pass through memory leave the sum to
+// the second, in the order single steps add).
+struct StepBuffers {
+    const SoaLight* in = nullptr;
+    SoaLight* out = nullptr;
+    SoaLight* acc = nullptr;
+    const SoaLight* carried = nullptr;
+    const std::uint8_t* carriedActive = nullptr;
+};
+// The 8^3 bricks a step runs (count.x = runsX; x fastest), and per brick kLanes running sums of
+// the magnitudes of its output coefficients, summed over its rows in z then y order.
+struct StepBricks {
+    glm::ivec3 count{0};
+    const std::uint8_t* active = nullptr;
+    float* laneTotals = nullptr;
+};
+
+// One step for rows [y0, y1) of plane z, the runs of active bricks only. Runs the widest
+// instruction set the CPU has; the overload with a level is for tests that compare them. Light
+// below FLT_MIN is flushed to zero (a brick whose sums stay 0 sent out no light).
 enum class SimdLevel { Baseline, Avx2, Avx512 };
 bool simdLevelSupported(SimdLevel level);
 SimdLevel bestSimdLevel();
-void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                     glm::ivec2 column, const std::uint8_t* active, float* sent);
-void propagateColumn(const PropagationOperator& op, const SoaLight& in, SoaLight& out, SoaLight& acc,
-                     glm::ivec2 column, const std::uint8_t* active, float* sent, SimdLevel level);
+void propagateRows(const PropagationOperator& op, const StepBuffers& buffers, const StepBricks& bricks, int z, int y0,
+                   int y1);
+void propagateRows(const PropagationOperator& op, const StepBuffers& buffers, const StepBricks& bricks, int z, int y0,
+                   int y1, SimdLevel level);
 
 }  // namespace lpv_detail
 
