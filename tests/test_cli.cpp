@@ -167,4 +167,9 @@ TEST(Cli, BenchPropagationAndLimitsPrintTheirRatiosAndRejectBadLists) {
         EXPECT_EQ(lineCount(r.output), 1) << r.output;
         EXPECT_NE(r.output.find("--"), std::string::npos) << r.output;
     }
+    // A scene that does not load stops the run before anything is measured.
+    r = runVoxgi("bench limits --scenes cornell-box,no-such-scene.json --threads 1");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_EQ(lineCount(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find("no-such-scene.json"), std::string::npos) << r.output;
 }

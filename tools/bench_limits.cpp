@@ -4,13 +4,12 @@
 // for the path tracer (`voxgi bench pathtrace`).
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
+#include <optional>
+#include <utility>
 
 #include <tbb/info.h>
 
 #include "gi/pathtrace/path_tracer.h"
-#include "scenes/errors.h"
-#include "scenes/scene_loader.h"
 #include "tools/args.h"
 #include "tools/bench_registry.h"
 #include "tools/embree_share.h"
@@ -34,6 +33,10 @@ int benchLimits(const std::vector<std::string>& argv) {
     const int size = args.integer("--size", 128, 8, 4096);
     const int spp = args.integer("--spp", 4, 1, 1 << 16);
     const std::vector<int> threads = args.integers("--threads", "1,0", 0, 1024);
+    // Every scene is read before anything is measured, so a bad one stops the run at once.
+    std::vector<std::pair<std::string, Scene>> loaded;
+    for (const std::string& name : scenes)
+        if (std::optional<Scene> scene = loadBenchScene(name)) loaded.emplace_back(name, std::move(*scene));
 
     std::printf("memory bandwidth (STREAM triad, 3 x 128 MB of doubles, best of 5):\n");
     for (int t : threads) {
@@ -43,16 +46,7 @@ int benchLimits(const std::vector<std::string>& argv) {
     }
     std::printf("Embree alone on the path tracer's rays (%dx%d, %d spp, %d threads; M rays per CPU s):\n", size,
                 size, spp, tbb::info::default_concurrency());
-    for (const std::string& name : scenes) {
-        Scene scene;
-        try {
-            scene = loadSceneArgument(name);
-        } catch (const InputError& e) {
-            // Only a built-in scene whose meshes live beside the checkout may be missing.
-            if (name == "cornell-box" || !std::filesystem::exists(builtinScenePath(name))) throw;
-            std::printf("  %s: skipped (%s)\n", name.c_str(), e.what());
-            continue;
-        }
+    for (auto& [name, scene] : loaded) {
         scene.camera.width = scene.camera.height = size;
         PathTracer tracer(scene, PathTracerOptions{});
         tracer.render(1);  // warm caches and page in the scene

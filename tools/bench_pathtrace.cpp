@@ -4,7 +4,6 @@
 // threads), so a busy machine changes the wall clock but not the figures.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <sstream>
 
 #include <tbb/info.h>
@@ -12,8 +11,6 @@
 #include "gi/metrics/image_metrics.h"
 #include "gi/pathtrace/path_tracer.h"
 #include "scenes/atomic_file.h"
-#include "scenes/errors.h"
-#include "scenes/scene_loader.h"
 #include "tools/args.h"
 #include "tools/bench_registry.h"
 #include "tools/embree_share.h"
@@ -87,16 +84,9 @@ int runBench(const std::vector<std::string>& argv) {
     std::ostringstream csv;
     csv << "scene,size,budget_cpu_s,cpu_s,spp,rays,mrays_per_cpu_s,rmse,relmse,flip,reference_spp,light_paths\n";
     for (const std::string& name : scenes) {
-        Scene scene;
-        try {
-            scene = loadSceneArgument(name);
-        } catch (const InputError& e) {
-            // Only a built-in scene whose meshes live beside the checkout may be missing.
-            if (name == "cornell-box" || !std::filesystem::exists(builtinScenePath(name))) throw;
-            std::printf("%s: skipped (%s)\n", name.c_str(), e.what());
-            continue;
-        }
-        benchScene(name, std::move(scene), size, referenceSpp, budget, lightPaths, cache, csv);
+        std::optional<Scene> scene = loadBenchScene(name);
+        if (!scene) continue;
+        benchScene(name, std::move(*scene), size, referenceSpp, budget, lightPaths, cache, csv);
     }
     if (auto c = args.value("--csv")) {
         writeTextAtomically(*c, csv.str());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <initializer_list>
+#include <optional>
 #include <string>
 
 #include "scenes/scene.h"
@@ -12,6 +13,10 @@ namespace voxgi::cli {
 
 // Loads SCENE (path or built-in name); InputError names the file and field on failure.
 Scene loadSceneArgument(const std::string& argument);
+// A scene a benchmark runs over: none (and a "NAME: skipped (why)" line on stdout) when it is a
+// built-in scene other than the Cornell box whose meshes are absent beside the checkout; any
+// other failure throws, as loadSceneArgument does.
+std::optional<Scene> loadBenchScene(const std::string& name);
 // Applies --width/--height, --backend cpu|gl (the backend setting of every method that has one)
 // and --set section.key=value to a loaded scene.
 void applySceneOverrides(const Args& args, Scene& scene);
