@@ -286,3 +286,46 @@ TEST_F(Hybrid, GlossyLobeUnderAQuadLightMatchesTheRasterizedHighlight) {
     EXPECT_GT(rasterized, 0.1f);
     EXPECT_NEAR(traced, rasterized, 0.01f * rasterized);
 }
+
+// hybrid.overlap traces the next frame's rays while this frame is lit: the first frame traces its
+// own (the image without overlap); later frames show the rays traced from the frame before, the
+// same light to a still camera, and one frame late to a moving one. A mirror under a red lamp
+// (x < 0) and a blue one (x > 0), seen from above x = -2, then from above x = +2.
+TEST_F(Hybrid, OverlappedTracingShowsTheRaysOfTheFrameBefore) {
+    Scene s = lookingDown(R"("mirror": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0},
+                             "red": {"albedo": [0, 0, 0], "emission": [1, 0, 0]},
+                             "blue": {"albedo": [0, 0, 0], "emission": [0, 0, 1]})",
+                          R"({"type": "quad", "name": "mirror", "material": "mirror",
+                              "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]},
+                             {"type": "quad", "name": "red", "material": "red",
+                              "corners": [[-50, 3, -50], [0, 3, -50], [0, 3, 50], [-50, 3, 50]]},
+                             {"type": "quad", "name": "blue", "material": "blue",
+                              "corners": [[0, 3, -50], [50, 3, -50], [50, 3, 50], [0, 3, 50]]})",
+                          1);
+    auto lookAt = [&s](float x) {
+        s.camera.eye = {x, 1.0f, 0.0001f};
+        s.camera.target = {x, 0.0f, 0.0f};
+    };
+    for (bool overlap : {false, true}) {
+        s.gi.set("hybrid.overlap", overlap ? "true" : "false");
+        lookAt(-2.0f);
+        FrameRenderer r(s, FrameOptions{}, planFrame(s, "hybrid", 1));
+        r.renderFrame();
+        const glm::vec3 first = centre(r.resolve(), 4);
+        EXPECT_NEAR(first.r, 1.0f, 0.01f) << overlap;  // traced for this frame either way
+        EXPECT_NEAR(first.b, 0.0f, 1e-6f) << overlap;
+        lookAt(2.0f);
+        r.resetAccumulation();
+        r.renderFrame();
+        const glm::vec3 moved = centre(r.resolve(), 4);
+        // Serial: the blue lamp at once. Overlapped: the red lamp's rays, traced from the last
+        // frame's G-buffer, on this frame's pixels.
+        EXPECT_NEAR(moved.b, overlap ? 0.0f : 1.0f, 0.01f) << overlap;
+        EXPECT_NEAR(moved.r, overlap ? 1.0f : 0.0f, 0.01f) << overlap;
+        r.resetAccumulation();
+        r.renderFrame();
+        const glm::vec3 still = centre(r.resolve(), 4);
+        EXPECT_NEAR(still.b, 1.0f, 0.01f) << overlap;
+        EXPECT_NEAR(still.r, 0.0f, 1e-6f) << overlap;
+    }
+}

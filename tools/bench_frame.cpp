@@ -72,6 +72,8 @@ Row benchOne(const std::string& name, const Scene& scene, int size, const Method
     for (const auto& [stage, t] : run.stages)
         if (t.samples > 0) row.values[stage + "_ms"] = std::fmax(t.gpuMs, t.cpuMs);  // fmax skips a NaN GPU time
     for (const auto& [stat, value] : run.stats) row.values[stat] = value;
+    // The whole frame, wall clock (stages that overlap, such as hybrid.overlap's tracing, count once).
+    row.values["frame_ms"] = run.frameMs;
     return row;
 }
 

@@ -20,6 +20,8 @@ const SettingsTable<HybridDesc>& hybridSettings() {
         t.integer("glossy_rays", &D::glossyRays, 1, kMaxGlossyRays, "rays per glossy pixel and frame");
         t.integer("denoise_radius", &D::denoiseRadius, 0, 8,
                   "half width in pixels of the edge-aware filter of glossy reflections (0: off)");
+        t.flag("overlap", &D::overlap,
+               "trace the next frame's rays on the CPU while the GPU lights this one (reflections one frame late)");
         t.flag("replay_bare", &D::replayBare,
                "benchmarks: trace each frame's rays again through bare Embree and report both rates (doubles the tracing)");
         return t;

@@ -67,7 +67,9 @@ MethodInfo hybridMethod() {
     // Eval's presets are the default diffuse method's (clpv low, medium, high, timed without
     // reuse), so each row compares with the clpv row of the same name.
     m.presets = clpvMethod().presets;
-    m.benchVariants = {{"default", {}}, {"embree-share", {{"hybrid.replay_bare", "true"}}}};
+    m.benchVariants = {{"default", {}},
+                       {"overlap", {{"hybrid.overlap", "true"}}},
+                       {"embree-share", {{"hybrid.replay_bare", "true"}}}};
     return m;
 }
 

@@ -1,6 +1,9 @@
 #include "gi/hybrid/hybrid_technique.h"
 
 #include <chrono>
+#include <memory>
+
+#include <tbb/task_group.h>
 
 #include "gi/gbuffer_upload.h"
 #include "gi/hybrid/mirror_paths.h"
@@ -33,80 +36,49 @@ public:
     std::string name() const override { return "hybrid"; }
     float tracedRoughness() const override { return desc_.glossyRoughness; }
 
+    ~HybridTechnique() override {
+        // A trace still running reads this technique's tracer and the job's buffers.
+        if (pending_) pending_->tasks.wait();
+    }
+
     void update(const FrameInput& input, const GBufferView& g) override {
         if (diffuse_) diffuse_->update(input, g);
         active_ = 0;
         if (!input.plan.runs("hybrid.trace")) return;
         const auto t0 = std::chrono::steady_clock::now();
-        const std::vector<float> position = gl::readTexture(g.position, g.width, g.height, 4);
-        const std::vector<float> normal = gl::readTexture(g.normal, g.width, g.height, 4);
-        const std::vector<float> albedo = gl::readTexture(g.albedo, g.width, g.height, 4);
-        const std::vector<float> emission = gl::readTexture(g.emission, g.width, g.height, 4);
-        MirrorPathInput in;
-        in.width = g.width;
-        in.height = g.height;
-        in.position = position.data();
-        in.normal = normal.data();
-        in.albedo = albedo.data();
-        in.emission = emission.data();
-        in.eye = g.eye;
-        in.depth = desc_.depth;
-        in.frame = std::uint32_t(input.frameIndex);
-        in.glossyRoughness = desc_.glossyRoughness;
-        in.glossyRays = desc_.glossyRays;
-        if (desc_.replayBare) tracer_.startLog();
-        const auto t1 = std::chrono::steady_clock::now();
-        const MirrorPaths paths = traceMirrorPaths(tracer_, in);
-        const auto t2 = std::chrono::steady_clock::now();
-        input.timers.addCpu("hybrid.trace", std::chrono::duration<double, std::milli>(t2 - t0).count());
-        if (desc_.replayBare) {
-            const std::vector<LoggedRay> logged = tracer_.stopLog();
-            const auto t3 = std::chrono::steady_clock::now();
-            tracer_.replayBare(logged);
-            const double bare = std::chrono::duration<double>(std::chrono::steady_clock::now() - t3).count();
-            const double traced = std::chrono::duration<double>(t2 - t1).count();
-            raysPerSecond_ = traced > 0.0 ? double(paths.rays) / traced : 0.0;
-            bareRaysPerSecond_ = bare > 0.0 ? double(logged.size()) / bare : 0.0;
+        if (pending_ && (pending_->in.width != g.width || pending_->in.height != g.height)) {
+            // Traced for another image size: of no use to this frame.
+            pending_->tasks.wait();
+            pending_.reset();
         }
-        pixels_ = paths.pixels;
-        glossyPixels_ = paths.glossyPixels;
-        rays_ = paths.rays;
-
-        input.timers.begin("hybrid.upload");
-        if (g.width != width_ || g.height != height_) {
-            layers_.clear();
-            width_ = g.width;
-            height_ = g.height;
-            emittedDirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
-            emittedIndirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
-            for (int k = 0; k < 2; ++k) {
-                reflection_[k] = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
-                reflectionFramebuffer_[k] = gl::createFramebuffer({reflection_[k].id()}, 0, "hybrid reflection target");
-            }
+        if (!desc_.overlap || !pending_) {
+            // Every frame's own rays (and the first frame's when traced ahead).
+            std::unique_ptr<TraceJob> job = readBack(g, std::uint32_t(input.frameIndex));
+            if (desc_.replayBare && !desc_.overlap) tracer_.startLog();
+            const auto t1 = std::chrono::steady_clock::now();
+            job->trace(tracer_);
+            const auto t2 = std::chrono::steady_clock::now();
+            input.timers.addCpu("hybrid.trace", std::chrono::duration<double, std::milli>(t2 - t0).count());
+            if (desc_.replayBare && !desc_.overlap) replayBare(job->paths, std::chrono::duration<double>(t2 - t1).count());
+            uploadPaths(input, job->paths, g);
+        } else {
+            // The rays traced while the GPU lit the last frame; the wait is what tracing still
+            // costs this frame (0 when the GPU took longer).
+            pending_->tasks.wait();
+            input.timers.addCpu("hybrid.trace", millisecondsSince(t0));
+            input.timers.addCpu("hybrid.trace_overlapped", pending_->traceMs);
+            uploadPaths(input, pending_->paths, g);
+            pending_.reset();
         }
-        upload(emittedDirect_.id(), width_, height_, paths.emittedDirect.data());
-        upload(emittedIndirect_.id(), width_, height_, paths.emittedIndirect.data());
-        for (std::size_t l = 0; l < paths.layers.size(); ++l) {
-            const SecondaryLayer& layer = paths.layers[l];
-            if (l == layers_.size()) {
-                LayerTextures t;
-                t.surfaces = uploadGBuffer(layer.position, layer.normal, layer.albedo, layer.emission, width_, height_, g.eye);
-                t.viewOrigin = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
-                t.weight = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
-                layers_.push_back(std::move(t));
-            } else {
-                layers_[l].surfaces.refill(layer.position, layer.normal, layer.albedo, layer.emission);
-            }
-            upload(layers_[l].viewOrigin.id(), width_, height_, layer.viewOrigin.data());
-            upload(layers_[l].weight.id(), width_, height_, layer.weight.data());
-        }
-        active_ = paths.layers.size();
-        bounds_.clear();
-        for (const SecondaryLayer& layer : paths.layers) bounds_.push_back(layer.bounds);
-        eye_ = g.eye;
-        viewProjection_ = g.viewProjection;
-        primary_ = g;
-        input.timers.end();
+        if (!desc_.overlap) return;
+        // The next frame's rays, from this G-buffer, while the GPU lights this frame.
+        pending_ = readBack(g, std::uint32_t(input.frameIndex + 1));
+        TraceJob* job = pending_.get();
+        job->tasks.run([this, job] {
+            const auto start = std::chrono::steady_clock::now();
+            job->trace(tracer_);
+            job->traceMs = millisecondsSince(start);
+        });
     }
 
     void applyIndirect(const FrameInput& input, const GBufferView& g) override {
@@ -200,6 +172,56 @@ public:
     }
 
 private:
+    // One frame's rays: the G-buffer read back (owned: the trace may outlive the frame) and what
+    // tracing it found.
+    struct TraceJob {
+        std::vector<float> position, normal, albedo, emission;
+        MirrorPathInput in;
+        MirrorPaths paths;
+        double traceMs = 0.0;
+        tbb::task_group tasks;
+        void trace(const RayTracer& tracer) {
+            in.position = position.data();
+            in.normal = normal.data();
+            in.albedo = albedo.data();
+            in.emission = emission.data();
+            paths = traceMirrorPaths(tracer, in);
+        }
+    };
+
+    static double millisecondsSince(std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    }
+
+    std::unique_ptr<TraceJob> readBack(const GBufferView& g, std::uint32_t frame) const {
+        auto job = std::make_unique<TraceJob>();
+        job->position = gl::readTexture(g.position, g.width, g.height, 4);
+        job->normal = gl::readTexture(g.normal, g.width, g.height, 4);
+        job->albedo = gl::readTexture(g.albedo, g.width, g.height, 4);
+        job->emission = gl::readTexture(g.emission, g.width, g.height, 4);
+        MirrorPathInput& in = job->in;
+        in.width = g.width;
+        in.height = g.height;
+        in.eye = g.eye;
+        in.depth = desc_.depth;
+        in.frame = frame;
+        in.glossyRoughness = desc_.glossyRoughness;
+        in.glossyRays = desc_.glossyRays;
+        return job;
+    }
+
+    // The logged rays of the last trace again through Embree alone, for the two rates.
+    void replayBare(const MirrorPaths& paths, double tracedSeconds) {
+        const std::vector<LoggedRay> logged = tracer_.stopLog();
+        const auto t0 = std::chrono::steady_clock::now();
+        tracer_.replayBare(logged);
+        const double bare = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        raysPerSecond_ = tracedSeconds > 0.0 ? double(paths.rays) / tracedSeconds : 0.0;
+        bareRaysPerSecond_ = bare > 0.0 ? double(logged.size()) / bare : 0.0;
+    }
+
+    void uploadPaths(const FrameInput& input, const MirrorPaths& paths, const GBufferView& g);
+
     HybridDesc desc_;
     std::unique_ptr<GiTechnique> diffuse_;
     RayTracer tracer_;
@@ -216,9 +238,51 @@ private:
     std::size_t pixels_ = 0, glossyPixels_ = 0;
     std::uint64_t rays_ = 0;
     double raysPerSecond_ = 0.0, bareRaysPerSecond_ = 0.0;
+    std::unique_ptr<TraceJob> pending_;  // hybrid.overlap: the next frame's rays, being traced
 };
 
 }  // namespace
+
+void HybridTechnique::uploadPaths(const FrameInput& input, const MirrorPaths& paths, const GBufferView& g) {
+    pixels_ = paths.pixels;
+    glossyPixels_ = paths.glossyPixels;
+    rays_ = paths.rays;
+    input.timers.begin("hybrid.upload");
+    if (g.width != width_ || g.height != height_) {
+        layers_.clear();
+        width_ = g.width;
+        height_ = g.height;
+        emittedDirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+        emittedIndirect_ = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+        for (int k = 0; k < 2; ++k) {
+            reflection_[k] = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+            reflectionFramebuffer_[k] = gl::createFramebuffer({reflection_[k].id()}, 0, "hybrid reflection target");
+        }
+    }
+    upload(emittedDirect_.id(), width_, height_, paths.emittedDirect.data());
+    upload(emittedIndirect_.id(), width_, height_, paths.emittedIndirect.data());
+    for (std::size_t l = 0; l < paths.layers.size(); ++l) {
+        const SecondaryLayer& layer = paths.layers[l];
+        if (l == layers_.size()) {
+            LayerTextures t;
+            t.surfaces = uploadGBuffer(layer.position, layer.normal, layer.albedo, layer.emission, width_, height_, g.eye);
+            t.viewOrigin = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+            t.weight = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+            layers_.push_back(std::move(t));
+        } else {
+            layers_[l].surfaces.refill(layer.position, layer.normal, layer.albedo, layer.emission);
+        }
+        upload(layers_[l].viewOrigin.id(), width_, height_, layer.viewOrigin.data());
+        upload(layers_[l].weight.id(), width_, height_, layer.weight.data());
+    }
+    active_ = paths.layers.size();
+    bounds_.clear();
+    for (const SecondaryLayer& layer : paths.layers) bounds_.push_back(layer.bounds);
+    eye_ = g.eye;
+    viewProjection_ = g.viewProjection;
+    primary_ = g;
+    input.timers.end();
+}
 
 std::unique_ptr<GiTechnique> createHybridTechnique(const Scene& scene, const HybridDesc& desc,
                                                    std::unique_ptr<GiTechnique> diffuse) {
