@@ -52,10 +52,12 @@ fi
 # Seed 003's protocol (docs/eval.md "many views"): the Cornell box, Sibenik and Sponza (when
 # their meshes are present) over 100 camera views each, drawn in the free space their own camera
 # stands in, each view against its own reference (64^2, 256 spp): direct light, the ambient
-# (fitted, and held out) and ISR (views/). Then the Cornell box's and Sibenik's views with LPV
-# and CLPV at their medium presets (views-methods/, views-methods-sibenik/, three frames a
-# view; Sponza is left out for time on 2 cores, about 20 s a view, and DDGI too), and the Cornell
-# box's with CLPV and ISR with CLPV as its far field (views-far-field/).
+# (fitted, and held out) and ISR (views/). Then the Cornell box's views with LPV, CLPV and DDGI
+# at their medium presets (views-methods/, three frames a view; DDGI settles at the first view
+# and keeps its field, about 20 min in all) and Sibenik's with LPV and CLPV
+# (views-methods-sibenik/; Sponza is left out for time on 2 cores, about 20 s a view, and DDGI
+# on the big scenes too), and the Cornell box's with CLPV and ISR with CLPV as its far field
+# (views-far-field/).
 views_scenes=(cornell-box)
 for scene in "${big[@]}"; do
   case "$scene" in *sibenik.json | *sponza.json) views_scenes+=("$scene") ;; esac
@@ -63,7 +65,7 @@ done
 views_methods=(--methods "${VOXGI_EVAL_METHODS:-direct,ambient,isr}")
 "$voxgi" eval "${views_scenes[@]}" "${views_methods[@]}" --views 100 --presets medium --width 64 --height 64 \
   --spp 256 --frames 6 --warmup 2 --cache "$cache" -o "$out/views"
-"$voxgi" eval cornell-box --methods "${VOXGI_EVAL_METHODS:-direct,ambient,lpv,clpv}" --views 100 \
+"$voxgi" eval cornell-box --methods "${VOXGI_EVAL_METHODS:-direct,ambient,lpv,clpv,ddgi}" --views 100 \
   --presets medium --width 64 --height 64 --spp 256 --frames 3 --warmup 1 --cache "$cache" -o "$out/views-methods"
 for scene in "${big[@]}"; do
   case "$scene" in
@@ -93,7 +95,7 @@ elapsed=$(( $(date +%s) - start ))
   fi
   echo "- [Mirrors and glass: the spheres' Cornell box with the hybrid method](hybrid/report.md)"
   echo "- [Cornell box, Sibenik and Sponza over 100 views each (direct light, ambient, ISR): spread, share of views beating direct light and the fitted ambient, worst views](views/views.md)"
-  echo "- [Cornell box over the same 100 views: LPV and CLPV (medium)](views-methods/views.md)"
+  echo "- [Cornell box over the same 100 views: LPV, CLPV and DDGI (medium)](views-methods/views.md)"
   [ -d "$out/views-methods-sibenik" ] && echo "- [Sibenik over the same 100 views: LPV and CLPV (medium)](views-methods-sibenik/views.md)"
   echo "- [Cornell box over 100 views: CLPV, and ISR with CLPV as its far field](views-far-field/views.md)"
   echo "- [Stability suite](stability/stability.md)"

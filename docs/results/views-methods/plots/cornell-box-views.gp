@@ -9,7 +9,8 @@ plot 'plots/cornell-box-views-sorted.dat' index 0 using 1:2 with linespoints tit
     'plots/cornell-box-views-sorted.dat' index 1 using 1:2 with linespoints title 'ambient', \
     'plots/cornell-box-views-sorted.dat' index 2 using 1:2 with linespoints title 'lpv-medium', \
     'plots/cornell-box-views-sorted.dat' index 3 using 1:2 with linespoints title 'clpv-medium', \
-    'plots/cornell-box-views-sorted.dat' index 4 using 1:2 with linespoints title 'ambient-held-out'
+    'plots/cornell-box-views-sorted.dat' index 4 using 1:2 with linespoints title 'ddgi-medium', \
+    'plots/cornell-box-views-sorted.dat' index 5 using 1:2 with linespoints title 'ambient-held-out'
 set output 'plots/cornell-box-views-error-vs-time.png'
 set logscale x
 set title 'cornell-box: mean HDR-FLIP over views against frame time'
