@@ -23,7 +23,8 @@ const SettingsTable<HybridDesc>& hybridSettings() {
         t.flag("overlap", &D::overlap,
                "trace the next frame's rays on the CPU while the GPU lights this one (reflections one frame late)");
         t.flag("replay_bare", &D::replayBare,
-               "benchmarks: trace each frame's rays again through bare Embree and report both rates (doubles the tracing)");
+               "benchmarks: trace each frame's rays again through bare Embree and report both rates (doubles the tracing; "
+               "not with overlap)");
         return t;
     }();
     return table;

@@ -35,7 +35,7 @@ struct HybridDesc {
     bool overlap = false;
     // Benchmarks: each frame's rays are traced again through Embree alone (rtcIntersect1) and
     // both rates reported (stats hybrid.rays_per_s, hybrid.bare_rays_per_s), which doubles the
-    // tracing time.
+    // tracing time. Serial frames only (not with overlap).
     bool replayBare = false;
 };
 
