@@ -54,9 +54,9 @@ fi
 # stands in, each view against its own reference (64^2, 256 spp): direct light, the ambient
 # (fitted, and held out) and ISR (views/). Then the Cornell box's views with LPV, CLPV and DDGI
 # at their medium presets (views-methods/, three frames a view; DDGI settles at the first view
-# and keeps its field, about 20 min in all) and Sibenik's with LPV and CLPV
-# (views-methods-sibenik/; Sponza is left out for time on 2 cores, about 20 s a view, and DDGI
-# on the big scenes too), and the Cornell box's with CLPV and ISR with CLPV as its far field
+# and keeps its field, about 20 min in all), Sibenik's with the same methods
+# (views-methods-sibenik/, about 30 min; Sponza is left out for time on 2 cores, about 20 s a
+# view and method), and the Cornell box's with CLPV and ISR with CLPV as its far field
 # (views-far-field/).
 views_scenes=(cornell-box)
 for scene in "${big[@]}"; do
@@ -70,7 +70,7 @@ views_methods=(--methods "${VOXGI_EVAL_METHODS:-direct,ambient,isr}")
 for scene in "${big[@]}"; do
   case "$scene" in
     *sibenik.json)
-      "$voxgi" eval "$scene" --methods "${VOXGI_EVAL_METHODS:-direct,ambient,lpv,clpv}" --views 100 --presets medium \
+      "$voxgi" eval "$scene" --methods "${VOXGI_EVAL_METHODS:-direct,ambient,lpv,clpv,ddgi}" --views 100 --presets medium \
         --width 64 --height 64 --spp 256 --frames 3 --warmup 1 --cache "$cache" -o "$out/views-methods-sibenik" ;;
   esac
 done
@@ -96,7 +96,7 @@ elapsed=$(( $(date +%s) - start ))
   echo "- [Mirrors and glass: the spheres' Cornell box with the hybrid method](hybrid/report.md)"
   echo "- [Cornell box, Sibenik and Sponza over 100 views each (direct light, ambient, ISR): spread, share of views beating direct light and the fitted ambient, worst views](views/views.md)"
   echo "- [Cornell box over the same 100 views: LPV, CLPV and DDGI (medium)](views-methods/views.md)"
-  [ -d "$out/views-methods-sibenik" ] && echo "- [Sibenik over the same 100 views: LPV and CLPV (medium)](views-methods-sibenik/views.md)"
+  [ -d "$out/views-methods-sibenik" ] && echo "- [Sibenik over the same 100 views: LPV, CLPV and DDGI (medium)](views-methods-sibenik/views.md)"
   echo "- [Cornell box over 100 views: CLPV, and ISR with CLPV as its far field](views-far-field/views.md)"
   echo "- [Stability suite](stability/stability.md)"
 } > "$out/README.md"

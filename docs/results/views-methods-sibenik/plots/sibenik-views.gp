@@ -9,7 +9,8 @@ plot 'plots/sibenik-views-sorted.dat' index 0 using 1:2 with linespoints title '
     'plots/sibenik-views-sorted.dat' index 1 using 1:2 with linespoints title 'ambient', \
     'plots/sibenik-views-sorted.dat' index 2 using 1:2 with linespoints title 'lpv-medium', \
     'plots/sibenik-views-sorted.dat' index 3 using 1:2 with linespoints title 'clpv-medium', \
-    'plots/sibenik-views-sorted.dat' index 4 using 1:2 with linespoints title 'ambient-held-out'
+    'plots/sibenik-views-sorted.dat' index 4 using 1:2 with linespoints title 'ddgi-medium', \
+    'plots/sibenik-views-sorted.dat' index 5 using 1:2 with linespoints title 'ambient-held-out'
 set output 'plots/sibenik-views-error-vs-time.png'
 set logscale x
 set title 'sibenik: mean HDR-FLIP over views against frame time'
