@@ -50,6 +50,12 @@ Scene lookingDown(const std::string& materials, const std::string& meshes, int d
     return s;
 }
 
+// A 10 x 10 m floor at y = 0 of `material` (facing up), as a mesh of lookingDown.
+std::string floorOf(const std::string& material) {
+    return R"({"type": "quad", "name": "floor", "material": ")" + material +
+           R"(", "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]})";
+}
+
 // A 2 x 2 m quad light of radiance (3, 2, 1) 3 m above the origin, emitting downwards, with its
 // emitting geometry.
 void addQuadLightAbove(Scene& s) {
@@ -88,8 +94,7 @@ TEST(MirrorPaths, OnlySmoothCoatsMetalsAndGlassAreTraced) {
 TEST_F(Hybrid, PerfectMirrorShowsTheEmitterAbove) {
     const Scene s = lookingDown(R"("mirror": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0},
                                    "lamp": {"albedo": [0, 0, 0], "emission": [2, 1, 0.5]})",
-                                R"({"type": "quad", "name": "mirror", "material": "mirror",
-                                    "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]},
+                                floorOf("mirror") + R"(,
                                    {"type": "quad", "name": "lamp", "material": "lamp",
                                     "corners": [[-50, 3, -50], [50, 3, -50], [50, 3, 50], [-50, 3, 50]]})",
                                 3);
@@ -109,8 +114,7 @@ TEST_F(Hybrid, PerfectMirrorShowsTheEmitterAbove) {
 // quad light of radiance (3, 2, 1) shows (3, 2, 1) in the middle, from the first frame on.
 TEST_F(Hybrid, MirrorShowsAQuadLightInTheRasterizedFrame) {
     Scene s = lookingDown(R"("mirror": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0})",
-                          R"({"type": "quad", "name": "mirror", "material": "mirror",
-                              "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]})",
+                          floorOf("mirror"),
                           3);
     addQuadLightAbove(s);
     for (int frames : {1, 4}) {
@@ -216,8 +220,7 @@ Scene glossyFloor(float roughness, int denoiseRadius, float lampHalf, const std:
     const std::string h = std::to_string(lampHalf);
     Scene s = lookingDown(R"("metal": {"albedo": [1, 1, 1], "metallic": 1, "roughness": )" + std::to_string(roughness) + R"(},
                              "lamp": {"albedo": [0, 0, 0], "emission": )" + emission + "}",
-                          R"({"type": "quad", "name": "floor", "material": "metal",
-                              "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]},
+                          floorOf("metal") + R"(,
                              {"type": "quad", "name": "lamp", "material": "lamp",
                               "corners": [[-)" + h + ", 3, -" + h + "], [" + h + ", 3, -" + h + "], [" + h + ", 3, " + h +
                               "], [-" + h + ", 3, " + h + "]]}",
@@ -277,8 +280,7 @@ TEST_F(Hybrid, FilterSmoothsGlossyNoiseAndKeepsTheMean) {
 // the hybrid gives what the rasterized frame gives over 64 frames.
 TEST_F(Hybrid, GlossyLobeUnderAQuadLightMatchesTheRasterizedHighlight) {
     Scene s = lookingDown(R"("metal": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0.3})",
-                          R"({"type": "quad", "name": "floor", "material": "metal",
-                              "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]})",
+                          floorOf("metal"),
                           3);
     addQuadLightAbove(s);
     const float rasterized = centre(render(s, "direct", 64), 3).g;
@@ -295,8 +297,7 @@ TEST_F(Hybrid, OverlappedTracingShowsTheRaysOfTheFrameBefore) {
     Scene s = lookingDown(R"("mirror": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0},
                              "red": {"albedo": [0, 0, 0], "emission": [1, 0, 0]},
                              "blue": {"albedo": [0, 0, 0], "emission": [0, 0, 1]})",
-                          R"({"type": "quad", "name": "mirror", "material": "mirror",
-                              "corners": [[-5, 0, -5], [-5, 0, 5], [5, 0, 5], [5, 0, -5]]},
+                          floorOf("mirror") + R"(,
                              {"type": "quad", "name": "red", "material": "red",
                               "corners": [[-50, 3, -50], [0, 3, -50], [0, 3, 50], [-50, 3, 50]]},
                              {"type": "quad", "name": "blue", "material": "blue",

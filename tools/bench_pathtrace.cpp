@@ -16,6 +16,7 @@
 #include "tools/embree_share.h"
 #include "tools/eval_run.h"
 #include "tools/scene_arg.h"
+#include "volumes/openvdb_reference.h"
 
 namespace voxgi::cli {
 
@@ -50,9 +51,9 @@ void benchScene(const std::string& name, Scene scene, int size, int referenceSpp
         // Whole samples per pixel until the checkpoint: the last pass may overrun it a little,
         // and the time printed is the time spent.
         while (elapsed < checkpoint) {
-            const double start = cpuSeconds();
+            const double start = processCpuSeconds();
             tracer.render(1);
-            elapsed += cpuSeconds() - start;
+            elapsed += processCpuSeconds() - start;
         }
         const ImageMetrics m = computeMetrics(tracer.image(), reference.image, "beauty");
         const double raysPerSecond = double(tracer.raysTraced()) / elapsed;

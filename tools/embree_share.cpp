@@ -1,26 +1,18 @@
 #include "tools/embree_share.h"
 
-#include <sys/resource.h>
-
 #include <tbb/parallel_for.h>
 
 #include "gi/pathtrace/path_tracer.h"
+#include "volumes/openvdb_reference.h"
 
 namespace voxgi::cli {
-
-double cpuSeconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec) + double(u.ru_stime.tv_sec) +
-           1e-6 * double(u.ru_stime.tv_usec);
-}
 
 EmbreeShare measureEmbreeShare(PathTracer& tracer, int spp) {
     const int first = tracer.samplesPerPixel();
     const std::uint64_t raysBefore = tracer.raysTraced();
-    double start = cpuSeconds();
+    double start = processCpuSeconds();
     tracer.render(spp);
-    const double pathCpu = cpuSeconds() - start;
+    const double pathCpu = processCpuSeconds() - start;
     const double rays = double(tracer.raysTraced() - raysBefore);
     tracer.rayTracer().startLog();
     tbb::parallel_for(0, tracer.height(), [&](int y) {
@@ -28,9 +20,9 @@ EmbreeShare measureEmbreeShare(PathTracer& tracer, int spp) {
             for (int s = first; s < first + spp; ++s) tracer.samplePixel(x, y, std::uint64_t(s));
     });
     const std::vector<LoggedRay> logged = tracer.rayTracer().stopLog();
-    start = cpuSeconds();
+    start = processCpuSeconds();
     tracer.rayTracer().replayBare(logged);
-    const double bareCpu = cpuSeconds() - start;
+    const double bareCpu = processCpuSeconds() - start;
     EmbreeShare share;
     share.rays = double(logged.size());
     share.pathPerCpuS = rays / pathCpu;

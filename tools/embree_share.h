@@ -18,7 +18,4 @@ struct EmbreeShare {
 // are deterministic: the same paths) and replays the logged rays through Embree alone.
 EmbreeShare measureEmbreeShare(PathTracer& tracer, int spp);
 
-// CPU seconds of the whole process (user + system, all threads).
-double cpuSeconds();
-
 }  // namespace voxgi::cli

@@ -54,12 +54,12 @@ public:
         if (!desc_.overlap || !pending_) {
             // Every frame's own rays (and the first frame's when traced ahead).
             std::unique_ptr<TraceJob> job = readBack(g, std::uint32_t(input.frameIndex));
-            if (desc_.replayBare && !desc_.overlap) tracer_.startLog();
+            const bool replay = desc_.replayBare && !desc_.overlap;  // serial frames only
+            if (replay) tracer_.startLog();
             const auto t1 = std::chrono::steady_clock::now();
             job->trace(tracer_);
-            const auto t2 = std::chrono::steady_clock::now();
-            input.timers.addCpu("hybrid.trace", std::chrono::duration<double, std::milli>(t2 - t0).count());
-            if (desc_.replayBare && !desc_.overlap) replayBare(job->paths, std::chrono::duration<double>(t2 - t1).count());
+            input.timers.addCpu("hybrid.trace", millisecondsSince(t0));
+            if (replay) replayBare(job->paths, 1e-3 * millisecondsSince(t1));
             uploadPaths(input, job->paths, g);
         } else {
             // The rays traced while the GPU lit the last frame; the wait is what tracing still

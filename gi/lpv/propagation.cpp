@@ -263,14 +263,9 @@ void CpuPropagator::propagate(const LightVolume& injected, const BlockerVolume& 
         w.operatorOptions = options;
     }
     const PropagationOperator& op = *w.op;
-    stats_.runs = op.pass.size() / 6;
-    stats_.occludedRuns = stats_.bounceRuns = 0;
-    for (std::size_t r = 0; r < stats_.runs; ++r) {
-        bool occluded = false;
-        for (int a = 0; a < 6; ++a) occluded |= op.pass[r * 6 + std::size_t(a)] != nullptr;
-        stats_.occludedRuns += occluded ? 1 : 0;
-        stats_.bounceRuns += op.bounce[r] != nullptr ? 1 : 0;
-    }
+    stats_.runs = op.bounce.size();
+    stats_.occludedRuns = op.occludedRuns;
+    stats_.bounceRuns = op.bounceRuns;
     auto t1 = std::chrono::steady_clock::now();
     stats_.operatorMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
 

@@ -221,6 +221,13 @@ PropagationOperator::PropagationOperator(const BlockerVolume& gv, const CascadeG
         for (const auto& [slot, offset] : passAt) pass[slot] = passLocal.data() + offset;
         for (const auto& [slot, offset] : bounceAt) bounce[slot] = bounceLocal.data() + offset;
     });
+    for (std::size_t run = 0; run < bounce.size(); ++run) {
+        occludedRuns += std::any_of(pass.begin() + std::ptrdiff_t(run * 6), pass.begin() + std::ptrdiff_t(run * 6 + 6),
+                                    [](const float* p) { return p != nullptr; })
+                            ? 1
+                            : 0;
+        bounceRuns += bounce[run] != nullptr ? 1 : 0;
+    }
 }
 
 }  // namespace voxgi::lpv_detail

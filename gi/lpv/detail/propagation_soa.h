@@ -87,6 +87,8 @@ struct PropagationOperator {
     std::vector<const float*> pass;
     // [run] -> kBounceFloats (colour, column, row, lane) bounce matrices, or null.
     std::vector<const float*> bounce;
+    // Runs with an occluded side, and runs next to a reflecting blocker (counted once, at build).
+    std::size_t occludedRuns = 0, bounceRuns = 0;
 
     PropagationOperator(const BlockerVolume& geometry, const CascadeGrid& grid, const PropagationOptions& options);
     PropagationOperator(const PropagationOperator&) = delete;
