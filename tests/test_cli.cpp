@@ -149,6 +149,19 @@ TEST(Cli, MethodsListsMethodsAndSettings) {
     EXPECT_NE(refused.output.find("gi.lpv.resolution"), std::string::npos) << refused.output;
 }
 
+TEST(Cli, BenchFrameTakesWidthByHeightSizesAndPrintsGpuTimes) {
+    auto r = runVoxgi("bench direct cornell-box --sizes 24x16 --frames 1 --warmup 0");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("  24x16  "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" direct_light_ms "), std::string::npos) << r.output;
+    for (const char* bad : {"--sizes 24x", "--sizes x16", "--sizes 24x4", "--sizes 24x16x2", "--sizes 24y16"}) {
+        r = runVoxgi(std::string("bench direct cornell-box --frames 1 ") + bad);
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+        EXPECT_EQ(lineCount(r.output), 1) << r.output;
+        EXPECT_NE(r.output.find("--sizes"), std::string::npos) << r.output;
+    }
+}
+
 TEST(Cli, BenchPropagationAndLimitsPrintTheirRatiosAndRejectBadLists) {
     auto r = runVoxgi("bench propagation --resolutions 12,16 --threads 1 --repeats 1 --steps 2");
     ASSERT_EQ(r.exitCode, 0) << r.output;

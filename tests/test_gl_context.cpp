@@ -67,8 +67,8 @@ TEST_F(GlContext, EveryShaderInTheTreeCompiles) {
     EXPECT_NO_THROW(gl::Program::graphics("frame/gbuffer.vert", "frame/gbuffer.frag"));
     EXPECT_NO_THROW(gl::Program::graphics("frame/shadow.vert", "frame/shadow_distance.frag"));
     EXPECT_NO_THROW(gl::Program::graphics("frame/shadow.vert", "frame/shadow_depth.frag"));
-    EXPECT_NO_THROW(gl::Program::graphics("frame/fullscreen.vert", "frame/direct_light.frag"));
-    EXPECT_NO_THROW(gl::Program::graphics("frame/fullscreen.vert", "frame/emission.frag"));
+    EXPECT_NO_THROW(gl::Program::compute("frame/direct_light.comp"));
+    EXPECT_NO_THROW(gl::Program::compute("frame/emission.comp"));
 }
 
 // GPU samples that cannot be right are NaN; summaries skip them, and say NaN when none is left.

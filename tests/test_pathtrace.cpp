@@ -142,7 +142,7 @@ TEST(PathTracer, PointLightOverPlaneIsIntensityCosineOverDistanceSquared) {
 
 TEST(PathTracer, SpotConeFalloffAndSun) {
     // Spot: 20 W/sr, inner 20, outer 40 degrees, pointing down from height 1 (smoothstep falloff
-    // between the cone cosines, as shaders/frame/direct_light.frag). Sun: 2 W/m^2 at 60 degrees.
+    // between the cone cosines, as shaders/frame/direct_light.comp). Sun: 2 W/m^2 at 60 degrees.
     Scene s = parseSceneJson(R"({
       "camera": {"eye": [0, 3, 0.001], "target": [0, 0, 0], "fov": 60, "resolution": [16, 16]},
       "materials": {"m": {"albedo": 1.0}},

@@ -1,6 +1,7 @@
 #include "gi/ambient/ambient_technique.h"
 
 #include "gl/program.h"
+#include "gl/screen_pass.h"
 
 namespace voxgi {
 
@@ -19,7 +20,7 @@ namespace {
 class AmbientTechnique final : public GiTechnique {
 public:
     explicit AmbientTechnique(glm::vec3 irradiance)
-        : irradiance_(irradiance), apply_(gl::Program::graphics("frame/fullscreen.vert", "ambient/apply.frag")) {}
+        : irradiance_(irradiance), apply_(gl::Program::compute("ambient/apply.comp")) {}
 
     std::string name() const override { return "ambient"; }
     void update(const FrameInput&, const GBufferView&) override {}
@@ -35,7 +36,7 @@ public:
             apply_.set(names[i], i);
         }
         apply_.set("uIrradiance", irradiance_);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        gl::addToBoundTarget(apply_);
         input.timers.end();
     }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gl/context.h"
+#include "gl/screen_pass.h"
 #include "shaders/ddgi/limits.h"
 
 namespace voxgi {
@@ -37,10 +38,9 @@ DdgiGpu::DdgiGpu(const ProbeField& field) {
     blendIrradiance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "0"}});
     blendDistance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "1"}});
     border_ = gl::Program::compute("ddgi/border.comp");
-    apply_ = gl::Program::graphics("frame/fullscreen.vert", "ddgi/apply.frag");
+    apply_ = gl::Program::compute("ddgi/apply.comp");
     irradiance_ = makeAtlasTexture(field.irradiance);
     distance_ = makeAtlasTexture(field.distance);
-    emptyVao_ = gl::createVertexArray();
     blendQuery_ = gl::createTimerQuery();
     borderQuery_ = gl::createTimerQuery();
     shadeQuery_ = gl::createTimerQuery();
@@ -227,8 +227,7 @@ void DdgiGpu::apply(const ProbeField& field, const GBufferView& g) {
     apply_.set("uEmission", 3);
     apply_.set("uEye", g.eye);
     bindProbeField(apply_, field, irradiance_.id(), distance_.id(), probeData_.id());
-    glBindVertexArray(emptyVao_.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl::addToBoundTarget(apply_);
 }
 
 }  // namespace voxgi

@@ -65,7 +65,7 @@ private:
     void readBack(ProbeField& field);
 
     gl::Program blendIrradiance_, blendDistance_, border_, apply_;
-    gl::Handle irradiance_, distance_, emptyVao_;
+    gl::Handle irradiance_, distance_;
     gl::Handle jobs_, directions_, rays_, probeData_;
     std::size_t jobsBytes_ = 0, directionsBytes_ = 0, raysBytes_ = 0, probeDataBytes_ = 0;
     gl::Handle blendQuery_, borderQuery_, shadeQuery_;

@@ -20,7 +20,7 @@ struct IsrDesc {
     // misses more light (off screen, later bounces) than its missing visibility adds (docs/isr.md).
     float aoStrength = 0.0f;
     // Gathers averaged per coarse pixel where reprojection into the previous frame finds the same
-    // surface point (shaders/isr/temporal.frag); the kernels turn every frame, so n frames of p
+    // surface point (shaders/isr/temporal.comp); the kernels turn every frame, so n frames of p
     // patches approach one gather of n x p. 1: no history.
     int temporalFrames = 1;
     // A volume method for the light from off screen: its indirect light is added where the

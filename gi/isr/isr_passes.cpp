@@ -2,16 +2,17 @@
 
 #include <cmath>
 
+#include "gl/screen_pass.h"
+
 namespace voxgi {
 
 IsrPasses::IsrPasses(const IsrDesc& desc)
     : desc_(desc),
-      downsample_(gl::Program::graphics("frame/fullscreen.vert", "isr/downsample.frag")),
-      gather_program_(gl::Program::graphics("frame/fullscreen.vert", "isr/gather.frag")),
-      temporal_(gl::Program::graphics("frame/fullscreen.vert", "isr/temporal.frag")),
-      blur_(gl::Program::graphics("frame/fullscreen.vert", "isr/blur.frag")),
-      apply_(gl::Program::graphics("frame/fullscreen.vert", "isr/apply.frag")),
-      vao_(gl::createVertexArray()) {}
+      downsample_(gl::Program::compute("isr/downsample.comp")),
+      gather_program_(gl::Program::compute("isr/gather.comp")),
+      temporal_(gl::Program::compute("isr/temporal.comp")),
+      blur_(gl::Program::compute("isr/blur.comp")),
+      apply_(gl::Program::compute("isr/apply.comp")) {}
 
 float IsrPasses::radiusPixels() const { return std::max(desc_.radius * float(size_.y), 1.0f); }
 
@@ -38,13 +39,8 @@ void IsrPasses::resize(glm::ivec2 size) {
             glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         }
-        temporalFbo_[i] = gl::createFramebuffer({mean_[i].id(), points_[i].id(), normals_[i].id()}, 0, "isr temporal mean");
     }
     historyValid_ = false;  // a new size: no history to reproject into
-    coarseFbo_ = gl::createFramebuffer({position_.id(), normal_.id(), radiance_.id(), albedo_.id()}, 0, "isr coarse buffers");
-    gatherFbo_ = gl::createFramebuffer({gather_.id()}, 0, "isr gather");
-    halfFbo_ = gl::createFramebuffer({half_.id()}, 0, "isr blur");
-    blurredFbo_ = gl::createFramebuffer({blurred_.id()}, 0, "isr blurred");
 }
 
 namespace {
@@ -56,20 +52,29 @@ void bindFarLight(gl::Program& program, GLuint unit, GLuint farLight, GLuint fal
     program.set("uHasFarLight", int(farLight != 0));
 }
 
+// The pass's outputs: image `names[i]` on image unit i, written whole.
+void bindOutputs(const gl::Program& program, std::initializer_list<std::pair<const char*, GLuint>> outputs) {
+    GLuint unit = 0;
+    for (const auto& [name, texture] : outputs) {
+        glBindImageTexture(unit, texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        program.set(name, int(unit));
+        ++unit;
+    }
+}
+
 }  // namespace
 
 void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers, GLuint farLight) {
     const int f = desc_.downsample;
     resize({(g.width + f - 1) / f, (g.height + f - 1) / f});
     forward_ = viewForward(g.viewProjection);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
-    glBindVertexArray(vao_.id());
-    glViewport(0, 0, size_.x, size_.y);
+    const gl::ScreenRect coarse{0, 0, size_.x, size_.y};
+    // The direct layer (and a far field) were drawn just now; the passes below fetch them.
+    gl::screenPassBarrier();
 
     timers.begin("isr.downsample");
-    glBindFramebuffer(GL_FRAMEBUFFER, coarseFbo_.id());
-    downsample_.use();
+    bindOutputs(downsample_, {{"uOutPosition", position_.id()}, {"uOutNormal", normal_.id()},
+                              {"uOutRadiance", radiance_.id()}, {"uOutAlbedo", albedo_.id()}});
     const char* names[5] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uDirectSum"};
     const GLuint textures[5] = {g.position, g.normal, g.albedo, g.emission, g.directSum};
     for (int i = 0; i < 5; ++i) {
@@ -84,41 +89,42 @@ void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::
     downsample_.set("uEye", g.eye);
     downsample_.set("uForward", forward_);
     downsample_.set("uPatchSolidAngle", edge * edge);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl::dispatchScreen(downsample_, coarse);
+    gl::screenPassBarrier();
     timers.end();
 
     timers.begin("isr.gather");
-    glBindFramebuffer(GL_FRAMEBUFFER, gatherFbo_.id());
-    gather_program_.use();
-    const char* coarse[3] = {"uCoarsePosition", "uCoarseNormal", "uCoarseRadiance"};
+    bindOutputs(gather_program_, {{"uOutGather", gather_.id()}});
+    const char* coarseNames[3] = {"uCoarsePosition", "uCoarseNormal", "uCoarseRadiance"};
     const GLuint coarseTextures[3] = {position_.id(), normal_.id(), radiance_.id()};
     for (int i = 0; i < 3; ++i) {
         glBindTextureUnit(GLuint(i), coarseTextures[i]);
-        gather_program_.set(coarse[i], i);
+        gather_program_.set(coarseNames[i], i);
     }
     gather_program_.set("uPatches", desc_.patches);
     gather_program_.set("uRadius", radiusPixels());
     gather_program_.set("uFrame", frame);
     gather_program_.set("uDiscs", int(farLight != 0));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl::dispatchScreen(gather_program_, coarse);
+    gl::screenPassBarrier();
     timers.end();
 
     if (desc_.temporalFrames > 1) accumulate(g, edge, timers);
 
     if (desc_.blur > 0) {
         timers.begin("isr.blur");
-        blur_.use();
         blur_.set("uRadius", desc_.blur);
         blur_.set("uSource", 0);
         blur_.set("uCoarseNormal", 1);
         glBindTextureUnit(1, normal_.id());
         const GLuint sources[2] = {accumulated(), half_.id()};
-        const GLuint targets[2] = {halfFbo_.id(), blurredFbo_.id()};
+        const GLuint targets[2] = {half_.id(), blurred_.id()};
         for (int pass = 0; pass < 2; ++pass) {
-            glBindFramebuffer(GL_FRAMEBUFFER, targets[pass]);
+            bindOutputs(blur_, {{"uOutBlurred", targets[pass]}});
             glBindTextureUnit(0, sources[pass]);
             blur_.set("uStep", glm::ivec2(pass == 0 ? 1 : 0, pass == 0 ? 0 : 1));
-            glDrawArrays(GL_TRIANGLES, 0, 3);
+            gl::dispatchScreen(blur_, coarse);
+            gl::screenPassBarrier();
         }
         timers.end();
     }
@@ -128,8 +134,8 @@ void IsrPasses::accumulate(const GBufferView& g, float pixelAngle, gl::StageTime
     timers.begin("isr.temporal");
     const int previous = current_;
     current_ = 1 - current_;
-    glBindFramebuffer(GL_FRAMEBUFFER, temporalFbo_[current_].id());
-    temporal_.use();
+    bindOutputs(temporal_, {{"uOutMean", mean_[current_].id()}, {"uOutPosition", points_[current_].id()},
+                            {"uOutNormal", normals_[current_].id()}});
     const char* names[6] = {"uGather", "uCoarsePosition", "uCoarseNormal", "uHistory", "uHistoryPosition", "uHistoryNormal"};
     const GLuint textures[6] = {gather_.id(),       position_.id(),        normal_.id(),
                                 mean_[previous].id(), points_[previous].id(), normals_[previous].id()};
@@ -142,7 +148,8 @@ void IsrPasses::accumulate(const GBufferView& g, float pixelAngle, gl::StageTime
     temporal_.set("uMaxFrames", desc_.temporalFrames);
     temporal_.set("uEye", g.eye);
     temporal_.set("uPixelAngle", pixelAngle);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl::dispatchScreen(temporal_, {0, 0, size_.x, size_.y});
+    gl::screenPassBarrier();
     previousViewProjection_ = g.viewProjection;
     historyValid_ = true;
     timers.end();
@@ -150,7 +157,6 @@ void IsrPasses::accumulate(const GBufferView& g, float pixelAngle, gl::StageTime
 
 void IsrPasses::apply(const GBufferView& g, gl::StageTimers& timers, GLuint farLight) {
     timers.begin("isr.apply");
-    apply_.use();
     const char* names[6] = {"uPosition", "uNormal", "uAlbedo", "uEmission", "uCoarseGather", "uCoarseNormal"};
     const GLuint textures[6] = {g.position, g.normal, g.albedo, g.emission, result(), normal_.id()};
     for (int i = 0; i < 6; ++i) {
@@ -162,8 +168,7 @@ void IsrPasses::apply(const GBufferView& g, gl::StageTimers& timers, GLuint farL
     apply_.set("uEye", g.eye);
     apply_.set("uForward", forward_);
     apply_.set("uAoStrength", desc_.aoStrength);
-    glBindVertexArray(vao_.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl::addToBoundTarget(apply_);
     timers.end();
 }
 

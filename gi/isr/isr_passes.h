@@ -24,8 +24,8 @@ public:
     // that light on with their direct light.
     void compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers, GLuint farLight = 0);
     // Adds the indirect radiance of every G-buffer pixel to the framebuffer bound now (the
-    // renderer's additive target), and the far field's where the patches leave the hemisphere
-    // open (1 - occlusion). The caller binds that target again after compute's own.
+    // renderer's additive target, gl::addToBoundTarget), and the far field's where the patches
+    // leave the hemisphere open (1 - occlusion).
     void apply(const GBufferView& g, gl::StageTimers& timers, GLuint farLight = 0);
 
     const IsrDesc& desc() const { return desc_; }
@@ -52,11 +52,10 @@ private:
     gl::Program downsample_, gather_program_, temporal_, blur_, apply_;
     glm::ivec2 size_{0};
     gl::Handle position_, normal_, radiance_, albedo_, gather_, half_, blurred_;
-    gl::Handle coarseFbo_, gatherFbo_, halfFbo_, blurredFbo_, vao_;
     glm::vec3 forward_{0.0f, 0.0f, -1.0f};
     // The temporal mean, its surface points and their normals, written and read in turn
     // (current_ is this frame's), and the camera they were seen from.
-    gl::Handle mean_[2], points_[2], normals_[2], temporalFbo_[2];
+    gl::Handle mean_[2], points_[2], normals_[2];
     int current_ = 0;
     bool historyValid_ = false;
     glm::mat4 previousViewProjection_{1.0f};

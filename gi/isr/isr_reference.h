@@ -25,11 +25,11 @@ IsrCoarseBuffers readIsrCoarse(const IsrPasses& passes);
 // A coarse texture of the passes (RGBA32F, coarseSize()), read back.
 std::vector<glm::vec4> readIsrTexture(const IsrPasses& passes, unsigned texture);
 
-// The gather of shaders/isr/gather.frag for every coarse pixel: rgb irradiance, w occlusion by
+// The gather of shaders/isr/gather.comp for every coarse pixel: rgb irradiance, w occlusion by
 // spheres (or by discs, as with a far field).
 std::vector<glm::vec4> isrGatherCpu(const IsrCoarseBuffers& c, int patches, float radiusPixels, int frame, bool discs = false);
 
-// The upsample of shaders/isr/apply.frag at full-resolution pixel `pixel` (depth along the
+// The upsample of shaders/isr/apply.comp at full-resolution pixel `pixel` (depth along the
 // camera's axis `depth`, normal `normal`) from coarse values `values` (coarse size as `c`).
 glm::vec4 isrUpsampleCpu(const IsrCoarseBuffers& c, const std::vector<glm::vec4>& values, int factor, glm::ivec2 pixel,
                          float depth, glm::vec3 normal);

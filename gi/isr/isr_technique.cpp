@@ -31,7 +31,7 @@ void IsrTechnique::drawFarField(const FrameInput& input, const GBufferView& g) {
 void IsrTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) {
     // No surfaces to bounce between (no triangles): nothing for the far field to light either.
     if (!input.plan.runs("isr.apply")) return;
-    // compute() draws into its own coarse targets: the renderer's additive target comes back after.
+    // The far field draws into its own target: the renderer's additive target comes back after.
     GLint framebuffer = 0, viewport[4] = {0, 0, 0, 0};
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
     glGetIntegerv(GL_VIEWPORT, viewport);

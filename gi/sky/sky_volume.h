@@ -7,7 +7,7 @@
 // Embree against the real triangles; a ray that leaves the scene brings the sky's radiance in
 // its direction (Sky::radianceAt), one that hits a back face counts toward the cell being inside
 // solid geometry (then it holds nothing). The frame's sky_light pass lights every G-buffer
-// surface with it (shaders/frame/sky_light.frag); sampleIrradiance is the same lookup on the CPU.
+// surface with it (shaders/frame/sky_light.comp); sampleIrradiance is the same lookup on the CPU.
 #pragma once
 
 #include <array>

@@ -20,6 +20,7 @@
 #include "gl/context.h"
 #include "gl/program.h"
 #include "gl/resources.h"
+#include "gl/screen_pass.h"
 
 namespace voxgi {
 
@@ -84,9 +85,9 @@ struct FrameRenderer::Impl {
         gbufferProgram = gl::Program::graphics("frame/gbuffer.vert", "frame/gbuffer.frag");
         shadowDepthProgram = gl::Program::graphics("frame/shadow.vert", "frame/shadow_depth.frag");
         shadowDistanceProgram = gl::Program::graphics("frame/shadow.vert", "frame/shadow_distance.frag");
-        lightProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/direct_light.frag");
-        emissionProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/emission.frag");
-        skyLightProgram = gl::Program::graphics("frame/fullscreen.vert", "frame/sky_light.frag");
+        lightProgram = gl::Program::compute("frame/direct_light.comp");
+        emissionProgram = gl::Program::compute("frame/emission.comp");
+        skyLightProgram = gl::Program::compute("frame/sky_light.comp");
         emptyVao = gl::createVertexArray();
 
         gPosition = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
@@ -337,7 +338,6 @@ struct FrameRenderer::Impl {
         lightProgram.set("uFrame", frames);
         lightProgram.set("uEye", scene.camera.eye);
         gpu.bindLights();
-        glBindVertexArray(emptyVao.id());
     }
 
     // Light `index` of the scene (the shader reads it from the lights buffer) at quad point
@@ -351,14 +351,14 @@ struct FrameRenderer::Impl {
         lightProgram.set("uShadowEye", shadowEye);
         lightProgram.set("uShadowMatrix", shadowMatrix);
         lightProgram.set("uShadowTexel", shadowTexel);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        gl::addToBoundTarget(lightProgram);
         // The same light and shadow on the surfaces mirrors and glass show.
         for (const SecondaryLayerView& layer : layers) {
             beginLayer(layer);
             bindSurfaces(lightProgram, layer.surfaces);
             glBindTextureUnit(9, layer.surfaces.viewOrigin);
             lightProgram.set("uViewOriginPerPixel", 1);
-            glDrawArrays(GL_TRIANGLES, 0, 3);
+            gl::addToBoundTarget(lightProgram);
         }
         glDisable(GL_SCISSOR_TEST);
         glBindSampler(6, 0);  // the units go back to their textures' own sampling
@@ -425,8 +425,7 @@ struct FrameRenderer::Impl {
         emissionProgram.set("uInverseViewProjection", glm::inverse(viewProjection));
         emissionProgram.set("uEye", scene.camera.eye);
         emissionProgram.set("uViewport", glm::vec2(float(width), float(height)));
-        glBindVertexArray(emptyVao.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        gl::addToBoundTarget(emissionProgram);
         timers.end();
     }
 
@@ -442,15 +441,13 @@ struct FrameRenderer::Impl {
     void renderSkyLight() {
         timers.begin("sky_light");
         beginAdditivePass(accumFbo.id());
-        skyLightProgram.use();
         bindSurfaces(skyLightProgram, gbufferView());
         skyTexture->bind(skyLightProgram, 4);
-        glBindVertexArray(emptyVao.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        gl::addToBoundTarget(skyLightProgram);
         for (const SecondaryLayerView& layer : layers) {
             beginLayer(layer);
             bindSurfaces(skyLightProgram, layer.surfaces);
-            glDrawArrays(GL_TRIANGLES, 0, 3);
+            gl::addToBoundTarget(skyLightProgram);
         }
         glDisable(GL_SCISSOR_TEST);
         timers.end();

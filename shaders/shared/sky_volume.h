@@ -1,5 +1,5 @@
 // The sky-lighting volume's lookup (gi/sky/sky_volume.h), for C++ (SkyVolume::sampleIrradiance)
-// and GLSL (shaders/frame/sky_light.frag): a cell's 7 packed vec4 (27 irradiance SH
+// and GLSL (shaders/frame/sky_light.comp): a cell's 7 packed vec4 (27 irradiance SH
 // coefficients, colour-major, and the validity), evaluated at a normal; and the cell and
 // trilinear fractions around a point.
 #ifndef VOXGI_SHARED_SKY_VOLUME_H

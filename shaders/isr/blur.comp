@@ -2,6 +2,7 @@
 // ISR step 3: one direction of a separable Gaussian over the coarse gather (sigma = radius / 2),
 // weighted by depth and normal agreement so that it does not carry light across silhouettes
 // (the seed's plain Gaussian left halos there).
+#include "common/screen_pass.glsl"
 #include "shared/isr.h"
 
 uniform sampler2D uSource;
@@ -9,13 +10,14 @@ uniform sampler2D uCoarseNormal;  // xyz normal, w depth
 uniform ivec2 uStep;              // (1, 0) or (0, 1)
 uniform int uRadius;
 
-layout(location = 0) out vec4 outColor;
+layout(rgba32f) writeonly uniform image2D uOutBlurred;
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel;
+    if (!screenPixel(pixel)) return;
     ivec2 size = textureSize(uSource, 0);
     vec4 centre = texelFetch(uCoarseNormal, pixel, 0);
-    if (centre.w <= 0.0) { outColor = vec4(0.0); return; }
+    if (centre.w <= 0.0) { imageStore(uOutBlurred, pixel, vec4(0.0)); return; }
     float sigma = max(0.5 * float(uRadius), 0.5);
     vec4 sum = vec4(0.0);
     float weights = 0.0;
@@ -28,5 +30,5 @@ void main() {
         sum += w * texelFetch(uSource, q, 0);
         weights += w;
     }
-    outColor = weights > 0.0 ? sum / weights : vec4(0.0);
+    imageStore(uOutBlurred, pixel, weights > 0.0 ? sum / weights : vec4(0.0));
 }

@@ -5,6 +5,7 @@
 // the hemisphere their spheres hide (w; with uDiscs, their discs: a far field's weight), by
 // shaders/shared/isr.h. No visibility between patches
 // (the seed has none); gi/isr/isr_reference.cpp is the same gather on the CPU.
+#include "common/screen_pass.glsl"
 #include "shared/disc_samples.h"
 #include "shared/isr.h"
 
@@ -16,13 +17,14 @@ uniform float uRadius;  // coarse pixels
 uniform int uFrame;
 uniform bool uDiscs;
 
-layout(location = 0) out vec4 outGather;
+layout(rgba32f) writeonly uniform image2D uOutGather;
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel;
+    if (!screenPixel(pixel)) return;
     ivec2 size = textureSize(uCoarsePosition, 0);
     vec4 p = texelFetch(uCoarsePosition, pixel, 0);
-    if (p.w <= 0.0) { outGather = vec4(0.0); return; }
+    if (p.w <= 0.0) { imageStore(uOutGather, pixel, vec4(0.0)); return; }
     vec3 n = texelFetch(uCoarseNormal, pixel, 0).xyz;
     float rotation = discRotation(pixel, uFrame);
     vec4 sum = vec4(0.0);
@@ -34,5 +36,5 @@ void main() {
         vec4 radiance = texelFetch(uCoarseRadiance, q, 0);
         sum += isrPatchContribution(p.xyz, n, x.xyz, texelFetch(uCoarseNormal, q, 0).xyz, radiance.w, radiance.rgb, uDiscs);
     }
-    outGather = sum * (kPi * uRadius * uRadius / float(uPatches));
+    imageStore(uOutGather, pixel, sum * (kPi * uRadius * uRadius / float(uPatches)));
 }

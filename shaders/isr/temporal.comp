@@ -1,12 +1,14 @@
 #version 450 core
 // ISR step 2b (isr.temporal_frames > 1): the gather averaged over frames. The kernels turn every
-// frame (gather.frag), so successive gathers use different sender patches, and their running
+// frame (gather.comp), so successive gathers use different sender patches, and their running
 // mean converges to a gather with many more patches. Each coarse pixel's surface point is
 // projected into the previous frame; where that frame's coarse pixel there saw the same point
 // (within two coarse pixels' footprint, widened at grazing angles) on the same side of the
 // surface (normals within 25 degrees: a thin wall seen from behind is not its front), the mean continues, up to
 // uMaxFrames gathers (then it moves as an exponential average of that length); elsewhere
 // (disocclusion, off screen, the first frame) it starts again from this frame's gather.
+#include "common/screen_pass.glsl"
+
 uniform sampler2D uGather;           // this frame: rgb irradiance, w occlusion
 uniform sampler2D uCoarsePosition;   // xyz world position, w hit
 uniform sampler2D uCoarseNormal;     // xyz normal, w depth
@@ -19,19 +21,20 @@ uniform int uMaxFrames;
 uniform vec3 uEye;
 uniform float uPixelAngle;  // a coarse pixel's edge on the image plane at unit distance
 
-layout(location = 0) out vec4 outMean;
-layout(location = 1) out vec4 outPosition;
-layout(location = 2) out vec4 outNormal;
+layout(rgba32f) writeonly uniform image2D uOutMean;
+layout(rgba32f) writeonly uniform image2D uOutPosition;
+layout(rgba32f) writeonly uniform image2D uOutNormal;
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel;
+    if (!screenPixel(pixel)) return;
     vec4 current = texelFetch(uGather, pixel, 0);
     vec4 p = texelFetch(uCoarsePosition, pixel, 0);
     vec3 normal = texelFetch(uCoarseNormal, pixel, 0).xyz;
-    outNormal = vec4(normal, 0.0);
+    imageStore(uOutNormal, pixel, vec4(normal, 0.0));
     if (p.w <= 0.0) {
-        outMean = current;
-        outPosition = vec4(0.0);
+        imageStore(uOutMean, pixel, current);
+        imageStore(uOutPosition, pixel, vec4(0.0));
         return;
     }
     float frames = 0.0;
@@ -55,6 +58,6 @@ void main() {
         }
     }
     float n = min(frames + 1.0, float(uMaxFrames));
-    outMean = mix(history, current, 1.0 / n);
-    outPosition = vec4(p.xyz, n);
+    imageStore(uOutMean, pixel, mix(history, current, 1.0 / n));
+    imageStore(uOutPosition, pixel, vec4(p.xyz, n));
 }

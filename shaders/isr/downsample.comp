@@ -5,6 +5,7 @@
 // within 5 %, normals within 25 degrees), so a patch never mixes a wall with what is behind it,
 // less their emission (the direct layer holds what emitters show the camera), plus the far
 // field's indirect light where there is one (gi/isr/isr_technique.h).
+#include "common/screen_pass.glsl"
 #include "common/gbuffer_textures.glsl"
 #include "shared/isr.h"
 
@@ -17,13 +18,15 @@ uniform vec3 uEye;
 uniform vec3 uForward;
 uniform float uPatchSolidAngle;  // a coarse pixel's solid angle on the camera's axis
 
-layout(location = 0) out vec4 outPosition;  // xyz, w = 1 where a surface was hit
-layout(location = 1) out vec4 outNormal;    // xyz, w = depth along the camera's axis (m)
-layout(location = 2) out vec4 outRadiance;  // rgb radiance sent (W/(m^2 sr)), w = patch area (m^2)
-layout(location = 3) out vec4 outAlbedo;    // rgb diffuse albedo
+layout(rgba32f) writeonly uniform image2D uOutPosition;   // xyz, w = 1 where a surface was hit
+layout(rgba32f) writeonly uniform image2D uOutNormal;     // xyz, w = depth along the camera's axis (m)
+layout(rgba32f) writeonly uniform image2D uOutRadiance;   // rgb radiance sent (W/(m^2 sr)), w = patch area (m^2)
+layout(rgba32f) writeonly uniform image2D uOutAlbedo;     // rgb diffuse albedo
 
 void main() {
-    ivec2 base = ivec2(gl_FragCoord.xy) * uFactor;
+    ivec2 pixel;
+    if (!screenPixel(pixel)) return;
+    ivec2 base = pixel * uFactor;
     ivec2 size = textureSize(uPosition, 0);
     float nearest = 1e30;
     ivec2 chosen = ivec2(-1);
@@ -35,11 +38,13 @@ void main() {
             float depth = dot(p.xyz - uEye, uForward);
             if (depth < nearest) { nearest = depth; chosen = q; }
         }
-    outPosition = vec4(0.0);
-    outNormal = vec4(0.0);
-    outRadiance = vec4(0.0);
-    outAlbedo = vec4(0.0);
-    if (chosen.x < 0) return;
+    if (chosen.x < 0) {
+        imageStore(uOutPosition, pixel, vec4(0.0));
+        imageStore(uOutNormal, pixel, vec4(0.0));
+        imageStore(uOutRadiance, pixel, vec4(0.0));
+        imageStore(uOutAlbedo, pixel, vec4(0.0));
+        return;
+    }
     GBufferSurface s = decodeGBuffer(fetchGBuffer(chosen));
     vec3 sum = vec3(0.0);
     float count = 0.0;
@@ -57,8 +62,9 @@ void main() {
             if (uHasFarLight) sum += texelFetch(uFarLight, q, 0).rgb;
             count += 1.0;
         }
-    outPosition = vec4(s.position, 1.0);
-    outNormal = vec4(s.normal, nearest);
-    outRadiance = vec4(max(sum / count, vec3(0.0)), isrPatchArea(s.position, s.normal, uEye, uForward, uPatchSolidAngle));
-    outAlbedo = vec4(surfaceDiffuseAlbedo(s), 0.0);
+    imageStore(uOutPosition, pixel, vec4(s.position, 1.0));
+    imageStore(uOutNormal, pixel, vec4(s.normal, nearest));
+    imageStore(uOutRadiance, pixel,
+               vec4(max(sum / count, vec3(0.0)), isrPatchArea(s.position, s.normal, uEye, uForward, uPatchSolidAngle)));
+    imageStore(uOutAlbedo, pixel, vec4(surfaceDiffuseAlbedo(s), 0.0));
 }

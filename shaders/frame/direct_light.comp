@@ -3,6 +3,8 @@
 // is lights[uLight], evaluated by the shared light model (shaders/shared/light_model.h); its
 // shadow is the cube map for point and quad lights, the 2D map for spot lights and the cascades
 // (frame/sun_shadow.glsl) for directional ones.
+#define SCREEN_PASS_ADDITIVE
+#include "common/screen_pass.glsl"
 #include "common/brdf.glsl"
 #include "common/scene_data.glsl"
 #include "common/gbuffer_textures.glsl"
@@ -25,7 +27,6 @@ uniform vec3 uShadowEye;        // the cube map's centre (point light; quad samp
 uniform mat4 uShadowMatrix;     // world -> shadow texture space (spot maps)
 uniform float uShadowTexel;     // world size of one shadow texel at unit distance (normal offset)
 
-layout(location = 0) out vec4 outColor;
 
 float cubeVisibility(vec3 p, vec3 n) {
     vec3 d = p - uShadowEye;
@@ -49,9 +50,10 @@ float mapVisibility(vec3 p, vec3 n, float dist) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel;
+    if (!screenPixel(pixel)) return;
     GBufferTexels t = fetchGBuffer(pixel);
-    if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
+    if (!gbufferHit(t.position)) return;
     GBufferSurface g = decodeGBuffer(t);
     Surface s = Surface(g.albedo, g.roughness, g.metallic, g.specular, g.transmission);
     vec3 p = g.position;
@@ -91,5 +93,5 @@ void main() {
         vec3 f0 = mix(vec3(g.specular), g.albedo, g.metallic);
         color += (1.0 - g.transmission) * fresnelSchlick(f0, dot(n, v)) * quadRadianceAlong(light, p, reflect(-v, n)) * vis;
     }
-    outColor = vec4(color, 1.0);
+    addToTarget(pixel, vec4(color, 1.0));
 }

@@ -5,6 +5,8 @@
 // less the occluded fraction uAoStrength takes. Pixels whose four coarse samples all disagree
 // take the one nearest in depth. A far field's light (gi/isr/isr_technique.h) is added where the
 // patches leave the cosine-weighted hemisphere open: the rest of it is what they already send.
+#define SCREEN_PASS_ADDITIVE
+#include "common/screen_pass.glsl"
 #include "common/gbuffer_textures.glsl"
 #include "shared/isr.h"
 
@@ -17,12 +19,11 @@ uniform float uAoStrength;
 uniform sampler2D uFarLight;  // the far field's indirect radiance, when uHasFarLight
 uniform bool uHasFarLight;
 
-layout(location = 0) out vec4 outColor;
-
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel;
+    if (!screenPixel(pixel)) return;
     GBufferTexels t = fetchGBuffer(pixel);
-    if (!gbufferHit(t.position)) { outColor = vec4(0.0); return; }
+    if (!gbufferHit(t.position)) return;
     GBufferSurface s = decodeGBuffer(t);
     float depth = dot(s.position - uEye, uForward);
     ivec2 size = textureSize(uCoarseGather, 0);
@@ -48,5 +49,5 @@ void main() {
     float occlusion = clamp(e.w, 0.0, 1.0);
     vec3 near = surfaceDiffuseAlbedo(s) * kInvPi * e.rgb * (1.0 - uAoStrength * occlusion);
     vec3 far = uHasFarLight ? (1.0 - occlusion) * texelFetch(uFarLight, pixel, 0).rgb : vec3(0.0);
-    outColor = vec4(near + far, 1.0);
+    addToTarget(pixel, vec4(near + far, 1.0));
 }
