@@ -7,6 +7,7 @@
 #include "gl/context.h"
 #include "gl/program.h"
 #include "gl/resources.h"
+#include "gl/screen_pass.h"
 #include "gl/timers.h"
 #include "shaders/shared/constants.h"
 
@@ -69,6 +70,41 @@ TEST_F(GlContext, EveryShaderInTheTreeCompiles) {
     EXPECT_NO_THROW(gl::Program::graphics("frame/shadow.vert", "frame/shadow_depth.frag"));
     EXPECT_NO_THROW(gl::Program::compute("frame/direct_light.comp"));
     EXPECT_NO_THROW(gl::Program::compute("frame/emission.comp"));
+}
+
+// A compute pass adds into the bound target as an additive full-screen draw would: every pixel of
+// the viewport within the scissor box once (odd sizes: the last groups' spare invocations write
+// nothing), the pixels outside untouched; targets it cannot add into are refused.
+TEST_F(GlContext, ScreenPassAddsIntoTheBoundTargetWithinViewportAndScissor) {
+    const int w = 13, h = 11;
+    gl::Handle target = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
+    gl::Handle framebuffer = gl::createFramebuffer({target.id()}, 0, "screen pass test");
+    const float one[4] = {1, 1, 1, 1};
+    glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, one);
+    gl::Program pass = gl::Program::compute("tests/add_pixel.comp");
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+    glViewport(0, 0, w, h);
+    gl::addToBoundTarget(pass);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(3, 2, 5, 20);  // reaches past the top: clipped to the viewport
+    gl::addToBoundTarget(pass);
+    glDisable(GL_SCISSOR_TEST);
+    const std::vector<float> texels = gl::readTexture(target.id(), w, h, 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float times = (x >= 3 && x < 8 && y >= 2) ? 2.0f : 1.0f;
+            const float* t = &texels[(std::size_t(y) * w + std::size_t(x)) * 4];
+            EXPECT_EQ(t[0], 1.0f + times * float(x)) << x << "," << y;
+            EXPECT_EQ(t[1], 1.0f + times * float(y)) << x << "," << y;
+            EXPECT_EQ(t[2], 1.0f + times) << x << "," << y;
+            EXPECT_EQ(t[3], 1.0f + 2.0f * times) << x << "," << y;
+        }
+    gl::Handle bytes = gl::createTexture(GL_TEXTURE_2D, GL_RGBA8, w, h);
+    gl::Handle bytesFramebuffer = gl::createFramebuffer({bytes.id()}, 0, "screen pass RGBA8 target");
+    glBindFramebuffer(GL_FRAMEBUFFER, bytesFramebuffer.id());
+    EXPECT_THROW(gl::addToBoundTarget(pass), gl::GlError);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    EXPECT_THROW(gl::addToBoundTarget(pass), gl::GlError);
 }
 
 // GPU samples that cannot be right are NaN; summaries skip them, and say NaN when none is left.

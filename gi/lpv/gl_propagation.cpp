@@ -16,12 +16,18 @@ struct GlPropagator::Impl {
         std::array<gl::Handle, 3> injected, ping, pong, acc;
     };
     int n;
-    gl::Program program;
+    gl::Program program, faceProgram;
     std::vector<LightSet> sets;
     gl::Handle blocker, albedo;
+    // Every face's blocker and albedo (lpv/face_blockers.comp), the faces of axis k at x offset
+    // k (n + 1): made once per update, read by every step.
+    gl::Handle faceBlocker, faceAlbedo;
 
     Impl(int resolution, int lightSets)
-        : n(resolution), program(gl::Program::compute("lpv/propagate.comp")), sets(std::size_t(lightSets)) {
+        : n(resolution),
+          program(gl::Program::compute("lpv/propagate.comp")),
+          faceProgram(gl::Program::compute("lpv/face_blockers.comp")),
+          sets(std::size_t(lightSets)) {
         for (LightSet& s : sets)
             for (std::size_t c = 0; c < 3; ++c) {
                 s.injected[c] = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, n);
@@ -31,6 +37,11 @@ struct GlPropagator::Impl {
             }
         blocker = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n + 1, n + 1, n + 1);
         albedo = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n + 1, n + 1, n + 1);
+        faceBlocker = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, 3 * (n + 1), n + 1, n + 1);
+        faceAlbedo = gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, 3 * (n + 1), n + 1, n + 1);
+        faceProgram.set("uResolution", n);
+        faceProgram.set("uBlocker", 0);
+        faceProgram.set("uAlbedo", 1);
         // Constant tables, shared with the CPU path.
         const PropagationTables& t = propagationTables();
         const PropagationKernel& k = propagationKernel();
@@ -89,14 +100,24 @@ void GlPropagator::propagateInjected(int steps, const PropagationOptions& option
     // Writes through framebuffers or images (GlInjector) must land before the copies read them.
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
+    const GLuint groups = GLuint((m.n + 3) / 4);
+    if (options.occlusion) {
+        m.faceProgram.use();
+        glBindTextureUnit(0, m.blocker.id());
+        glBindTextureUnit(1, m.albedo.id());
+        glBindImageTexture(0, m.faceBlocker.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, m.faceAlbedo.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        const GLuint cornerGroups = GLuint((m.n + 1 + 3) / 4);
+        glDispatchCompute(GLuint((3 * (m.n + 1) + 3) / 4), cornerGroups, cornerGroups);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
     m.program.use();
     m.program.set("uOcclusion", options.occlusion ? 1 : 0);
     m.program.set("uBounces", options.bounces ? 1 : 0);
-    const char* inputs[5] = {"uInR", "uInG", "uInB", "uBlocker", "uAlbedo"};
+    const char* inputs[5] = {"uInR", "uInG", "uInB", "uFaceBlocker", "uFaceAlbedo"};
     for (int i = 0; i < 5; ++i) m.program.set(inputs[i], i);
-    glBindTextureUnit(3, m.blocker.id());
-    glBindTextureUnit(4, m.albedo.id());
-    const GLuint groups = GLuint((m.n + 3) / 4);
+    glBindTextureUnit(3, m.faceBlocker.id());
+    glBindTextureUnit(4, m.faceAlbedo.id());
     for (Impl::LightSet& set : m.sets) {
         for (std::size_t c = 0; c < 3; ++c) {
             m.copy(set.injected[c].id(), set.ping[c].id());

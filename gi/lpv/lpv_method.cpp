@@ -115,11 +115,14 @@ MethodInfo lpvFamily(bool cascaded) {
         // Measured on the Cornell box's 5 faces: 319, 194 and 195 bytes per face texel at
         // 1024^2 (3 faces a batch), 2048^2 and 4096^2 (one). Cascades after the first also hold
         // their inner light (gi/lpv/cascades.h): injected, accumulated and their textures (cpu) or
-        // injected, ping, pong and accumulated (gl), 4 x 48 bytes per cell.
+        // injected, ping, pong and accumulated (gl), 4 x 48 bytes per cell. The gl back end's
+        // face blockers and albedo (gi/lpv/gl_propagation.cpp): 2 x 3 x 16 bytes per corner.
         const LpvDesc d = readLpvDesc(gi, cascaded);
         const double texels = double(d.rsmSize) * double(d.rsmSize);
         const double cells = double(d.resolution) * double(d.resolution) * double(d.resolution);
+        const double corners = double(d.resolution + 1) * double(d.resolution + 1) * double(d.resolution + 1);
         return 500.0 * cells * double(d.cascades) + 192.0 * cells * double(d.cascades - 1) +
+               96.0 * corners * double(d.cascades) +
                std::max(256.0 * 1024.0 * 1024.0, 68.0 * texels) + 132.0 * texels;
     };
     m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };

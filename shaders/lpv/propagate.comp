@@ -6,8 +6,8 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 uniform sampler3D uInR;
 uniform sampler3D uInG;
 uniform sampler3D uInB;
-uniform sampler3D uBlocker;  // (N + 1)^3 corner samples
-uniform sampler3D uAlbedo;
+uniform sampler3D uFaceBlocker;  // every face's blocker and albedo (face_blockers.comp)
+uniform sampler3D uFaceAlbedo;
 layout(rgba32f, binding = 0) uniform writeonly image3D uOutR;
 layout(rgba32f, binding = 1) uniform writeonly image3D uOutG;
 layout(rgba32f, binding = 2) uniform writeonly image3D uOutB;
@@ -35,23 +35,14 @@ vec4 reflectionShape(vec4 blocker, float flux) {
 
 bool inside(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(uResolution))); }
 
-// Mean of the 4 corner samples of the face between `cell` and `cell + axis`.
+// The face between `cell` and `cell + axis`: the mean of its 4 corner samples, computed for every
+// face once per update (face_blockers.comp) rather than in every step.
 void sharedFace(ivec3 cell, ivec3 axis, out vec4 blocker, out vec3 albedo) {
     ivec3 base = cell + max(axis, ivec3(0));
     int k = axis.x != 0 ? 0 : (axis.y != 0 ? 1 : 2);
-    int u = (k + 1) % 3, v = (k + 2) % 3;
-    blocker = vec4(0.0);
-    albedo = vec3(0.0);
-    for (int du = 0; du < 2; ++du)
-        for (int dv = 0; dv < 2; ++dv) {
-            ivec3 c = base;
-            c[u] += du;
-            c[v] += dv;
-            blocker += texelFetch(uBlocker, c, 0);
-            albedo += texelFetch(uAlbedo, c, 0).rgb;
-        }
-    blocker *= 0.25;
-    albedo *= 0.25;
+    ivec3 at = ivec3(k * (uResolution + 1) + base.x, base.y, base.z);
+    blocker = texelFetch(uFaceBlocker, at, 0);
+    albedo = texelFetch(uFaceAlbedo, at, 0).rgb;
 }
 
 void main() {
