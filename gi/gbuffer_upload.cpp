@@ -39,12 +39,34 @@ UploadedGBuffer uploadGBuffer(const std::vector<glm::vec4>& position, const std:
 
 void UploadedGBuffer::refill(const std::vector<glm::vec4>& position, const std::vector<glm::vec4>& normal,
                              const std::vector<glm::vec4>& albedo, const std::vector<glm::vec4>& emission) {
-    fill(this->position, position, view.width, view.height);
-    fill(this->normal, normal, view.width, view.height);
-    fill(this->albedo, albedo, view.width, view.height);
-    fill(this->emission, emission, view.width, view.height);
+    refill(position, normal, albedo, emission, glm::ivec4(0, 0, view.width, view.height));
+}
+
+void UploadedGBuffer::refill(const std::vector<glm::vec4>& position, const std::vector<glm::vec4>& normal,
+                             const std::vector<glm::vec4>& albedo, const std::vector<glm::vec4>& emission,
+                             glm::ivec4 region) {
+    uploadRegion(this->position.id(), view.width, region, position);
+    uploadRegion(this->normal.id(), view.width, region, normal);
+    uploadRegion(this->albedo.id(), view.width, region, albedo);
+    uploadRegion(this->emission.id(), view.width, region, emission);
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, zero);
+}
+
+void uploadRegion(GLuint texture, int width, glm::ivec4 region, const std::vector<glm::vec4>& data) {
+    if (region.z <= 0 || region.w <= 0) return;
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, width);
+    glTextureSubImage2D(texture, 0, region.x, region.y, region.z, region.w, GL_RGBA, GL_FLOAT,
+                        data.data() + std::size_t(region.y) * std::size_t(width) + std::size_t(region.x));
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+}
+
+glm::ivec4 boundingRegion(glm::ivec4 a, glm::ivec4 b) {
+    if (a.z <= 0 || a.w <= 0) return b;
+    if (b.z <= 0 || b.w <= 0) return a;
+    const glm::ivec2 low = glm::min(glm::ivec2(a), glm::ivec2(b));
+    const glm::ivec2 high = glm::max(glm::ivec2(a) + glm::ivec2(a.z, a.w), glm::ivec2(b) + glm::ivec2(b.z, b.w));
+    return glm::ivec4(low, high - low);
 }
 
 std::vector<float> UploadedGBuffer::readTarget() const {

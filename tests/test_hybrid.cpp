@@ -5,6 +5,7 @@
 // method is the rasterized frame and its diffuse method, pixel for pixel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gi/hybrid/mirror_paths.h"
@@ -329,4 +330,49 @@ TEST_F(Hybrid, OverlappedTracingShowsTheRaysOfTheFrameBefore) {
         EXPECT_NEAR(still.b, 1.0f, 0.01f) << overlap;
         EXPECT_NEAR(still.r, 0.0f, 1e-6f) << overlap;
     }
+}
+
+namespace {
+
+// The beauty layer's largest difference between two images of one size.
+float largestDifference(const Image& a, const Image& b) {
+    float worst = 0.0f;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const glm::vec3 d = glm::abs(a.rgb("beauty", x, y) - b.rgb("beauty", x, y));
+            worst = std::max(worst, std::max(d.r, std::max(d.g, d.b)));
+        }
+    return worst;
+}
+
+}  // namespace
+
+// Each frame uploads only the pixels its rays touch and those the frame before touched: a mirror
+// seen at the image's left, then (the camera moved) at its right, leaves nothing at the left,
+// and the second frame is the image a renderer that never saw the first makes.
+TEST_F(Hybrid, FramesUploadOnlyTheirRaysPixelsAndLeaveNothingOfTheFrameBefore) {
+    Scene s = lookingDown(R"("mirror": {"albedo": [1, 1, 1], "metallic": 1, "roughness": 0},
+                             "white": {"albedo": [0.5, 0.5, 0.5]},
+                             "red": {"albedo": [0, 0, 0], "emission": [1, 0, 0]})",
+                          floorOf("white") + R"(,
+                             {"type": "quad", "name": "mirror", "material": "mirror",
+                              "corners": [[-0.1, 0.001, -0.1], [-0.1, 0.001, 0.1], [0.1, 0.001, 0.1], [0.1, 0.001, -0.1]]},
+                             {"type": "quad", "name": "red", "material": "red",
+                              "corners": [[-50, 3, -50], [50, 3, -50], [50, 3, 50], [-50, 3, 50]]})",
+                          1);
+    auto lookAt = [&s](float x) {
+        s.camera.eye = {x, 1.0f, 0.0001f};
+        s.camera.target = {x, 0.0f, 0.0f};
+    };
+    lookAt(0.1f);  // the mirror left of the centre
+    FrameRenderer moving(s, FrameOptions{}, planFrame(s, "hybrid", 1));
+    moving.renderFrame();
+    const Image before = moving.resolve();
+    lookAt(-0.1f);  // and now right of it
+    moving.resetAccumulation();
+    moving.renderFrame();
+    const Image after = moving.resolve();
+    const Image fresh = render(s, "hybrid", 1);
+    EXPECT_GT(largestDifference(before, fresh), 0.5f);  // the mirror did move across the image
+    EXPECT_EQ(largestDifference(after, fresh), 0.0f);
 }

@@ -20,11 +20,10 @@ namespace {
 struct LayerTextures {
     UploadedGBuffer surfaces;
     gl::Handle viewOrigin, weight;
+    // Where the textures may hold something other than zero: the last upload's bounds. A frame
+    // uploads its own bounds and these, and nothing outside both changed.
+    glm::ivec4 held{0};
 };
-
-void upload(GLuint texture, int width, int height, const glm::vec4* data) {
-    glTextureSubImage2D(texture, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, data);
-}
 
 class HybridTechnique final : public GiTechnique {
 public:
@@ -233,6 +232,7 @@ private:
     int width_ = 0, height_ = 0;
     std::size_t active_ = 0;
     std::vector<glm::ivec4> bounds_;  // per active layer
+    glm::ivec4 emittedHeld_{0};       // as LayerTextures::held, for the emitted light's textures
     glm::vec3 eye_{0.0f};
     glm::mat4 viewProjection_{1.0f};
     std::size_t pixels_ = 0, glossyPixels_ = 0;
@@ -258,9 +258,14 @@ void HybridTechnique::uploadPaths(const FrameInput& input, const MirrorPaths& pa
             reflection_[k] = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
             reflectionFramebuffer_[k] = gl::createFramebuffer({reflection_[k].id()}, 0, "hybrid reflection target");
         }
+        emittedHeld_ = glm::ivec4(0, 0, width_, height_);  // new textures: undefined everywhere
     }
-    upload(emittedDirect_.id(), width_, height_, paths.emittedDirect.data());
-    upload(emittedIndirect_.id(), width_, height_, paths.emittedIndirect.data());
+    // Only the pixels with mirror-like lobes hold anything (a tenth of a 512^2 frame of the
+    // mirror Cornell box): uploading whole frames took 19-23 ms of an H100 (docs/gpu.md).
+    const glm::ivec4 emitted = boundingRegion(paths.emittedBounds, emittedHeld_);
+    uploadRegion(emittedDirect_.id(), width_, emitted, paths.emittedDirect);
+    uploadRegion(emittedIndirect_.id(), width_, emitted, paths.emittedIndirect);
+    emittedHeld_ = paths.emittedBounds;
     for (std::size_t l = 0; l < paths.layers.size(); ++l) {
         const SecondaryLayer& layer = paths.layers[l];
         if (l == layers_.size()) {
@@ -268,12 +273,15 @@ void HybridTechnique::uploadPaths(const FrameInput& input, const MirrorPaths& pa
             t.surfaces = uploadGBuffer(layer.position, layer.normal, layer.albedo, layer.emission, width_, height_, g.eye);
             t.viewOrigin = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
             t.weight = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width_, height_);
+            t.held = glm::ivec4(0, 0, width_, height_);  // new textures: undefined everywhere
             layers_.push_back(std::move(t));
-        } else {
-            layers_[l].surfaces.refill(layer.position, layer.normal, layer.albedo, layer.emission);
         }
-        upload(layers_[l].viewOrigin.id(), width_, height_, layer.viewOrigin.data());
-        upload(layers_[l].weight.id(), width_, height_, layer.weight.data());
+        LayerTextures& t = layers_[l];
+        const glm::ivec4 region = boundingRegion(layer.bounds, t.held);
+        t.surfaces.refill(layer.position, layer.normal, layer.albedo, layer.emission, region);
+        uploadRegion(t.viewOrigin.id(), width_, region, layer.viewOrigin);
+        uploadRegion(t.weight.id(), width_, region, layer.weight);
+        t.held = layer.bounds;
     }
     active_ = paths.layers.size();
     bounds_.clear();

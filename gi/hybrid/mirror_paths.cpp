@@ -104,6 +104,8 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
     out.emittedDirect.assign(count, glm::vec4(0.0f));
     out.emittedIndirect.assign(count, glm::vec4(0.0f));
     std::vector<std::vector<Found>> rows(std::size_t(std::max(in.height, 0)));
+    // Per row, the first and last pixel traced (x0 > x1: none).
+    std::vector<glm::ivec2> tracedSpan(rows.size(), glm::ivec2(in.width, -1));
     std::atomic<std::uint64_t> rays{0};
     std::atomic<std::size_t> pixels{0}, glossyPixels{0};
 
@@ -121,6 +123,8 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
             const bool glossy = shading::glossyLobe(gs.roughness, gs.metallic, gs.specular, gs.transmission,
                                                     in.glossyRoughness);
             if (!glossy && !tracesMirrorLobe(gs)) continue;
+            glm::ivec2& span = tracedSpan[std::size_t(y)];
+            span = glm::ivec2(std::min(span.x, x), std::max(span.y, x));
             // The pixel's surface again, with Embree: its exact material, sides and normals.
             const glm::vec3 toSurface = glm::vec3(t.position) - in.eye;
             const float distance = glm::length(toSurface);
@@ -241,6 +245,13 @@ MirrorPaths traceMirrorPaths(const RayTracer& tracer, const MirrorPathInput& in)
         }
     for (std::size_t l = 0; l < out.layers.size(); ++l)
         out.layers[l].bounds = glm::ivec4(box[l].x, box[l].y, box[l].z - box[l].x + 1, box[l].w - box[l].y + 1);
+    glm::ivec4 traced(in.width, in.height, -1, -1);
+    for (int y = 0; y < in.height; ++y) {
+        const glm::ivec2 span = tracedSpan[std::size_t(y)];
+        if (span.x > span.y) continue;
+        traced = glm::ivec4(std::min(traced.x, span.x), std::min(traced.y, y), std::max(traced.z, span.y), std::max(traced.w, y));
+    }
+    out.emittedBounds = glm::ivec4(traced.x, traced.y, traced.z - traced.x + 1, traced.w - traced.y + 1);
     out.rays = rays;
     out.pixels = pixels;
     out.glossyPixels = glossyPixels;

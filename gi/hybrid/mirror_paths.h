@@ -40,6 +40,7 @@ struct MirrorPaths {
     // Emitters and sky met by the rays, times their weights: after one mirror-like scattering
     // (the path tracer's direct layer), and after more (its indirect layer).
     std::vector<glm::vec4> emittedDirect, emittedIndirect;
+    glm::ivec4 emittedBounds{0};   // x, y, width, height: holds every traced pixel (emitted is 0 outside)
     std::size_t pixels = 0;        // pixels with a mirror-like lobe
     std::size_t glossyPixels = 0;  // pixels with a traced glossy lobe
     std::uint64_t rays = 0;
