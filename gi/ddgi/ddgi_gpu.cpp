@@ -1,6 +1,7 @@
 #include "gi/ddgi/ddgi_gpu.h"
 
 #include <chrono>
+#include <cstdio>
 #include <string>
 
 #include "gl/context.h"
@@ -36,7 +37,10 @@ DdgiGpu::DdgiGpu(const ProbeField& field) {
     if (field.volumes().size() > std::size_t(kDdgiMaxVolumes))
         throw gl::GlError("DDGI: at most " + std::to_string(kDdgiMaxVolumes) + " cascades on the GPU");
     blendIrradiance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "0"}});
-    blendDistance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "1"}});
+    // The field's exponent as a constant of the program (its settings are fixed for its life).
+    char exponent[48];
+    std::snprintf(exponent, sizeof(exponent), "float(%.9g)", double(BlendParams::from(field.desc()).distanceExponent));
+    blendDistance_ = gl::Program::compute("ddgi/blend.comp", {{"DISTANCE", "1"}, {"DISTANCE_EXPONENT", exponent}});
     border_ = gl::Program::compute("ddgi/border.comp");
     apply_ = gl::Program::compute("ddgi/apply.comp");
     irradiance_ = makeAtlasTexture(field.irradiance);
@@ -137,7 +141,6 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
         program.use();
         program.set("uTexels", texels);
         program.set("uRays", rays.blendRays);
-        program.set("uExponent", bp.distanceExponent);
         program.set("uGamma", bp.irradianceGamma);
         program.set("uIrradianceThreshold", bp.irradianceThreshold);
         program.set("uBrightnessThreshold", bp.brightnessThreshold);

@@ -1,6 +1,8 @@
 #version 450 core
 // Probe update, one thread per interior texel of one probe tile (workgroup z = job). Defines:
-// DISTANCE 0 (irradiance, cosine weights, stored as E^(1/gamma)) or 1 (moments, cos^exponent).
+// DISTANCE 0 (irradiance, cosine weights, stored as E^(1/gamma)) or 1 (moments,
+// cos^DISTANCE_EXPONENT; the exponent is a constant of the program, so a whole one unrolls into
+// its multiplies instead of looping over its bits for every ray and texel).
 // The CPU reference is CpuBlend in gi/ddgi/probe_blend.cpp.
 #include "common/octahedral.glsl"
 #include "shared/constants.h"
@@ -13,7 +15,6 @@ layout(rgba32f, binding = 0) uniform image2D uAtlas;
 
 uniform int uTexels;
 uniform int uRays;
-uniform float uExponent;
 uniform float uGamma;
 uniform float uIrradianceThreshold;
 uniform float uBrightnessThreshold;
@@ -67,7 +68,7 @@ void main() {
 #if DISTANCE
             float c = max(0.0, dot(dir, sDirection[i].xyz));
             if (c <= 0.0) continue;
-            float w = weightPow(c, uExponent);
+            float w = weightPow(c, DISTANCE_EXPONENT);
             float d = v.w < 0.0 ? -uBackfaceScale * v.w : v.w;
             d = min(d, job.maxDistance);
             sum += w * vec2(d, d * d);
