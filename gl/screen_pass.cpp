@@ -3,12 +3,13 @@
 #include <algorithm>
 
 #include "gl/context.h"
+#include "shaders/shared/screen_pass.h"
 
 namespace voxgi::gl {
 
 namespace {
 
-constexpr int kGroupSide = 8;  // screen_pass.glsl's local size
+constexpr int kGroupSide = shading::kScreenPassGroupSide;
 
 }  // namespace
 

@@ -1,5 +1,5 @@
 // Per-pixel passes as compute dispatches (shaders/common/screen_pass.glsl): one invocation per
-// pixel of a rectangle, in 8x8 groups.
+// pixel of a rectangle, in square groups (shaders/shared/screen_pass.h).
 //
 // Why compute and not a full-screen triangle: on NVIDIA's data-centre GPUs (H100, H200) only a
 // few of the SMs can run vertex and fragment shaders, so a per-pixel pass drawn as a triangle

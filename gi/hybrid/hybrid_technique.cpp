@@ -261,7 +261,7 @@ void HybridTechnique::uploadPaths(const FrameInput& input, const MirrorPaths& pa
         emittedHeld_ = glm::ivec4(0, 0, width_, height_);  // new textures: undefined everywhere
     }
     // Only the pixels with mirror-like lobes hold anything (a tenth of a 512^2 frame of the
-    // mirror Cornell box): uploading whole frames took 19-23 ms of an H100 (docs/gpu.md).
+    // mirror Cornell box): uploading whole frames took 16-23 ms of an H100 (docs/gpu.md).
     const glm::ivec4 emitted = boundingRegion(paths.emittedBounds, emittedHeld_);
     uploadRegion(emittedDirect_.id(), width_, emitted, paths.emittedDirect);
     uploadRegion(emittedIndirect_.id(), width_, emitted, paths.emittedIndirect);

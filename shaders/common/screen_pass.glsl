@@ -1,11 +1,13 @@
 // Per-pixel passes as compute shaders (gl/screen_pass.h says why): one invocation per pixel of
-// uScreenRect, in 8x8 groups. A pass calls screenPixel() first and returns when it is false; an
+// uScreenRect, in square groups (shared/screen_pass.h). A pass calls screenPixel() first and returns when it is false; an
 // additive pass then hands its value to addToTarget(), as a draw with GL_ONE, GL_ONE blending
 // would add it.
 #ifndef VOXGI_SCREEN_PASS_GLSL
 #define VOXGI_SCREEN_PASS_GLSL
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "shared/screen_pass.h"
+
+layout(local_size_x = kScreenPassGroupSide, local_size_y = kScreenPassGroupSide) in;
 
 uniform ivec4 uScreenRect;  // x, y, width, height
 
