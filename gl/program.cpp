@@ -28,9 +28,16 @@ std::string resolveInclude(const std::string& includer, const std::string& inclu
     return fs::is_regular_file(fs::path(shaderRoot()) / beside) ? beside : include;
 }
 
+// Where library headers named in <...> are: $VOXGI_SYSTEM_SHADER_INCLUDE when set (a bundle
+// carries PNanoVDB.h, scripts/bundle.sh), otherwise the build machine's include directory.
+std::string systemShaderIncludeDir() {
+    const char* env = std::getenv("VOXGI_SYSTEM_SHADER_INCLUDE");
+    return env && *env ? std::string(env) : std::string(VOXGI_SYSTEM_SHADER_INCLUDE);
+}
+
 // The absolute path of a library header named in <...>, or "" when it is not installed.
 std::string systemShaderInclude(const std::string& include) {
-    const fs::path full = fs::path(VOXGI_SYSTEM_SHADER_INCLUDE) / include;
+    const fs::path full = fs::path(systemShaderIncludeDir()) / include;
     return fs::is_regular_file(full) ? full.generic_string() : std::string();
 }
 
@@ -58,7 +65,7 @@ void expand(const std::string& relative, std::set<std::string>& seen, std::vecto
             const std::string inc = systemShaderInclude(line.substr(a + 1, b - a - 1));
             if (inc.empty())
                 throw GlError(relative + ":" + std::to_string(lineNo) + ": " + line.substr(a, b - a + 1) +
-                              " not found in " VOXGI_SYSTEM_SHADER_INCLUDE);
+                              " not found in " + systemShaderIncludeDir());
             if (seen.insert(inc).second) expand(inc, seen, files, out, depth + 1);
             out << "#line " << lineNo + 1 << " " << fileIndex << "\n";
             continue;

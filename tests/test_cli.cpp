@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 
 #include "support/test_support.h"
 
 using voxgi::test::fileExists;
 using voxgi::test::makeTempDir;
+using voxgi::test::runShell;
 using voxgi::test::runVoxgi;
+using voxgi::test::sourcePath;
 using voxgi::test::writeFile;
 
 namespace {
@@ -147,6 +150,29 @@ TEST(Cli, MethodsListsMethodsAndSettings) {
     auto refused = runVoxgi("render cornell-box --method lpv --set lpv.resolution=10 -o /tmp/never.exr");
     EXPECT_EQ(refused.exitCode, 2);
     EXPECT_NE(refused.output.find("gi.lpv.resolution"), std::string::npos) << refused.output;
+}
+
+// scripts/bundle.sh: a folder that runs voxgi with none of the machine's libraries but the GPU
+// driver's. The CLI runs from it with the bundle's libraries alone, and renders (with this
+// machine's GL driver) from the bundle's shaders.
+TEST(Cli, BundleRunsWithItsOwnLibrariesAndShaders) {
+    if (runShell(std::string("grep -q __asan_init \"") + VOXGI_BINARY + "\"").exitCode == 0)
+        GTEST_SKIP() << "a sanitized binary runs with its runtime first, not through a carried loader";
+    const std::string dir = makeTempDir("bundle");
+    auto r = runShell("\"" + sourcePath("scripts/bundle.sh") + "\" --binary \"" + VOXGI_BINARY +
+                            "\" --dir " + dir + "/voxgi");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = runShell("VOXGI_BUNDLE_ONLY=1 " + dir + "/voxgi/voxgi methods");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("ddgi"), std::string::npos) << r.output;
+    r = runShell(dir + "/voxgi/voxgi render cornell-box --method direct --width 16 --height 16 --frames 1 -o " +
+                       dir + "/direct.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fileExists(dir + "/direct.exr"));
+    r = runShell("\"" + sourcePath("scripts/bundle.sh") + "\" --binary " + dir + "/no-such-binary --dir " + dir + "/x");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_EQ(lineCount(r.output), 1) << r.output;
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, BenchFrameTakesWidthByHeightSizesAndPrintsGpuTimes) {

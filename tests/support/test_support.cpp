@@ -17,8 +17,12 @@ namespace voxgi::test {
 namespace fs = std::filesystem;
 
 RunResult runVoxgi(const std::string& arguments) {
+    return runShell(std::string("\"") + VOXGI_BINARY + "\" " + arguments);
+}
+
+RunResult runShell(const std::string& command) {
     RunResult r;
-    std::string cmd = std::string("\"") + VOXGI_BINARY + "\" " + arguments + " 2>&1";
+    const std::string cmd = command + " 2>&1";
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
     std::array<char, 4096> buf;

@@ -15,6 +15,8 @@ struct RunResult {
     std::string output;  // stdout and stderr together
 };
 
+// Runs `command` through the shell and captures its output (stderr too) and exit status.
+RunResult runShell(const std::string& command);
 // Runs `voxgi <arguments>` through the shell and captures its output and exit status.
 RunResult runVoxgi(const std::string& arguments);
 
