@@ -16,7 +16,7 @@ struct ScreenRect {
 };
 
 // Runs `program` (made current here) over `rect`: sets its uScreenRect and dispatches enough
-// 8x8 groups. The caller binds the program's textures and images first and issues the barrier
+// groups. The caller binds the program's textures and images first and issues the barrier
 // that its readers need (screenPassBarrier()).
 void dispatchScreen(const Program& program, ScreenRect rect);
 

@@ -322,7 +322,6 @@ struct FrameRenderer::Impl {
 
     void beginLightPass() {
         beginAdditivePass(accumFbo.id());
-        lightProgram.use();
         bindSurfaces(lightProgram, gbufferView());
         glBindTextureUnit(4, cubeDistance.id());
         glBindTextureUnit(5, shadowDepth.id());

@@ -12,7 +12,6 @@ uniform sampler2D uAlbedo;
 uniform sampler2D uEmission;
 uniform vec3 uIrradiance;
 
-
 void main() {
     ivec2 pixel;
     if (!screenPixel(pixel)) return;

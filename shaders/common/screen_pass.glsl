@@ -1,7 +1,7 @@
 // Per-pixel passes as compute shaders (gl/screen_pass.h says why): one invocation per pixel of
-// uScreenRect, in square groups (shared/screen_pass.h). A pass calls screenPixel() first and returns when it is false; an
-// additive pass then hands its value to addToTarget(), as a draw with GL_ONE, GL_ONE blending
-// would add it.
+// uScreenRect, in square groups (shared/screen_pass.h). A pass calls screenPixel() first and
+// returns when it is false; an additive pass then hands its value to addToTarget(), as a draw
+// with GL_ONE, GL_ONE blending would add it.
 #ifndef VOXGI_SCREEN_PASS_GLSL
 #define VOXGI_SCREEN_PASS_GLSL
 

@@ -9,7 +9,6 @@
 
 uniform vec3 uEye;
 
-
 void main() {
     ivec2 pixel;
     if (!screenPixel(pixel)) return;

@@ -27,7 +27,6 @@ uniform vec3 uShadowEye;        // the cube map's centre (point light; quad samp
 uniform mat4 uShadowMatrix;     // world -> shadow texture space (spot maps)
 uniform float uShadowTexel;     // world size of one shadow texel at unit distance (normal offset)
 
-
 float cubeVisibility(vec3 p, vec3 n) {
     vec3 d = p - uShadowEye;
     float dist = length(d);
