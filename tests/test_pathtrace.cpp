@@ -353,6 +353,35 @@ TEST(PathTracer, GlossyUnderSquareLightMatchesQuadrature) {
     }
 }
 
+TEST(PathTracer, ABsdfSeenFromAnotherDirectionIsTheOneBuiltFromIt) {
+    // Light subpaths sample with the BSDF seen from the light, and MIS needs reverse pdfs: both
+    // come from Bsdf::seenFrom, which must turn normals and indices over exactly when the new
+    // direction lies on the other side.
+    Material plastic;
+    plastic.albedo = glm::vec3(0.6f, 0.5f, 0.4f);
+    plastic.roughness = 0.5f;
+    plastic.specular = 0.04f;
+    Material roughGlass = plastic;
+    roughGlass.transmission = 0.8f;
+    roughGlass.ior = 1.5f;
+    const glm::vec3 geometric(0.0f, 1.0f, 0.0f), shading = glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f));
+    const glm::vec3 views[] = {glm::normalize(glm::vec3(0.3f, 0.8f, -0.2f)), glm::normalize(glm::vec3(-0.6f, 0.3f, 0.5f)),
+                               glm::normalize(glm::vec3(0.1f, -0.9f, 0.3f))};
+    for (const Material& m : {plastic, roughGlass})
+        for (const glm::vec3& from : views)
+            for (const glm::vec3& to : views) {
+                const pt::Bsdf first(m, m.albedo, from, geometric, shading, glm::dot(geometric, from) > 0.0f);
+                const pt::Bsdf seen = first.seenFrom(to);
+                const pt::Bsdf built(m, m.albedo, to, geometric, shading, glm::dot(geometric, to) > 0.0f);
+                for (const glm::vec3& wi : views) {
+                    float pdfSeen, pdfBuilt;
+                    const glm::vec3 fSeen = seen.evalPdf(wi, &pdfSeen), fBuilt = built.evalPdf(wi, &pdfBuilt);
+                    EXPECT_FLOAT_EQ(pdfSeen, pdfBuilt) << m.transmission;
+                    EXPECT_FLOAT_EQ(fSeen.g, fBuilt.g) << m.transmission;
+                }
+            }
+}
+
 TEST(PathTracer, GlassDoesNotCreateEnergy) {
     // Walls that emit 1 and absorb everything; a clear or rough glass sphere in the middle can
     // only redirect light, so every direction sees at most 1 (exactly 1 for smooth glass).

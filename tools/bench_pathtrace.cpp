@@ -4,6 +4,7 @@
 // threads), so a busy machine changes the wall clock but not the figures.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include <tbb/info.h>
@@ -87,7 +88,9 @@ int runBench(const std::vector<std::string>& argv) {
     for (const std::string& name : scenes) {
         std::optional<Scene> scene = loadBenchScene(name);
         if (!scene) continue;
-        benchScene(name, std::move(*scene), size, referenceSpp, budget, lightPaths, cache, csv);
+        // A scene file is named by its stem: the name also names its cached reference.
+        benchScene(std::filesystem::path(name).stem().string(), std::move(*scene), size, referenceSpp, budget, lightPaths,
+                   cache, csv);
     }
     if (auto c = args.value("--csv")) {
         writeTextAtomically(*c, csv.str());

@@ -15,10 +15,11 @@ EmbreeShare measureEmbreeShare(PathTracer& tracer, int spp) {
     const double pathCpu = processCpuSeconds() - start;
     const double rays = double(tracer.raysTraced() - raysBefore);
     tracer.rayTracer().startLog();
-    tbb::parallel_for(0, tracer.height(), [&](int y) {
-        for (int x = 0; x < tracer.width(); ++x)
-            for (int s = first; s < first + spp; ++s) tracer.samplePixel(x, y, std::uint64_t(s));
-    });
+    // Sample index outermost: samplePixel() keeps only the last few indices' light subpaths.
+    for (int s = first; s < first + spp; ++s)
+        tbb::parallel_for(0, tracer.height(), [&](int y) {
+            for (int x = 0; x < tracer.width(); ++x) tracer.samplePixel(x, y, std::uint64_t(s));
+        });
     const std::vector<LoggedRay> logged = tracer.rayTracer().stopLog();
     start = processCpuSeconds();
     tracer.rayTracer().replayBare(logged);

@@ -72,11 +72,27 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
     alpha_ = std::max(r2, kSmoothAlpha);
     smoothDielectric_ = r2 < kSmoothAlpha;
     eta_ = frontFace ? 1.0f / m.ior : m.ior;
+    setSpecularProbability();
+}
 
+void Bsdf::setSpecularProbability() {
     float nv = std::max(glm::dot(n_, wo_), 0.0f);
     float ws = std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f ? luminanceRec709(fresnelSchlick(f0_, nv)) : 0.0f;
     float wd = luminanceRec709(diffuse_);
     specularProbability_ = ws + wd > 0.0f ? ws / (ws + wd) : 0.0f;
+}
+
+Bsdf Bsdf::seenFrom(glm::vec3 wo) const {
+    Bsdf other = *this;
+    other.wo_ = wo;
+    if (glm::dot(ng_, wo) < 0.0f) {  // the other side: normals and indices turn over
+        other.ng_ = -ng_;
+        other.n_ = -n_;
+        other.eta_ = 1.0f / eta_;
+        orthonormalBasis(other.n_, other.t_, other.b_);
+    }
+    other.setSpecularProbability();
+    return other;
 }
 
 glm::vec3 Bsdf::evalOpaque(glm::vec3 wi, float* pdf) const {

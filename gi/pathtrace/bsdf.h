@@ -44,11 +44,16 @@ public:
     bool sampleGlossy(glm::vec2 u, BsdfSample& out) const;
     // True when eval can be non-zero somewhere (a light sample is worth tracing).
     bool hasSmoothPart() const { return opaqueWeight_ > 0.0f || (transmission_ > 0.0f && !smoothDielectric_); }
+    // The same surface point seen from `wo` instead: light subpaths sample with wo pointing
+    // back along the light, and MIS weights need the pdf of each sample's reverse.
+    Bsdf seenFrom(glm::vec3 wo) const;
+    glm::vec3 wo() const { return wo_; }
     // Normals oriented to the side of wo (two-sided shading).
     glm::vec3 shadingNormal() const { return n_; }
     glm::vec3 geometricNormal() const { return ng_; }
 
 private:
+    void setSpecularProbability();
     glm::vec3 evalOpaque(glm::vec3 wi, float* pdf) const;
     glm::vec3 evalRoughDielectric(glm::vec3 wi, float* pdf) const;
     bool sampleOpaque(glm::vec3 u, BsdfSample& out) const;

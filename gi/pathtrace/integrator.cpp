@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "gi/pathtrace/bsdf.h"
+#include "shaders/shared/constants.h"
 
 namespace voxgi::pt {
 
@@ -14,6 +15,17 @@ float powerHeuristic(float a, float b) {
     return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 float maxComponent(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
+// Connection m of kConnections from one vertex: stratified over the pool by one sample point.
+float connectionPick(float u, int m) { return (u + float(m)) * (1.0f / float(kConnections)); }
+void prefetchLightVertex(const LightVertices& pool, float u) {
+    if (pool.vertices.empty()) return;
+    const std::size_t count = pool.vertices.size();
+    const char* at = reinterpret_cast<const char*>(&pool.vertices[std::min(std::size_t(u * float(count)), count - 1)]);
+    __builtin_prefetch(at);
+    __builtin_prefetch(at + sizeof(LightVertex) - 1);
+}
+// The power heuristic's form of a pdf (or of a ratio of pdfs) in the recursive MIS quantities.
+float mis(float pdf) { return pdf * pdf; }
 }  // namespace
 
 glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, float sceneScale) {
@@ -64,8 +76,30 @@ float shadowRayEnd(float distance) {
 }
 }  // namespace
 
+template <class ReverseAtK>
+float Integrator::longerLightSubpaths(const CameraHistory& history, float lightAreaAtK, ReverseAtK reverseAtK,
+                                      int lightSurfaces) const {
+    // Strategy j joins v_j to v_(j+1), the light subpath covering v_(j+1) .. v_n; the one
+    // evaluated is j = k. Going one surface further towards the camera multiplies its pdf by
+    // (light subpath's pdf of v_j) / (camera subpath's); it exists while the camera subpath
+    // keeps a surface (j >= 1), the light subpath is within kMaxLightVertices (n - j), and
+    // neither subpath met a delta lobe on the way (a zero pdf).
+    const int k = history.surfaces;
+    const int first = std::max(1, k + lightSurfaces - maxLightVertices());
+    float sum = 0.0f, product = 1.0f, light = lightAreaAtK;
+    for (int i = k; i - 1 >= first; --i) {
+        const float camera = history.at(i).arrival;
+        if (!(camera > 0.0f) || !(light > 0.0f)) break;
+        product *= mis(light / camera);
+        sum += product;
+        if (i - 2 < first) break;  // no strategy further on: the reverse pdf is not needed
+        light = i == k ? reverseAtK() : history.at(i).reverse;
+    }
+    return sum;
+}
+
 glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, glm::vec2 uDisc,
-                                   float arrivalPdfArea, std::uint32_t& rays) const {
+                                   const CameraHistory* history, std::uint32_t& rays) const {
     const glm::vec3 p = hit.position;
     glm::vec3 sum(0.0f);
     for (std::size_t i = 0; i < lights_.deltaCount(); ++i) {
@@ -73,12 +107,17 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
         if (maxComponent(ls.radiance) <= 0.0f) continue;
         glm::vec3 f = bsdf.eval(ls.direction);
         if (maxComponent(f) <= 0.0f) continue;
-        // The same path, previous vertex - this one - light, is also made by a light subpath
-        // landing here and the previous vertex connecting to it.
+        // Light subpaths from this light make the same path too, joined at any of its edges.
         float weight = 1.0f;
-        if (arrivalPdfArea > 0.0f)
-            weight = powerHeuristic(arrivalPdfArea, lights_.emissionPdfArea(i, ls.direction, ls.distance,
-                                                                            std::abs(glm::dot(hit.geometricNormal, ls.direction))));
+        if (history) {
+            const float cosine = std::abs(glm::dot(hit.geometricNormal, ls.direction));
+            const float emitted = lights_.emissionPdfArea(i, ls.direction, ls.distance, cosine);
+            if (emitted > 0.0f) {
+                weight = 1.0f / (1.0f + longerLightSubpaths(*history, emitted, [&] {
+                    return bsdf.seenFrom(ls.direction).pdf(bsdf.wo()) * history->at(history->surfaces).toPreviousArea;
+                }, 0));
+            }
+        }
         glm::vec3 o = leavingPoint(hit, ls.direction, sceneScale_);
         ++rays;
         if (!tracer_.occluded(o, ls.direction, 0.0f, shadowRayEnd(ls.distance))) sum += f * ls.radiance * weight;
@@ -106,8 +145,18 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
             glm::vec3 f = bsdf.evalPdf(ls.direction, &bsdfPdf);
             if (maxComponent(f) > 0.0f) {
                 ++rays;
+                // Light subpaths from the emitter make the same path too, joined at any edge.
+                float weight = powerHeuristic(ls.pdf, bsdfPdf);
+                if (history && ls.lightPathPdfArea > 0.0f) {
+                    const float cosine = std::abs(glm::dot(hit.geometricNormal, ls.direction));
+                    weight = 1.0f / (1.0f + mis(bsdfPdf / ls.pdf) +
+                                     longerLightSubpaths(*history, cosine * ls.lightPathPdfArea / (shading::kPi * ls.pdf), [&] {
+                                         return bsdf.seenFrom(ls.direction).pdf(bsdf.wo()) *
+                                                history->at(history->surfaces).toPreviousArea;
+                                     }, 0));
+                }
                 if (!segmentOccluded(leavingPoint(hit, ls.direction, sceneScale_), ls.position, ls.normal))
-                    sum += f * (ls.radiance / (1.0f - skyShare)) * powerHeuristic(ls.pdf, bsdfPdf);
+                    sum += f * (ls.radiance / (1.0f - skyShare)) * weight;
             }
         }
     }
@@ -119,64 +168,167 @@ float Integrator::environmentShare() const {
     return lights_.hasEmitters() ? 0.5f : 1.0f;
 }
 
-std::uint32_t Integrator::traceLightPath(const PathSampler& sampler, LightVertex& out) const {
-    out = LightVertex{};
-    const EmittedRay e = lights_.sampleEmission(sampler.get3D(0));
+std::uint32_t Integrator::traceLightPath(const PathSampler& sampler, std::vector<LightVertex>& out) const {
+    const EmittedRay e = lights_.sampleEmission(sampler.get3D(0), sampler.get2D(1));
     if (!(e.pdf > 0.0f) || maxComponent(e.intensity) <= 0.0f) return 0;
-    const RayHit hit = tracer_.intersect(e.origin, e.direction);
-    std::uint32_t rays = 1;
-    if (!hit.hit) return rays;
-    const glm::vec3 toLight = -e.direction;
-    const float cosine = std::abs(glm::dot(hit.geometricNormal, toLight));
-    if (!(cosine > 0.0f)) return rays;
-    const Material& material = scene_.materials[hit.material];
-    const glm::vec3 albedo = tracer_.albedoAt(hit);
-    // Only surfaces a camera path takes this light at by next-event estimation: no delta BSDFs.
-    if (!Bsdf(material, albedo, toLight, hit.geometricNormal, hit.shadingNormal, hit.frontFace).hasSmoothPart())
-        return rays;
-    // The light must also pass the shadow ray next-event estimation would trace from here,
-    // which starts from the smooth surface (leavingPoint) where the vertex normals bulge out:
-    // light ray and shadow ray then need not agree, and the two strategies must see one scene.
-    if (hit.smoothPosition != hit.position) {
+    const bool fromEmitter = e.emitter >= 0;
+    // Recursive MIS quantities (light_paths.h) before the next surface's distance and cosine
+    // are known: this subpath's pdf of the light's point and direction against next-event
+    // estimation's of the point (1 for a delta light: every one is sampled; an emitter's from
+    // the first surface, below) and, for an emitter, a camera path hitting it.
+    float misArea = 1.0f / mis(e.pdf);
+    const float emitterCosine = fromEmitter ? glm::dot(e.normal, e.direction) : 0.0f;
+    float misLonger = fromEmitter ? mis(emitterCosine / e.pdf) : 0.0f;
+    glm::vec3 power = e.intensity / e.pdf;  // the subpath's throughput
+    glm::vec3 carried(1.0f);                // its BSDFs' part, for roulette
+    glm::vec3 origin = fromEmitter ? offsetOrigin(e.origin, e.normal, e.direction, sceneScale_) : e.origin;
+    glm::vec3 direction = e.direction;
+    std::uint32_t rays = 0;
+    const int surfaces = maxLightVertices();
+    for (int j = 1; j <= surfaces; ++j) {
+        const RayHit hit = tracer_.intersect(origin, direction);
         ++rays;
-        if (tracer_.occluded(leavingPoint(hit, toLight, sceneScale_), toLight, 0.0f, shadowRayEnd(hit.t))) return rays;
+        if (!hit.hit) break;
+        const glm::vec3 toLight = -direction;
+        const float cosine = std::abs(glm::dot(hit.geometricNormal, toLight));
+        if (!(cosine > 0.0f)) break;
+        if (j == 1 && hit.smoothPosition != hit.position) {
+            // The light must also pass the shadow ray next-event estimation would trace from
+            // here, which starts from the smooth surface (leavingPoint) where the vertex normals
+            // bulge out: light ray and shadow ray then need not agree, and the two strategies
+            // must see one scene.
+            ++rays;
+            const glm::vec3 from = leavingPoint(hit, toLight, sceneScale_);
+            if (fromEmitter ? segmentOccluded(from, e.origin, e.normal)
+                            : tracer_.occluded(from, toLight, 0.0f, shadowRayEnd(hit.t)))
+                break;
+        }
+        if (j == 1 && fromEmitter)
+            misArea *= mis((1.0f - environmentShare()) * lights_.emitterPdf(e.emitter, hit.position, e.origin, emitterCosine) *
+                           emitterCosine / (hit.t * hit.t));
+        const Material& material = scene_.materials[hit.material];
+        const glm::vec3 albedo = tracer_.albedoAt(hit);
+        // Only surfaces a camera path takes this light at by next-event estimation or a
+        // connection: no delta BSDFs.
+        const Bsdf bsdf(material, albedo, toLight, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
+        if (!bsdf.hasSmoothPart()) break;
+        misArea *= mis(hit.t * hit.t) / mis(cosine);
+        misLonger /= mis(cosine);
+        LightVertex v;
+        v.position = hit.position;
+        v.material = hit.material;
+        v.geometricNormal = hit.geometricNormal;
+        v.scatterings = std::uint32_t(j);
+        v.shadingNormal = hit.shadingNormal;
+        v.misArea = misArea;
+        v.albedo = albedo;
+        v.misLonger = misLonger;
+        v.toLight = toLight;
+        v.flux = power / cosine;
+        if (!std::isfinite(misArea) || !std::isfinite(misLonger) || !std::isfinite(maxComponent(v.flux))) break;
+        out.push_back(v);
+        if (j == surfaces) break;
+
+        // On, the way a camera path would have come: sampled by the BSDF seen from the light,
+        // and carrying what the camera path's BSDF seen from the new direction gives.
+        const std::uint32_t decision = 2 * std::uint32_t(j);
+        BsdfSample s;
+        if (!bsdf.sample(sampler.get3D(decision), s) || s.delta || !(s.pdf > 0.0f)) break;
+        float reversePdf;
+        const glm::vec3 f = bsdf.seenFrom(s.direction).evalPdf(toLight, &reversePdf);
+        const float cosOut = std::abs(glm::dot(hit.geometricNormal, s.direction));
+        const glm::vec3 step = f * (cosOut / (cosine * s.pdf));
+        if (!(maxComponent(step) > 0.0f)) break;
+        power *= step;
+        carried *= step;
+        misLonger = mis(cosOut / s.pdf) * (misLonger * mis(reversePdf) + misArea);
+        misArea = 1.0f / mis(s.pdf);
+        if (j >= 2) {
+            // Russian roulette, as camera paths: survivors carry 1 / q.
+            const float q = maxComponent(carried);
+            if (q < 1.0f) {
+                if (!(sampler.get1D(decision + 1) < q)) break;
+                carried /= q;
+                power /= q;
+            }
+        }
+        origin = leavingPoint(hit, s.direction, sceneScale_);
+        direction = s.direction;
     }
-    out.position = hit.position;
-    out.material = hit.material;
-    out.geometricNormal = hit.geometricNormal;
-    out.shadingNormal = hit.shadingNormal;
-    out.albedo = albedo;
-    out.toLight = toLight;
-    out.pdfArea = e.pdf * cosine / (hit.t * hit.t);
-    out.flux = e.intensity / (e.pdf * cosine);
-    if (!(out.pdfArea > 0.0f) || !std::isfinite(out.pdfArea) || !std::isfinite(maxComponent(out.flux)))
-        out = LightVertex{};
     return rays;
 }
 
-glm::vec3 Integrator::connect(const Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,
-                              std::uint32_t& rays) const {
-    if (pool.vertices.empty()) return glm::vec3(0.0f);
-    const LightVertex& v = pool.vertices[std::min(std::size_t(u * float(pool.vertices.size())), pool.vertices.size() - 1)];
-    if (!v.valid()) return glm::vec3(0.0f);
+bool Integrator::connection(const Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,
+                            const CameraHistory& history, Connection& out) const {
+    const std::size_t count = pool.vertices.size();
+    const LightVertex& v = pool.vertices[std::min(std::size_t(u * float(count)), count - 1)];
+    if (!v.valid() || history.surfaces + int(v.scatterings) > maxBounces_) return false;
     const glm::vec3 d = v.position - hit.position;
     const float d2 = glm::dot(d, d);
-    if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+    if (!(d2 > 0.0f)) return false;
     const glm::vec3 w = d / std::sqrt(d2);
     float pdfHere;
     const glm::vec3 fHere = bsdf.evalPdf(w, &pdfHere);
     const float cosThere = std::abs(glm::dot(v.geometricNormal, w));
-    if (maxComponent(fHere) <= 0.0f || !(cosThere > 0.0f)) return glm::vec3(0.0f);
+    const float cosHere = std::abs(glm::dot(hit.geometricNormal, w));
+    if (maxComponent(fHere) <= 0.0f || !(cosThere > 0.0f) || !(cosHere > 0.0f)) return false;
     // The light vertex as the camera path would meet it, arriving along w.
     const Bsdf there(scene_.materials[v.material], v.albedo, -w, v.geometricNormal, v.shadingNormal,
                      glm::dot(v.geometricNormal, w) < 0.0f);
-    const glm::vec3 fThere = there.eval(v.toLight);
-    if (maxComponent(fThere) <= 0.0f) return glm::vec3(0.0f);
+    float pdfThereOnwards;  // the camera subpath going on from there to the light subpath's previous vertex
+    const glm::vec3 fThere = there.evalPdf(v.toLight, &pdfThereOnwards);
+    if (maxComponent(fThere) <= 0.0f) return false;
     const float geometry = cosThere / d2;
-    const glm::vec3 c = fHere * fThere * v.flux * (geometry * powerHeuristic(v.pdfArea, pdfHere * geometry));
-    if (maxComponent(c) <= 0.0f) return glm::vec3(0.0f);
+    // MIS over the strategies with a longer camera subpath (the recursion the light vertex
+    // carries) and with a longer light subpath (the camera history).
+    const float cameraLonger = mis(pdfHere * geometry) * (v.misArea + v.misLonger * mis(pdfThereOnwards));
+    const float lightAreaHere = there.seenFrom(v.toLight).pdf(-w) * cosHere / d2;
+    const float lightLonger = longerLightSubpaths(history, lightAreaHere, [&] {
+        return bsdf.seenFrom(w).pdf(bsdf.wo()) * history.at(history.surfaces).toPreviousArea;
+    }, int(v.scatterings));
+    // One vertex of the pool stands for the expected sum over one subpath's vertices.
+    const float share = float(count) / float(pool.paths);
+    out.contribution = fHere * fThere * v.flux * (geometry * share / (1.0f + cameraLonger + lightLonger));
+    if (!(out.contribution.x + out.contribution.y + out.contribution.z > 0.0f) ||
+        !std::isfinite(out.contribution.x + out.contribution.y + out.contribution.z))
+        return false;
+    out.from = leavingPoint(hit, w, sceneScale_);
+    out.to = v.position;
+    out.toNormal = v.geometricNormal;
+    out.scatterings = history.surfaces + int(v.scatterings);
+    return true;
+}
+
+template <class Deposit>
+void Integrator::connect(const Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, glm::vec2 u,
+                         const CameraHistory& history, Deposit deposit, std::uint32_t& rays) const {
+    // kConnections candidates, stratified over the pool by u.x; one shadow ray, for the
+    // candidate u.y picks in proportion to its unoccluded contribution (Popov et al. 2015's
+    // probabilistic connections): the estimate of their mean is unbiased, and the candidates
+    // that matter (near, facing, bright) are the ones traced.
+    Connection candidates[kConnections];
+    float weights[kConnections];
+    float total = 0.0f;
+    for (int m = 0; m < kConnections; ++m) {
+        const bool valid = connection(bsdf, hit, pool, connectionPick(u.x, m), history, candidates[m]);
+        const glm::vec3& c = candidates[m].contribution;
+        weights[m] = valid ? c.x + c.y + c.z : 0.0f;
+        total += weights[m];
+    }
+    if (!(total > 0.0f)) return;
+    int pick = 0;
+    float running = 0.0f;
+    const float target = u.y * total;
+    for (int m = 0; m < kConnections; ++m) {
+        if (!(weights[m] > 0.0f)) continue;
+        pick = m;
+        running += weights[m];
+        if (target < running) break;
+    }
+    const Connection& c = candidates[pick];
     ++rays;
-    return segmentOccluded(leavingPoint(hit, w, sceneScale_), v.position, v.geometricNormal) ? glm::vec3(0.0f) : c;
+    if (!segmentOccluded(c.from, c.to, c.toNormal))
+        deposit(c.scatterings, c.contribution * (total / (weights[pick] * float(kConnections))));
 }
 
 PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
@@ -188,11 +340,20 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
     float previousPdf = 0.0f;
     bool previousDelta = true;  // the camera: what it sees directly gets full weight
     glm::vec3 previousPosition = origin;
+    float previousCosine = 0.0f;  // |geometric normal . direction| at the previous surface
+    CameraHistory history;        // kept only for connections
     auto deposit = [&](int scatterings, glm::vec3 radiance) {
         (scatterings <= 1 ? out.direct : out.indirect) += radiance;
     };
 
     for (int depth = 0;; ++depth) {
+        // The light vertices this bounce connects to are picked now and their cache lines
+        // requested, so that they load while Embree traces (a pool of light subpaths is
+        // megabytes, and each pick a random miss).
+        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
+        const glm::vec2 uConnect = connecting ? sampler.get2D(decision + 3) : glm::vec2(0.0f);
+        if (connecting)
+            for (int m = 0; m < kConnections; ++m) prefetchLightVertex(*lightVertices, connectionPick(uConnect.x, m));
         RayHit hit = tracer_.intersect(origin, direction);
         ++out.rays;
         if (!hit.hit) {
@@ -207,13 +368,12 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
         // direction in a sun's disc (gi/pathtrace/sampler.h). Their points are computed while
         // the texels of the albedo load: that cache miss was most of a texture lookup's time.
-        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
         tracer_.prefetchAlbedo(hit);
         glm::vec3 uLight(0.0f), uBsdf(0.0f);
         glm::vec2 uDisc(0.0f);
         if (depth < maxBounces_) {
             uLight = sampler.get3D(decision);
-            uDisc = sampler.get2D(decision + 4);
+            if (lights_.hasSunDisc()) uDisc = sampler.get2D(decision + 4);
             uBsdf = sampler.get3D(decision + 1);
         }
         glm::vec3 albedo = tracer_.albedoAt(hit);
@@ -230,6 +390,15 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
                                  lights_.emitterPdf(hit.mesh, hit.triangle, previousPosition, hit.position,
                                                     -glm::dot(hit.geometricNormal, direction));
                 weight = powerHeuristic(previousPdf, lightPdf);
+                const float pointPdf = connecting ? lights_.emissionPointPdf(hit.mesh, hit.triangle) : 0.0f;
+                if (pointPdf > 0.0f && lightPdf > 0.0f) {
+                    // Next-event estimation at the previous surface, and light subpaths from here
+                    // joined at any edge, make the same path.
+                    const int k = history.surfaces;
+                    const float longer = longerLightSubpaths(history, previousCosine * pointPdf / (shading::kPi * lightPdf),
+                                                             [&] { return history.at(k).reverse; }, 0);
+                    weight = 1.0f / (1.0f + mis(lightPdf / previousPdf) * (1.0f + longer));
+                }
             }
             deposit(depth, throughput * material.emission * weight);
         }
@@ -237,15 +406,20 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
 
         glm::vec3 wo = -direction;
         Bsdf bsdf(material, albedo, wo, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
+        if (connecting) {
+            const int k = depth + 1;
+            const float cosine = std::abs(glm::dot(hit.geometricNormal, direction));
+            history.surfaces = k;
+            CameraHistory::Surface& here = history.at(k);
+            here.arrival = k >= 2 && !previousDelta ? previousPdf * cosine / (hit.t * hit.t) : 0.0f;
+            here.toPreviousArea = k >= 2 ? previousCosine / (hit.t * hit.t) : 0.0f;
+            here.reverse = 0.0f;
+        }
         if (bsdf.hasSmoothPart()) {
-            // A light-vertex connection from the previous vertex could have made this path's
-            // next-event samples of delta lights when that vertex sampled a smooth lobe.
-            const float arrivalPdfArea = connecting && depth >= 1 && !previousDelta
-                                             ? previousPdf * std::abs(glm::dot(hit.geometricNormal, direction)) / (hit.t * hit.t)
-                                             : 0.0f;
-            deposit(depth + 1, throughput * sampleLights(bsdf, hit, uLight, uDisc, arrivalPdfArea, out.rays));
-            if (connecting && depth + 1 < maxBounces_)
-                deposit(depth + 2, throughput * connect(bsdf, hit, *lightVertices, sampler.get1D(decision + 3), out.rays));
+            deposit(depth + 1, throughput * sampleLights(bsdf, hit, uLight, uDisc, connecting ? &history : nullptr, out.rays));
+            if (connecting)
+                connect(bsdf, hit, *lightVertices, uConnect, history,
+                        [&](int scatterings, glm::vec3 c) { deposit(scatterings, throughput * c); }, out.rays);
         }
 
         BsdfSample s;
@@ -255,6 +429,13 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         previousPdf = s.pdf;
         previousDelta = s.delta;
         previousPosition = hit.position;
+        if (connecting) {
+            // A light subpath going on from here to the previous surface: what it would sample.
+            // The MIS sums read it from the third surface on (no strategy joins the camera).
+            CameraHistory::Surface& here = history.at(depth + 1);
+            here.reverse = s.delta || depth < 2 ? 0.0f : bsdf.seenFrom(s.direction).pdf(wo) * here.toPreviousArea;
+            previousCosine = std::abs(glm::dot(hit.geometricNormal, s.direction));
+        }
         radianceScale *= s.radianceScale;
         if (depth >= 3) {
             // Russian roulette keeps the estimate unbiased: survivors carry 1 / q. Survival

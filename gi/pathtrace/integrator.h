@@ -2,6 +2,9 @@
 // pixels, tiles and accumulation (gi/pathtrace/path_tracer.cpp).
 #pragma once
 
+#include <algorithm>
+#include <vector>
+
 #include "gi/pathtrace/environment.h"
 #include "gi/pathtrace/light_paths.h"
 #include "gi/pathtrace/lights.h"
@@ -21,29 +24,69 @@ public:
     Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces);
     // Decision 0 of `sampler` is the caller's (the pixel position); bounce k uses 1 + 5k..5 + 5k.
     // With `lightVertices` (this sample index's, light_paths.h), every vertex of the path is also
-    // connected to one of them; without, the path is unidirectional.
+    // connected to one of them (kConnections weighed, one traced); without, the path is
+    // unidirectional.
     PathSample trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
                      const LightVertices* lightVertices = nullptr) const;
 
-    // Whether any light emits light subpaths (the scene has point or spot lights) and
-    // paths are long enough to use them (two scatterings or more).
+    // Whether any light emits light subpaths (the scene has point or spot lights or emitters)
+    // and paths are long enough to use them (two scatterings or more).
     bool tracesLightPaths() const { return lights_.emitsRays() && maxBounces_ >= 2; }
-    // Light subpath `sampler` (decision 0) into `out` (invalid when it found no usable
-    // surface); returns the rays it traced.
-    std::uint32_t traceLightPath(const PathSampler& sampler, LightVertex& out) const;
+    // Surfaces a light subpath keeps at most: kMaxLightVertices, and one fewer than a path may
+    // scatter (a connection adds at least one camera surface).
+    int maxLightVertices() const { return std::min(kMaxLightVertices, maxBounces_ - 1); }
+    // Light subpath `sampler` (decision 0: the light and the direction; 1: the point on an
+    // emitter; surface j: 2j its BSDF sample, 2j + 1 roulette): appends its light vertices to
+    // `out` and returns the rays it traced.
+    std::uint32_t traceLightPath(const PathSampler& sampler, std::vector<LightVertex>& out) const;
 
 private:
+    // What the MIS weights of light-vertex connections need from the camera subpath so far:
+    // for its last kMaxLightVertices surfaces v_k (k = 1 at the first hit), the area pdf of the
+    // camera subpath reaching v_k and that of a light subpath reaching v_(k-1) from v_k (known
+    // once the camera subpath leaves v_k), and the factor that turns a solid-angle pdf at v_k
+    // towards v_(k-1) into one per unit area at v_(k-1).
+    struct CameraHistory {
+        struct Surface {
+            float arrival = 0.0f;         // camera subpath reaching v_k (0 after a delta lobe)
+            float reverse = 0.0f;         // light subpath reaching v_(k-1) from v_k (0: none)
+            float toPreviousArea = 0.0f;  // |cos| at v_(k-1) / distance^2
+        };
+        int surfaces = 0;  // k of the newest surface
+        Surface& at(int k) { return ring[std::size_t(k % kMaxLightVertices)]; }
+        const Surface& at(int k) const { return ring[std::size_t(k % kMaxLightVertices)]; }
+        Surface ring[kMaxLightVertices];
+    };
+
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
     // u: the emitter point or sky direction (x, y) and the choice between them (z); uDisc: the
-    // direction in a sun's disc. arrivalPdfArea: the area pdf of
-    // the hit through the previous vertex's BSDF sample, for weighting delta-light samples
-    // against light-vertex connections from that vertex (0: no connection could make the path).
+    // direction in a sun's disc. `history` (null: no light subpaths) weighs delta-light samples
+    // against the light-vertex connections that make the same paths.
     glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, glm::vec2 uDisc,
-                           float arrivalPdfArea, std::uint32_t& rays) const;
-    // Light after two more scatterings: the hit joined to light vertex u * size of `pool`, with
-    // MIS against reaching that vertex by this BSDF's sample.
-    glm::vec3 connect(const class Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,
-                      std::uint32_t& rays) const;
+                           const CameraHistory* history, std::uint32_t& rays) const;
+    // A connection of the hit (the camera subpath's newest surface) to light vertex u * size of
+    // `pool`, before its shadow ray: the joined path's contribution, MIS-weighted over every
+    // strategy that makes it, if unoccluded. False when it carries nothing.
+    struct Connection {
+        glm::vec3 contribution{0.0f};
+        glm::vec3 from{0.0f}, to{0.0f}, toNormal{0.0f};  // the shadow segment
+        int scatterings = 0;
+    };
+    bool connection(const class Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,
+                    const CameraHistory& history, Connection& out) const;
+    // Light after more scatterings: kConnections connections of the hit, one of them traced
+    // (light_paths.h). Deposited through `deposit(scatterings, radiance)`.
+    template <class Deposit>
+    void connect(const class Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, glm::vec2 u,
+                 const CameraHistory& history, Deposit deposit, std::uint32_t& rays) const;
+    // The MIS weights' sum over the strategies that give a light subpath more of the path's
+    // surfaces than the one evaluated, relative to it: the evaluated one joins the camera
+    // subpath's newest surface v_k to a light subpath of `lightSurfaces` surfaces, which
+    // reaches v_k with area pdf `lightAreaAtK`; reverseAtK() is the area pdf of a light subpath
+    // going on from v_k to v_(k-1).
+    template <class ReverseAtK>
+    float longerLightSubpaths(const CameraHistory& history, float lightAreaAtK, ReverseAtK reverseAtK,
+                              int lightSurfaces) const;
     // Whether anything lies between `from` (a ray origin, leavingPoint) and emitter point q
     // (normal nq).
     bool segmentOccluded(glm::vec3 from, glm::vec3 q, glm::vec3 nq) const;

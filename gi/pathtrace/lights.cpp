@@ -108,6 +108,8 @@ bool view(const Rect& r, glm::vec3 p, RectangleView& out) {
 LightSampler::LightSampler(const Scene& scene) {
     for (const Light& l : scene.lights)
         if (l.type != LightType::Quad) deltas_.push_back(shading::packLight(l));  // quads are emissive geometry
+    for (const shading::PackedLight& l : deltas_)
+        sunDisc_ = sunDisc_ || (l.kind.x == shading::kLightDirectional && l.shape.w > 0.0f);
 
     std::vector<double> emitted;
     for (const shading::PackedLight& l : deltas_) {
@@ -117,15 +119,6 @@ LightSampler::LightSampler(const Scene& scene) {
         emitted.push_back(std::max(double(luminanceRec709(glm::vec3(l.emission))), 0.0) * std::max(measure, 0.0));
     }
     const double emittedTotal = std::accumulate(emitted.begin(), emitted.end(), 0.0);
-    if (emittedTotal > 0.0 && std::isfinite(emittedTotal)) {
-        double running = 0.0;
-        for (double p : emitted) {
-            running += p;
-            rayProbability_.push_back(float(p / emittedTotal));
-            rayCdf_.push_back(float(running / emittedTotal));
-        }
-        rayCdf_.back() = 1.0f;
-    }
 
     std::vector<double> power;
     meshRectangle_.assign(scene.meshes.size(), -1);
@@ -179,6 +172,22 @@ LightSampler::LightSampler(const Scene& scene) {
             trianglePdfArea_[triangleGlobal[e.index]] = e.probability / triangles_[e.index].area;
     }
     if (!cdf_.empty()) cdf_.back() = 1.0f;
+
+    // Light subpaths: deltas and emitters in proportion to the power they send out (a
+    // Lambertian emitter's is pi x radiance x area).
+    const double emitterPower = cdf_.empty() || !std::isfinite(total) ? 0.0 : shading::kPiDouble * total;
+    const double all = (emittedTotal > 0.0 && std::isfinite(emittedTotal) ? emittedTotal : 0.0) + emitterPower;
+    if (!(all > 0.0)) return;
+    emitterRayShare_ = float(emitterPower / all);
+    if (emittedTotal > 0.0 && std::isfinite(emittedTotal)) {
+        double running = 0.0;
+        for (double p : emitted) {
+            running += p;
+            rayProbability_.push_back(float(p / all));
+            rayCdf_.push_back(float(running / emittedTotal));
+        }
+        rayCdf_.back() = 1.0f;
+    }
 }
 
 LightSample LightSampler::sampleDelta(std::size_t index, glm::vec3 p, glm::vec2 u) const {
@@ -197,10 +206,46 @@ float LightSampler::emissionPdf(std::size_t index) const {
     return rayProbability_[index] / (4.0f * shading::kPi);
 }
 
-EmittedRay LightSampler::sampleEmission(glm::vec3 u) const {
+EmittedRay LightSampler::sampleEmission(glm::vec3 u, glm::vec2 uPoint) const {
     EmittedRay ray;
-    if (rayCdf_.empty()) return ray;
-    const std::size_t i = std::min(std::size_t(std::lower_bound(rayCdf_.begin(), rayCdf_.end(), u.z) - rayCdf_.begin()),
+    const float deltaShare = 1.0f - emitterRayShare_;
+    if (u.z >= deltaShare || rayCdf_.empty()) {
+        if (!(emitterRayShare_ > 0.0f)) return ray;
+        const float select = std::clamp((u.z - deltaShare) / emitterRayShare_, 0.0f, 0.99999994f);
+        const std::size_t i = std::min(std::size_t(std::lower_bound(cdf_.begin(), cdf_.end(), select) - cdf_.begin()),
+                                       emitters_.size() - 1);
+        const Emitter& e = emitters_[i];
+        glm::vec3 emission;
+        float area;
+        if (e.rectangle) {
+            const Rectangle& r = rectangles_[e.index];
+            ray.origin = r.corner + uPoint.x * r.width * r.ex + uPoint.y * r.height * r.ey;
+            ray.normal = r.normal;
+            emission = r.emission;
+            area = r.width * r.height;
+        } else {
+            const Triangle& t = triangles_[e.index];
+            const float su = std::sqrt(uPoint.x);
+            ray.origin = t.a + (1.0f - uPoint.y) * su * t.e1 + uPoint.y * su * t.e2;
+            ray.normal = t.normal;
+            emission = t.emission;
+            area = t.area;
+        }
+        // Cosine-weighted about the emitting side.
+        const float r = std::sqrt(u.x), phi = 2.0f * shading::kPi * u.y;
+        const float cosine = std::sqrt(std::max(0.0f, 1.0f - u.x));
+        glm::vec3 tx, ty;
+        orthonormalBasis(ray.normal, tx, ty);
+        ray.direction = glm::normalize(r * std::cos(phi) * tx + r * std::sin(phi) * ty + cosine * ray.normal);
+        ray.pointPdfArea = emitterRayShare_ * e.probability / area;
+        ray.pdf = ray.pointPdfArea * cosine / shading::kPi;
+        ray.intensity = emission * cosine;
+        ray.emitter = std::int32_t(i);
+        if (!(ray.pdf > 0.0f) || !std::isfinite(ray.pdf)) return EmittedRay{};
+        return ray;
+    }
+    const float select = std::min(u.z / deltaShare, 0.99999994f);
+    const std::size_t i = std::min(std::size_t(std::lower_bound(rayCdf_.begin(), rayCdf_.end(), select) - rayCdf_.begin()),
                                    deltas_.size() - 1);
     if (!(rayProbability_[i] > 0.0f)) return ray;
     const shading::PackedLight& l = deltas_[i];
@@ -220,6 +265,23 @@ EmittedRay LightSampler::sampleEmission(glm::vec3 u) const {
     const float z = 1.0f - 2.0f * u.x, s = std::sqrt(std::max(0.0f, 1.0f - z * z));
     ray.direction = glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
     return ray;
+}
+
+float LightSampler::emissionPointPdf(std::uint32_t mesh, std::uint32_t triangle) const {
+    if (!(emitterRayShare_ > 0.0f)) return 0.0f;
+    if (const std::int32_t r = meshRectangle_[mesh]; r >= 0) {
+        const Rectangle& rect = rectangles_[std::size_t(r)];
+        return emitterRayShare_ * rectangleProbability_[std::size_t(r)] / (rect.width * rect.height);
+    }
+    return emitterRayShare_ * trianglePdfArea_[meshFirstTriangle_[mesh] + triangle];
+}
+
+float LightSampler::emitterPdf(std::int32_t emitter, glm::vec3 from, glm::vec3 at, float cosLight) const {
+    if (emitter < 0 || !(cosLight > 0.0f)) return 0.0f;
+    const Emitter& e = emitters_[std::size_t(emitter)];
+    if (e.rectangle) return e.probability * rectanglePdf(rectangles_[e.index], from, at, cosLight);
+    const glm::vec3 to = at - from;
+    return e.probability / triangles_[e.index].area * glm::dot(to, to) / cosLight;
 }
 
 float LightSampler::emissionPdfArea(std::size_t index, glm::vec3 toLight, float distance, float cosAtY) const {
@@ -282,6 +344,8 @@ LightSample LightSampler::sampleEmitter(glm::vec3 p, glm::vec2 u, float select) 
     if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return LightSample{};
     s.pdf *= e.probability;
     s.radiance = (e.rectangle ? rectangles_[e.index].emission : triangles_[e.index].emission) / s.pdf;
+    s.lightPathPdfArea = emitterRayShare_ * e.probability /
+                         (e.rectangle ? rectangles_[e.index].width * rectangles_[e.index].height : triangles_[e.index].area);
     return s;
 }
 

@@ -29,15 +29,20 @@ struct LightSample {
     float pdf = 0.0f;            // solid-angle pdf for area lights; 0 marks a delta light
     glm::vec3 position{0.0f};    // area lights: the sampled point on the emitter
     glm::vec3 normal{0.0f};      // area lights: the emitter's unit normal (its emitting side)
+    float lightPathPdfArea = 0.0f;  // area lights: the pdf, per unit area, of a light subpath starting at `position`
 };
 
-// A ray leaving a point or spot light, the first segment of a light subpath
-// (gi/pathtrace/light_paths.h).
+// A ray leaving a light, the first segment of a light subpath (gi/pathtrace/light_paths.h).
 struct EmittedRay {
     glm::vec3 origin{0.0f};
     glm::vec3 direction{0.0f};   // unit, the way the light travels
-    glm::vec3 intensity{0.0f};   // along `direction` (W/sr)
-    float pdf = 0.0f;            // light choice x direction pdf (per sr)
+    glm::vec3 intensity{0.0f};   // along `direction` (W/sr; an emitter's radiance x cosine)
+    // Light choice x direction pdf (per sr); for an emitter also x the point's pdf per unit area.
+    float pdf = 0.0f;
+    // Emitters only (`emitter` >= 0): the point's unit normal and its pdf per unit area.
+    glm::vec3 normal{0.0f};
+    float pointPdfArea = 0.0f;
+    std::int32_t emitter = -1;
 };
 
 class LightSampler {
@@ -47,23 +52,32 @@ public:
 
     // Delta lights are evaluated exhaustively: index in [0, deltaCount()).
     std::size_t deltaCount() const { return deltas_.size(); }
+    // Whether a sun has a disc (sampleDelta's u matters).
+    bool hasSunDisc() const { return sunDisc_; }
     // Incident light from delta light `index` (unoccluded) at `p`: its irradiance at normal
     // incidence (pdf 0). A sun with a disc comes from the direction of its disc that u in
     // [0,1)^2 picks: it is sampled here only, never found by BSDF rays (docs/reference.md).
     LightSample sampleDelta(std::size_t index, glm::vec3 p, glm::vec2 u) const;
 
-    // Light subpaths leave point and spot lights only: the sun lights whole floors and
-    // facades, which BSDF sampling finds anyway, and its rays would have to start on a disc
-    // across the scene's bounding sphere, most of them landing on roofs (Sponza: no less error
-    // per sample, 26 % fewer samples in the same time; docs/reference.md).
+    // Light subpaths leave point and spot lights and emitters, never the sun: it lights whole
+    // floors and facades, which BSDF sampling finds anyway, and its rays would have to start on
+    // a disc across the scene's bounding sphere, most of them landing on roofs (Sponza: no less
+    // error per sample, 26 % fewer samples in the same time; docs/reference.md).
     // A light picked in proportion to its power (u.z), then a ray from it (u.x, u.y): uniform
-    // over the sphere (point) or over the outer cone (spot).
-    bool emitsRays() const { return !rayCdf_.empty(); }
-    EmittedRay sampleEmission(glm::vec3 u) const;
+    // over the sphere (point) or over the outer cone (spot); from an emitter, a point uniform
+    // over its area (uPoint) and a cosine-weighted direction.
+    bool emitsRays() const { return !rayCdf_.empty() || emitterRayShare_ > 0.0f; }
+    EmittedRay sampleEmission(glm::vec3 u, glm::vec2 uPoint) const;
     // The pdf, per unit area at a point y, of sampleEmission's rays reaching y from delta light
     // `index`, y seeing the light along unit `toLight` at `distance` under geometric cosine
     // `cosAtY` (> 0); 0 for the sun.
     float emissionPdfArea(std::size_t index, glm::vec3 toLight, float distance, float cosAtY) const;
+    // The pdf, per unit area, of sampleEmission starting at a point of (mesh, triangle), an
+    // emitter's.
+    float emissionPointPdf(std::uint32_t mesh, std::uint32_t triangle) const;
+    // sampleEmitter's solid-angle pdf, from `from`, of the point `at` of emitter `emitter`
+    // (EmittedRay::emitter), seen under cosine cosLight (> 0).
+    float emitterPdf(std::int32_t emitter, glm::vec3 from, glm::vec3 at, float cosLight) const;
 
     bool hasEmitters() const { return !cdf_.empty(); }
     // One emitter sample seen from p: `u` places the point, `select` picks the emitter. radiance
@@ -99,9 +113,12 @@ private:
     float emissionPdf(std::size_t index) const;
 
     std::vector<shading::PackedLight> deltas_;
+    bool sunDisc_ = false;
     // Per delta: the probability a light subpath starts there, in proportion to emitted power
     // (0 for the sun); the cumulative sums.
-    std::vector<float> rayProbability_, rayCdf_;
+    std::vector<float> rayProbability_, rayCdf_;  // probabilities include the share of deltas; the cdf is among them
+    // The share of light subpaths that start on emitters (by power: pi x radiance x area).
+    float emitterRayShare_ = 0.0f;
     std::vector<Rectangle> rectangles_;
     std::vector<Triangle> triangles_;
     std::vector<Emitter> emitters_;

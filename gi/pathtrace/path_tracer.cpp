@@ -21,8 +21,14 @@ namespace voxgi {
 namespace {
 
 constexpr int kTile = 16;
-// Light subpaths per sample index: one per pixel, up to this many (a 1024^2 image shares each
-// among 16 pixels, which costs correlation, not bias).
+// Light subpaths per sample index: one per kPixelsPerLightPath pixels, at least kMinLightPaths
+// and at most kMaxLightPaths. Camera vertices pick their connections from the whole pool, which
+// need only sample where the light lands: at 128^2, 16 times fewer subpaths than pixels (256 to
+// 16384 of them) left the noise per sample unchanged in Sibenik and the Cornell box, and one per
+// pixel cost the Cornell box 60 % more time (docs/reference.md). Sharing a pool among more
+// pixels costs correlation between them within a sample index, not bias.
+constexpr int kPixelsPerLightPath = 16;
+constexpr int kMinLightPaths = 256;
 constexpr int kMaxLightPaths = 1 << 16;
 // Sample indices rendered together: their light vertices are held at once.
 constexpr int kSamplesPerPass = 8;
@@ -82,29 +88,42 @@ struct PathTracer::Impl {
                       "path tracer: " + std::to_string(width) + "x" + std::to_string(height) + " accumulation and image buffers");
         sums.resize(std::size_t(width) * std::size_t(height));
         if (options.lightPaths && integrator.tracesLightPaths()) {
-            lightPaths = int(std::min<std::int64_t>(std::int64_t(width) * height, kMaxLightPaths));
-            requireMemory(double(lightPaths) * kSamplesPerPass * sizeof(pt::LightVertex),
+            lightPaths = int(std::clamp<std::int64_t>(std::int64_t(width) * height / kPixelsPerLightPath, kMinLightPaths,
+                                                      kMaxLightPaths));
+            // At most maxLightVertices() per subpath, for each
+            // pass's samples and the pools kept for samplePixel().
+            requireMemory(double(lightPaths) * double(kSamplesPerPass + kKeptPools) * integrator.maxLightVertices() *
+                              sizeof(pt::LightVertex),
                           "path tracer: " + std::to_string(lightPaths) + " light subpaths per sample");
         }
     }
 
-    // The light vertices of sample `index` (parallel over subpaths; deterministic).
+    // The light vertices of sample `index` (parallel over subpaths; deterministic: each block
+    // of subpaths fills its own list, and the lists join in block order).
     std::shared_ptr<const pt::LightVertices> traceLightPaths(std::uint64_t index) const {
-        auto pool = std::make_shared<pt::LightVertices>();
-        pool->vertices.resize(std::size_t(lightPaths));
+        constexpr int kBlock = 256;
+        const int blocks = (lightPaths + kBlock - 1) / kBlock;
+        std::vector<std::vector<pt::LightVertex>> lists(static_cast<std::size_t>(blocks));
         std::atomic<std::uint64_t> traced{0};
         // Isolated: samplePixel() callers trace these under a lock from inside their own
         // parallel loops, and a thread waiting here must not pick up one of those (it would
         // take the lock again).
         tbb::this_task_arena::isolate([&] {
-            tbb::parallel_for(tbb::blocked_range<int>(0, lightPaths, 256), [&](const tbb::blocked_range<int>& r) {
+            tbb::parallel_for(0, blocks, [&](int b) {
                 std::uint64_t local = 0;
-                for (int j = r.begin(); j != r.end(); ++j)
+                std::vector<pt::LightVertex>& list = lists[std::size_t(b)];
+                for (int j = b * kBlock; j < std::min(lightPaths, (b + 1) * kBlock); ++j)
                     local += integrator.traceLightPath(
-                        pt::PathSampler(options.seed, kLightStream + std::uint64_t(j), index), pool->vertices[std::size_t(j)]);
+                        pt::PathSampler(options.seed, kLightStream + std::uint64_t(j), index), list);
                 traced += local;
             });
         });
+        auto pool = std::make_shared<pt::LightVertices>();
+        std::size_t total = 0;
+        for (const auto& list : lists) total += list.size();
+        pool->vertices.reserve(total);
+        for (const auto& list : lists) pool->vertices.insert(pool->vertices.end(), list.begin(), list.end());
+        pool->paths = std::uint32_t(lightPaths);
         pool->rays = traced.load();
         return pool;
     }
@@ -136,10 +155,12 @@ struct PathTracer::Impl {
         int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
         int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
         std::uint64_t tileRays = 0, tileDropped = 0;
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                PixelSum& sum = sums[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-                for (int s = 0; s < count; ++s) {
+        // Sample by sample over the tile: one pool of light vertices (megabytes) is in use at a
+        // time, not all of the pass's. Each pixel still sums its samples in order.
+        for (int s = 0; s < count; ++s)
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    PixelSum& sum = sums[std::size_t(y) * std::size_t(width) + std::size_t(x)];
                     PathSample p = samplePixel(x, y, std::uint64_t(first + s), pools[std::size_t(s)].get());
                     tileRays += p.rays;
                     if (!finite(p.direct) || !finite(p.indirect) || !finite(p.albedo) || !finite(p.normal) ||
@@ -154,7 +175,6 @@ struct PathTracer::Impl {
                     sum.depth += double(p.depth);
                     ++sum.count;
                 }
-            }
         rays += tileRays;
         dropped += tileDropped;
     }

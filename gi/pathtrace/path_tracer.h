@@ -26,8 +26,9 @@ struct PathTracerOptions {
     std::uint64_t seed = 0;
     int width = 0;              // 0 = the scene camera's resolution
     int height = 0;
-    // Light-vertex connections (gi/pathtrace/light_paths.h) for the light of point, spot and sun
-    // lights; false: unidirectional paths only (the same image in expectation, noisier).
+    // Light subpaths and connections (gi/pathtrace/light_paths.h) for the light of point and
+    // spot lights and emitters; false: unidirectional paths only (the same image in
+    // expectation, noisier).
     bool lightPaths = true;
 };
 
@@ -66,7 +67,7 @@ public:
 
     // The path render() traces for pixel (x, y), sample `index` (box filter over the pixel),
     // with the light subpaths of that index (traced again unless one of the last few indices
-    // asked for).
+    // asked for: callers going through many indices take them one at a time).
     PathSample samplePixel(int x, int y, std::uint64_t index) const;
     // The Embree scene the paths are traced in (benchmarks log and replay its rays).
     const RayTracer& rayTracer() const;
