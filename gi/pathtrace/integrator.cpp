@@ -18,11 +18,16 @@ float maxComponent(glm::vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
 // Connection m of kConnections from one vertex: stratified over the pool by one sample point.
 float connectionPick(float u, int m) { return (u + float(m)) * (1.0f / float(kConnections)); }
 void prefetchLightVertex(const LightVertices& pool, float u) {
-    if (pool.vertices.empty()) return;
-    const std::size_t count = pool.vertices.size();
-    const char* at = reinterpret_cast<const char*>(&pool.vertices[std::min(std::size_t(u * float(count)), count - 1)]);
+    const char* at = reinterpret_cast<const char*>(&pool.pick(u));
     __builtin_prefetch(at);
     __builtin_prefetch(at + sizeof(LightVertex) - 1);
+}
+// For MIS against an emitter's light subpaths: the area pdf of one reaching a surface from the
+// emitter point (cosine-weighted: cos at the emitter / pi over the distance squared, times the
+// point's pdf `pointPdf`) over next-event estimation's area pdf of that point (solid-angle
+// `neePdf` x the same cosine over the distance squared): the two factors cancel to this.
+float emitterLightArea(float cosAtSurface, float pointPdf, float neePdf) {
+    return cosAtSurface * pointPdf / (shading::kPi * neePdf);
 }
 // The power heuristic's form of a pdf (or of a ratio of pdfs) in the recursive MIS quantities.
 float mis(float pdf) { return pdf * pdf; }
@@ -76,6 +81,10 @@ float shadowRayEnd(float distance) {
 }
 }  // namespace
 
+float Integrator::reverseArea(const Bsdf& bsdf, glm::vec3 onwards, const CameraHistory& history) {
+    return bsdf.seenFrom(onwards).pdf(bsdf.wo()) * history.at(history.surfaces).toPreviousArea;
+}
+
 template <class ReverseAtK>
 float Integrator::longerLightSubpaths(const CameraHistory& history, float lightAreaAtK, ReverseAtK reverseAtK,
                                       int lightSurfaces) const {
@@ -113,9 +122,8 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
             const float cosine = std::abs(glm::dot(hit.geometricNormal, ls.direction));
             const float emitted = lights_.emissionPdfArea(i, ls.direction, ls.distance, cosine);
             if (emitted > 0.0f) {
-                weight = 1.0f / (1.0f + longerLightSubpaths(*history, emitted, [&] {
-                    return bsdf.seenFrom(ls.direction).pdf(bsdf.wo()) * history->at(history->surfaces).toPreviousArea;
-                }, 0));
+                weight = 1.0f / (1.0f + longerLightSubpaths(*history, emitted,
+                                                            [&] { return reverseArea(bsdf, ls.direction, *history); }, 0));
             }
         }
         glm::vec3 o = leavingPoint(hit, ls.direction, sceneScale_);
@@ -150,10 +158,8 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
                 if (history && ls.lightPathPdfArea > 0.0f) {
                     const float cosine = std::abs(glm::dot(hit.geometricNormal, ls.direction));
                     weight = 1.0f / (1.0f + mis(bsdfPdf / ls.pdf) +
-                                     longerLightSubpaths(*history, cosine * ls.lightPathPdfArea / (shading::kPi * ls.pdf), [&] {
-                                         return bsdf.seenFrom(ls.direction).pdf(bsdf.wo()) *
-                                                history->at(history->surfaces).toPreviousArea;
-                                     }, 0));
+                                     longerLightSubpaths(*history, emitterLightArea(cosine, ls.lightPathPdfArea, ls.pdf),
+                                                         [&] { return reverseArea(bsdf, ls.direction, *history); }, 0));
                 }
                 if (!segmentOccluded(leavingPoint(hit, ls.direction, sceneScale_), ls.position, ls.normal))
                     sum += f * (ls.radiance / (1.0f - skyShare)) * weight;
@@ -260,8 +266,7 @@ std::uint32_t Integrator::traceLightPath(const PathSampler& sampler, std::vector
 
 bool Integrator::connection(const Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, float u,
                             const CameraHistory& history, Connection& out) const {
-    const std::size_t count = pool.vertices.size();
-    const LightVertex& v = pool.vertices[std::min(std::size_t(u * float(count)), count - 1)];
+    const LightVertex& v = pool.pick(u);
     if (!v.valid() || history.surfaces + int(v.scatterings) > maxBounces_) return false;
     const glm::vec3 d = v.position - hit.position;
     const float d2 = glm::dot(d, d);
@@ -283,11 +288,10 @@ bool Integrator::connection(const Bsdf& bsdf, const RayHit& hit, const LightVert
     // carries) and with a longer light subpath (the camera history).
     const float cameraLonger = mis(pdfHere * geometry) * (v.misArea + v.misLonger * mis(pdfThereOnwards));
     const float lightAreaHere = there.seenFrom(v.toLight).pdf(-w) * cosHere / d2;
-    const float lightLonger = longerLightSubpaths(history, lightAreaHere, [&] {
-        return bsdf.seenFrom(w).pdf(bsdf.wo()) * history.at(history.surfaces).toPreviousArea;
-    }, int(v.scatterings));
+    const float lightLonger = longerLightSubpaths(history, lightAreaHere, [&] { return reverseArea(bsdf, w, history); },
+                                                  int(v.scatterings));
     // One vertex of the pool stands for the expected sum over one subpath's vertices.
-    const float share = float(count) / float(pool.paths);
+    const float share = float(pool.vertices.size()) / float(pool.paths);
     out.contribution = fHere * fThere * v.flux * (geometry * share / (1.0f + cameraLonger + lightLonger));
     if (!(out.contribution.x + out.contribution.y + out.contribution.z > 0.0f) ||
         !std::isfinite(out.contribution.x + out.contribution.y + out.contribution.z))
@@ -395,7 +399,7 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
                     // Next-event estimation at the previous surface, and light subpaths from here
                     // joined at any edge, make the same path.
                     const int k = history.surfaces;
-                    const float longer = longerLightSubpaths(history, previousCosine * pointPdf / (shading::kPi * lightPdf),
+                    const float longer = longerLightSubpaths(history, emitterLightArea(previousCosine, pointPdf, lightPdf),
                                                              [&] { return history.at(k).reverse; }, 0);
                     weight = 1.0f / (1.0f + mis(lightPdf / previousPdf) * (1.0f + longer));
                 }
@@ -433,7 +437,7 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
             // A light subpath going on from here to the previous surface: what it would sample.
             // The MIS sums read it from the third surface on (no strategy joins the camera).
             CameraHistory::Surface& here = history.at(depth + 1);
-            here.reverse = s.delta || depth < 2 ? 0.0f : bsdf.seenFrom(s.direction).pdf(wo) * here.toPreviousArea;
+            here.reverse = s.delta || depth < 2 ? 0.0f : reverseArea(bsdf, s.direction, history);
             previousCosine = std::abs(glm::dot(hit.geometricNormal, s.direction));
         }
         radianceScale *= s.radianceScale;

@@ -84,6 +84,9 @@ private:
     // subpath's newest surface v_k to a light subpath of `lightSurfaces` surfaces, which
     // reaches v_k with area pdf `lightAreaAtK`; reverseAtK() is the area pdf of a light subpath
     // going on from v_k to v_(k-1).
+    // The area pdf of a light subpath reaching the camera subpath's previous surface from its
+    // newest one (at `bsdf`), having come there along `onwards` (pointing away).
+    static float reverseArea(const class Bsdf& bsdf, glm::vec3 onwards, const CameraHistory& history);
     template <class ReverseAtK>
     float longerLightSubpaths(const CameraHistory& history, float lightAreaAtK, ReverseAtK reverseAtK,
                               int lightSurfaces) const;

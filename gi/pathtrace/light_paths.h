@@ -14,6 +14,7 @@
 // (gi/pathtrace/lights.h says why).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -56,6 +57,10 @@ struct LightVertex {
 // subpath order.
 struct LightVertices {
     std::vector<LightVertex> vertices;
+    // The vertex at u in [0, 1) along the pool (non-empty).
+    const LightVertex& pick(float u) const {
+        return vertices[std::min(std::size_t(u * float(vertices.size())), vertices.size() - 1)];
+    }
     std::uint32_t paths = 0;
     std::uint64_t rays = 0;  // traced to build them
 };

@@ -211,25 +211,20 @@ EmittedRay LightSampler::sampleEmission(glm::vec3 u, glm::vec2 uPoint) const {
     const float deltaShare = 1.0f - emitterRayShare_;
     if (u.z >= deltaShare || rayCdf_.empty()) {
         if (!(emitterRayShare_ > 0.0f)) return ray;
-        const float select = std::clamp((u.z - deltaShare) / emitterRayShare_, 0.0f, 0.99999994f);
-        const std::size_t i = std::min(std::size_t(std::lower_bound(cdf_.begin(), cdf_.end(), select) - cdf_.begin()),
-                                       emitters_.size() - 1);
+        const std::size_t i = pickEmitter(std::clamp((u.z - deltaShare) / emitterRayShare_, 0.0f, 0.99999994f));
         const Emitter& e = emitters_[i];
         glm::vec3 emission;
-        float area;
         if (e.rectangle) {
             const Rectangle& r = rectangles_[e.index];
             ray.origin = r.corner + uPoint.x * r.width * r.ex + uPoint.y * r.height * r.ey;
             ray.normal = r.normal;
             emission = r.emission;
-            area = r.width * r.height;
         } else {
             const Triangle& t = triangles_[e.index];
             const float su = std::sqrt(uPoint.x);
             ray.origin = t.a + (1.0f - uPoint.y) * su * t.e1 + uPoint.y * su * t.e2;
             ray.normal = t.normal;
             emission = t.emission;
-            area = t.area;
         }
         // Cosine-weighted about the emitting side.
         const float r = std::sqrt(u.x), phi = 2.0f * shading::kPi * u.y;
@@ -237,8 +232,7 @@ EmittedRay LightSampler::sampleEmission(glm::vec3 u, glm::vec2 uPoint) const {
         glm::vec3 tx, ty;
         orthonormalBasis(ray.normal, tx, ty);
         ray.direction = glm::normalize(r * std::cos(phi) * tx + r * std::sin(phi) * ty + cosine * ray.normal);
-        ray.pointPdfArea = emitterRayShare_ * e.probability / area;
-        ray.pdf = ray.pointPdfArea * cosine / shading::kPi;
+        ray.pdf = emissionPointPdf(e) * cosine / shading::kPi;
         ray.intensity = emission * cosine;
         ray.emitter = std::int32_t(i);
         if (!(ray.pdf > 0.0f) || !std::isfinite(ray.pdf)) return EmittedRay{};
@@ -281,7 +275,17 @@ float LightSampler::emitterPdf(std::int32_t emitter, glm::vec3 from, glm::vec3 a
     const Emitter& e = emitters_[std::size_t(emitter)];
     if (e.rectangle) return e.probability * rectanglePdf(rectangles_[e.index], from, at, cosLight);
     const glm::vec3 to = at - from;
-    return e.probability / triangles_[e.index].area * glm::dot(to, to) / cosLight;
+    return e.probability / area(e) * glm::dot(to, to) / cosLight;
+}
+
+float LightSampler::area(const Emitter& e) const {
+    return e.rectangle ? rectangles_[e.index].width * rectangles_[e.index].height : triangles_[e.index].area;
+}
+
+float LightSampler::emissionPointPdf(const Emitter& e) const { return emitterRayShare_ * e.probability / area(e); }
+
+std::size_t LightSampler::pickEmitter(float select) const {
+    return std::min(std::size_t(std::lower_bound(cdf_.begin(), cdf_.end(), select) - cdf_.begin()), emitters_.size() - 1);
 }
 
 float LightSampler::emissionPdfArea(std::size_t index, glm::vec3 toLight, float distance, float cosAtY) const {
@@ -337,15 +341,12 @@ LightSample LightSampler::sampleRectangle(const Rectangle& r, glm::vec3 p, glm::
 }
 
 LightSample LightSampler::sampleEmitter(glm::vec3 p, glm::vec2 u, float select) const {
-    std::size_t i = std::size_t(std::lower_bound(cdf_.begin(), cdf_.end(), select) - cdf_.begin());
-    i = std::min(i, emitters_.size() - 1);
-    const Emitter& e = emitters_[i];
+    const Emitter& e = emitters_[pickEmitter(select)];
     LightSample s = e.rectangle ? sampleRectangle(rectangles_[e.index], p, u) : sampleTriangle(triangles_[e.index], p, u);
     if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return LightSample{};
     s.pdf *= e.probability;
     s.radiance = (e.rectangle ? rectangles_[e.index].emission : triangles_[e.index].emission) / s.pdf;
-    s.lightPathPdfArea = emitterRayShare_ * e.probability /
-                         (e.rectangle ? rectangles_[e.index].width * rectangles_[e.index].height : triangles_[e.index].area);
+    s.lightPathPdfArea = emissionPointPdf(e);
     return s;
 }
 

@@ -39,9 +39,8 @@ struct EmittedRay {
     glm::vec3 intensity{0.0f};   // along `direction` (W/sr; an emitter's radiance x cosine)
     // Light choice x direction pdf (per sr); for an emitter also x the point's pdf per unit area.
     float pdf = 0.0f;
-    // Emitters only (`emitter` >= 0): the point's unit normal and its pdf per unit area.
+    // Emitters only (`emitter` >= 0): the point's unit normal.
     glm::vec3 normal{0.0f};
-    float pointPdfArea = 0.0f;
     std::int32_t emitter = -1;
 };
 
@@ -105,6 +104,11 @@ private:
         float probability;
     };
     LightSample sampleRectangle(const Rectangle& r, glm::vec3 p, glm::vec2 u) const;
+    float area(const Emitter& e) const;
+    // The pdf, per unit area, of a light subpath starting at a point of `e`.
+    float emissionPointPdf(const Emitter& e) const;
+    // The emitter whose cumulative probability first reaches `select` in [0, 1).
+    std::size_t pickEmitter(float select) const;
     LightSample sampleTriangle(const Triangle& t, glm::vec3 p, glm::vec2 u) const;
     float rectanglePdf(const Rectangle& r, glm::vec3 from, glm::vec3 at, float cosLight) const;
 
