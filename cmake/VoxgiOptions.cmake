@@ -36,7 +36,9 @@ function(voxgi_sanitize_input_sources)
     if(VOXGI_SANITIZE_INPUT)
       foreach(dir IN LISTS VOXGI_INPUT_DIRS)
         if(relative MATCHES "^${dir}/")
-          set(options "-fsanitize=address,undefined;-fno-omit-frame-pointer;-g")
+          # Line tables only (-g1): all a sanitizer's stack trace reads, and a third less
+          # compile time than -g (tools/cmd_eval.cpp 20 s against 32 s) and half the objects.
+          set(options "-fsanitize=address,undefined;-fno-omit-frame-pointer;-g1")
         endif()
       endforeach()
     endif()

@@ -152,7 +152,7 @@ TEST(PathTracerLightPaths, LongLightSubpathsKeepTheAnalyticInterreflectionAtAnyD
     }
 }
 
-TEST(PathTracerLightPaths, EachScatteringOrderMatchesUnidirectionalPaths) {
+TEST(PathTracerLightPathsConvergence, EachScatteringOrderMatchesUnidirectionalPaths) {
     // Paths cut at B scatterings: with connections through light subpaths of up to B - 1
     // surfaces, the image's mean is the unidirectional one, order by order, for delta lights
     // and for an emitter. The unidirectional mean's standard error is about 0.25 % at 2048
