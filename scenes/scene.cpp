@@ -82,22 +82,21 @@ glm::vec3 sampleSrgbBilinear(const std::uint8_t* rgba, int width, int height, gl
     return glm::mix(a, b, f.fy);
 }
 
-void prefetchSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv) {
-    if (width <= 0 || height <= 0) return;
-    const BilinearFootprint f = bilinearFootprint(width, height, uv);
-    const std::size_t x = std::size_t(wrapTexel(f.x0, width));
-    for (int row : {f.y0, f.y0 + 1})
-        __builtin_prefetch(&rgba[(std::size_t(wrapTexel(row, height)) * std::size_t(width) + x) * 4]);
-}
-
 glm::vec3 Texture::sampleLinear(glm::vec2 uv) const {
     if (rgba.size() < std::size_t(width) * std::size_t(height) * 4) return glm::vec3(1.0f);
     return sampleSrgbBilinear(rgba.data(), width, height, uv);
 }
 
 void Texture::prefetch(glm::vec2 uv) const {
-    if (rgba.size() < std::size_t(width) * std::size_t(height) * 4) return;
-    prefetchSrgbBilinear(rgba.data(), width, height, uv);
+    // The prefetches stay in this body. GCC takes a function whose only effect is a
+    // __builtin_prefetch for one without side effects and deletes the calls to it: with them
+    // in a helper called from here, this function compiled to a bare `ret` and never
+    // prefetched anything.
+    if (width <= 0 || height <= 0 || rgba.size() < std::size_t(width) * std::size_t(height) * 4) return;
+    const BilinearFootprint f = bilinearFootprint(width, height, uv);
+    const std::size_t x = std::size_t(wrapTexel(f.x0, width));
+    for (int row : {f.y0, f.y0 + 1})
+        __builtin_prefetch(&rgba[(std::size_t(wrapTexel(row, height)) * std::size_t(width) + x) * 4]);
 }
 
 Bounds Scene::bounds() const {

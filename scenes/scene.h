@@ -85,7 +85,6 @@ struct Texture {
 
 // The lookup behind Texture::sampleLinear, over any sRGB RGBA8 image (mip levels included).
 glm::vec3 sampleSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv);
-void prefetchSrgbBilinear(const std::uint8_t* rgba, int width, int height, glm::vec2 uv);
 // sRGB 8-bit code to linear, and linear [0,1] to the nearest sRGB code.
 float srgbToLinear(std::uint8_t code);
 const float* srgbDecodeTable();  // the 256 values srgbToLinear returns, for inlined lookups

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <tbb/global_control.h>
@@ -380,6 +381,55 @@ TEST(PathTracer, ABsdfSeenFromAnotherDirectionIsTheOneBuiltFromIt) {
                     EXPECT_FLOAT_EQ(fSeen.g, fBuilt.g) << m.transmission;
                 }
             }
+}
+
+TEST(PathTracer, ABsdfGivenItsAlbedoLaterIsTheSameAndMayReflectCoversEveryNonZeroValue) {
+    // The camera path builds its BSDF before the albedo's texels arrive, traces the delta
+    // lights' shadow rays where mayReflect says light can be reflected, then sets the albedo:
+    // the BSDF must equal the one built with it, and no direction with a non-zero value may be
+    // left untraced, for any albedo (black included: its specular lobe still reflects).
+    Material plastic;
+    plastic.roughness = 0.5f;
+    plastic.specular = 0.04f;
+    Material metal = plastic;
+    metal.metallic = 1.0f;
+    metal.roughness = 0.2f;
+    Material roughGlass = plastic;
+    roughGlass.transmission = 0.8f;
+    roughGlass.ior = 1.5f;
+    Material clearGlass = roughGlass;
+    clearGlass.roughness = 0.0f;
+    Material matte;
+    matte.specular = 0.0f;
+    const glm::vec3 geometric(0.0f, 1.0f, 0.0f), shading = glm::normalize(glm::vec3(0.3f, 1.0f, 0.1f));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    auto direction = [&] { return glm::normalize(glm::vec3(u(rng), u(rng), u(rng))); };
+    int nonZero = 0, skipped = 0;
+    for (const Material& m : {plastic, metal, roughGlass, clearGlass, matte})
+        for (const glm::vec3 albedo : {glm::vec3(0.6f, 0.5f, 0.4f), glm::vec3(0.0f), glm::vec3(1.0f)})
+            for (int view = 0; view < 20; ++view) {
+                const glm::vec3 wo = direction();
+                const bool front = glm::dot(geometric, wo) > 0.0f;
+                const pt::Bsdf built(m, albedo, wo, geometric, shading, front);
+                pt::Bsdf later(m, glm::vec3(1.0f), wo, geometric, shading, front);
+                const pt::Bsdf frame = later;
+                later.setAlbedo(m, albedo);
+                for (int light = 0; light < 50; ++light) {
+                    const glm::vec3 wi = direction();
+                    float pdfBuilt, pdfLater;
+                    const glm::vec3 fBuilt = built.evalPdf(wi, &pdfBuilt), fLater = later.evalPdf(wi, &pdfLater);
+                    EXPECT_EQ(pdfBuilt, pdfLater);
+                    EXPECT_EQ(fBuilt, fLater);
+                    const bool reflects = fBuilt.r + fBuilt.g + fBuilt.b > 0.0f;
+                    nonZero += reflects ? 1 : 0;
+                    skipped += frame.mayReflect(wi) ? 0 : 1;
+                    EXPECT_TRUE(!reflects || frame.mayReflect(wi)) << m.metallic << " " << m.transmission;
+                }
+            }
+    // Both cases occur: the test would pass vacuously if every direction were traced or none reflected.
+    EXPECT_GT(nonZero, 1000);
+    EXPECT_GT(skipped, 1000);
 }
 
 TEST(PathTracer, GlassDoesNotCreateEnergy) {

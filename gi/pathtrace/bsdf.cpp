@@ -66,12 +66,17 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
 
     transmission_ = std::clamp(m.transmission, 0.0f, 1.0f);
     opaqueWeight_ = 1.0f - transmission_;
-    diffuse_ = shading::diffuseAlbedo(albedo, m.metallic, m.specular, 0.0f);  // opaqueWeight_ carries 1 - transmission
-    f0_ = glm::mix(glm::vec3(m.specular), albedo, m.metallic);
     float r2 = m.roughness * m.roughness;
     alpha_ = std::max(r2, kSmoothAlpha);
     smoothDielectric_ = r2 < kSmoothAlpha;
     eta_ = frontFace ? 1.0f / m.ior : m.ior;
+    setAlbedo(m, albedo);
+}
+
+void Bsdf::setAlbedo(const Material& m, glm::vec3 albedo) {
+    albedo_ = albedo;
+    diffuse_ = shading::diffuseAlbedo(albedo, m.metallic, m.specular, 0.0f);  // opaqueWeight_ carries 1 - transmission
+    f0_ = glm::mix(glm::vec3(m.specular), albedo, m.metallic);
     setSpecularProbability();
 }
 

@@ -42,8 +42,17 @@ public:
     // sampled in proportion to D(h)(n.h): out.weight = (1 - transmission) f_ggx cos / pdf_ggx,
     // out.pdf that lobe's own density. The hybrid method traces glossy reflections with it.
     bool sampleGlossy(glm::vec2 u, BsdfSample& out) const;
+    // The same surface with another albedo (`material` the one it was built with): the path
+    // tracer builds its BSDF before the albedo's texels arrive, to trace shadow rays meanwhile.
+    void setAlbedo(const Material& material, glm::vec3 albedo);
     // True when eval can be non-zero somewhere (a light sample is worth tracing).
     bool hasSmoothPart() const { return opaqueWeight_ > 0.0f || (transmission_ > 0.0f && !smoothDielectric_); }
+    // False only where eval(wi) is zero whatever the albedo: what decides whether a shadow ray
+    // towards wi is worth tracing before the albedo is known.
+    bool mayReflect(glm::vec3 wi) const {
+        if (transmission_ > 0.0f && !smoothDielectric_) return true;
+        return opaqueWeight_ > 0.0f && glm::dot(n_, wi) > 0.0f && glm::dot(n_, wo_) > 0.0f;
+    }
     // The same surface point seen from `wo` instead: light subpaths sample with wo pointing
     // back along the light, and MIS weights need the pdf of each sample's reverse.
     Bsdf seenFrom(glm::vec3 wo) const;

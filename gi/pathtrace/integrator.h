@@ -58,12 +58,19 @@ private:
         Surface ring[kMaxLightVertices];
     };
 
+    // The shadow rays towards the first kEarlyDeltaShadows delta lights (uDisc: the direction in
+    // a sun's disc), traced before the albedo is known: `bsdf` may hold any albedo (only
+    // Bsdf::mayReflect is read), and the albedo's texels load while Embree traces. Bit i of
+    // the result: light i is visible (and was traced).
+    static constexpr std::size_t kEarlyDeltaShadows = 64;
+    std::uint64_t deltaShadows(const class Bsdf& bsdf, const RayHit& hit, glm::vec2 uDisc, std::uint32_t& rays) const;
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
     // u: the emitter point or sky direction (x, y) and the choice between them (z); uDisc: the
-    // direction in a sun's disc. `history` (null: no light subpaths) weighs delta-light samples
-    // against the light-vertex connections that make the same paths.
+    // direction in a sun's disc; visibleDeltas: deltaShadows' answer at this hit. `history`
+    // (null: no light subpaths) weighs delta-light samples against the light-vertex
+    // connections that make the same paths.
     glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, glm::vec2 uDisc,
-                           const CameraHistory* history, std::uint32_t& rays) const;
+                           std::uint64_t visibleDeltas, const CameraHistory* history, std::uint32_t& rays) const;
     // A connection of the hit (the camera subpath's newest surface) to light vertex u * size of
     // `pool`, before its shadow ray: the joined path's contribution, MIS-weighted over every
     // strategy that makes it, if unoccluded. False when it carries nothing.
