@@ -412,7 +412,7 @@ TEST(PathTracer, ABsdfGivenItsAlbedoLaterIsTheSameAndMayReflectCoversEveryNonZer
                 const glm::vec3 wo = direction();
                 const bool front = glm::dot(geometric, wo) > 0.0f;
                 const pt::Bsdf built(m, albedo, wo, geometric, shading, front);
-                pt::Bsdf later(m, glm::vec3(1.0f), wo, geometric, shading, front);
+                pt::Bsdf later(m, wo, geometric, shading, front);
                 const pt::Bsdf frame = later;
                 later.setAlbedo(m, albedo);
                 for (int light = 0; light < 50; ++light) {

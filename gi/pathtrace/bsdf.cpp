@@ -58,7 +58,11 @@ void orthonormalBasis(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
 }
 
 Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometric, glm::vec3 shading, bool frontFace)
-    : wo_(wo), albedo_(albedo) {
+    : Bsdf(m, wo, geometric, shading, frontFace) {
+    setAlbedo(m, albedo);
+}
+
+Bsdf::Bsdf(const Material& m, glm::vec3 wo, glm::vec3 geometric, glm::vec3 shading, bool frontFace) : wo_(wo) {
     ng_ = glm::dot(geometric, wo) < 0.0f ? -geometric : geometric;
     // Two-sided shading like the rasterizer's G-buffer: the shading normal follows the side seen.
     n_ = glm::dot(shading, ng_) < 0.0f ? -shading : shading;
@@ -70,7 +74,6 @@ Bsdf::Bsdf(const Material& m, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometri
     alpha_ = std::max(r2, kSmoothAlpha);
     smoothDielectric_ = r2 < kSmoothAlpha;
     eta_ = frontFace ? 1.0f / m.ior : m.ior;
-    setAlbedo(m, albedo);
 }
 
 void Bsdf::setAlbedo(const Material& m, glm::vec3 albedo) {

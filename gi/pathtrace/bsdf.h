@@ -30,6 +30,9 @@ public:
     // `shading` are the hit's unit normals as stored; `frontFace` says which side `wo` is on.
     Bsdf(const Material& material, glm::vec3 albedo, glm::vec3 wo, glm::vec3 geometric, glm::vec3 shading,
          bool frontFace);
+    // The frame and lobes alone: only mayReflect and hasSmoothPart may be called until
+    // setAlbedo gives it its albedo.
+    Bsdf(const Material& material, glm::vec3 wo, glm::vec3 geometric, glm::vec3 shading, bool frontFace);
 
     // f |cos(n, wi)|, for next-event estimation; delta lobes give zero.
     glm::vec3 eval(glm::vec3 wi) const;
@@ -69,7 +72,7 @@ private:
     bool sampleDielectric(glm::vec3 u, BsdfSample& out) const;
 
     glm::vec3 wo_, n_, ng_, t_, b_;
-    glm::vec3 diffuse_, f0_, albedo_;
+    glm::vec3 diffuse_{0.0f}, f0_{0.0f}, albedo_{0.0f};  // set by setAlbedo
     float alpha_ = 1.0f;
     float specularProbability_ = 0.0f;
     float opaqueWeight_ = 1.0f;   // 1 - transmission

@@ -395,7 +395,8 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         glm::vec3 uLight(0.0f), uBsdf(0.0f);
         glm::vec2 uDisc(0.0f);
         if (depth < maxBounces_) {
-            uLight = sampler.get3D(decision);
+            // Read only by an emitter or sky sample (delta lights take uDisc alone).
+            if (lights_.hasEmitters() || environment_.active()) uLight = sampler.get3D(decision);
             if (lights_.hasSunDisc()) uDisc = sampler.get2D(decision + 4);
             uBsdf = sampler.get3D(decision + 1);
         }
@@ -431,7 +432,7 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         // The BSDF's frame first, then the delta lights' shadow rays, then the albedo: its
         // texels (a cache miss on textured scenes, a fifth of Sponza's time when looked up
         // right away) load while Embree traces.
-        Bsdf bsdf(material, glm::vec3(1.0f), -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
+        Bsdf bsdf(material, -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
         const std::uint64_t visibleDeltas = bsdf.hasSmoothPart() ? deltaShadows(bsdf, hit, uDisc, out.rays) : 0;
         const glm::vec3 albedo = tracer_.albedoAt(hit);
         if (depth == 0) out.albedo = albedo;
