@@ -473,9 +473,9 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
             // Russian roulette keeps the estimate unbiased: survivors carry 1 / q. Survival
             // follows the throughput (without the radiance scaling of refractions, which undoes
             // itself on the way out), so weights stay at 1 even for albedo 0.99 and paths that
-            // lose no energy are never cut; kBounceGuard ends those. From the third surface on
-            // (as pbrt-v4): from the fourth, Sponza's equal-time RMSE was 16 % higher, the
-            // Cornell box's 10 % and Sibenik's 7 %; from the second, Sponza's HDR-FLIP rose
+            // lose no energy are never cut; kBounceGuard ends those. From the third surface on:
+            // from the fourth, Sponza's equal-time RMSE was 16 % higher, the Cornell box's 10 %
+            // and Sibenik's 7 %; from the second, Sponza's relMSE and HDR-FLIP rose
             // (docs/reference.md, "Roulette from the third surface").
             float q = maxComponent(throughput) / radianceScale;
             if (q < 1.0f) {
