@@ -141,6 +141,45 @@ TEST(PathTracer, PointLightOverPlaneIsIntensityCosineOverDistanceSquared) {
     }
 }
 
+TEST(PathTracer, PointLightsPastTheEarlyShadowRaysAreShadowedToo) {
+    // Camera vertices trace the shadow rays of their first 64 delta lights before reading the
+    // albedo and the rest after (Integrator::deltaShadows): 100 lamps of 0.1 W/sr in a row, the
+    // first 60 over the plane's open half, the last 40 over a small plate that hides the origin.
+    // At the origin only the first 60 count; at a point beyond the plate's shadow, all 100.
+    Scene s = parseSceneJson(R"({
+      "camera": {"eye": [0, 3, 0.001], "target": [0, 0, 0], "fov": 60, "resolution": [16, 16]},
+      "materials": {"m": {"albedo": 0.5}},
+      "meshes": [{"type": "quad", "material": "m", "corners": [[-5,0,5],[5,0,5],[5,0,-5],[-5,0,-5]]},
+                 {"type": "quad", "material": "m", "corners": [[0.1,0.5,0.2],[0.7,0.5,0.2],[0.7,0.5,-0.2],[0.1,0.5,-0.2]]}]})",
+                             "lamps.json");
+    std::vector<glm::vec3> lamps;
+    for (int i = 0; i < 100; ++i) lamps.push_back(i < 60 ? glm::vec3(-0.5f + 0.001f * float(i), 1.0f, 0.0f)
+                                                         : glm::vec3(0.4f + 0.001f * float(i - 60), 1.0f, 0.0f));
+    for (const glm::vec3& p : lamps) {
+        Light l;
+        l.type = LightType::Point;
+        l.position = p;
+        l.emission = glm::vec3(0.1f);
+        s.lights.push_back(l);
+    }
+    PathTracerOptions o;
+    o.maxBounces = 1;
+    PathTracer tracer(s, o);
+    const glm::vec3 eye(0.3f, 3.0f, 0.2f);
+    auto expected = [&](glm::vec3 p, std::size_t count) {
+        double sum = 0.0;
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::vec3 d = lamps[i] - p;
+            const double r2 = double(glm::dot(d, d));
+            sum += 0.5 / double(shading::kPi) * 0.1 * (double(d.y) / std::sqrt(r2)) / r2;
+        }
+        return sum;
+    };
+    const glm::vec3 hidden(0.0f, 0.0f, 0.0f), open(-2.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(tracer.trace(eye, hidden - eye, 7).beauty().g, expected(hidden, 60), 1e-4 * expected(hidden, 60));
+    EXPECT_NEAR(tracer.trace(eye, open - eye, 7).beauty().g, expected(open, 100), 1e-4 * expected(open, 100));
+}
+
 TEST(PathTracer, SpotConeFalloffAndSun) {
     // Spot: 20 W/sr, inner 20, outer 40 degrees, pointing down from height 1 (smoothstep falloff
     // between the cone cosines, as shaders/frame/direct_light.comp). Sun: 2 W/m^2 at 60 degrees.

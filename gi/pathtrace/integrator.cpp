@@ -107,14 +107,17 @@ float Integrator::longerLightSubpaths(const CameraHistory& history, float lightA
     return sum;
 }
 
+bool Integrator::deltaVisible(const RayHit& hit, const LightSample& ls, std::uint32_t& rays) const {
+    ++rays;
+    return !tracer_.occluded(leavingPoint(hit, ls.direction, sceneScale_), ls.direction, 0.0f, shadowRayEnd(ls.distance));
+}
+
 std::uint64_t Integrator::deltaShadows(const Bsdf& bsdf, const RayHit& hit, glm::vec2 uDisc, std::uint32_t& rays) const {
     std::uint64_t visible = 0;
     const std::size_t count = std::min(lights_.deltaCount(), kEarlyDeltaShadows);
     for (std::size_t i = 0; i < count; ++i) {
         const LightSample ls = lights_.sampleDelta(i, hit.position, uDisc);
-        if (maxComponent(ls.radiance) <= 0.0f || !bsdf.mayReflect(ls.direction)) continue;
-        ++rays;
-        if (!tracer_.occluded(leavingPoint(hit, ls.direction, sceneScale_), ls.direction, 0.0f, shadowRayEnd(ls.distance)))
+        if (maxComponent(ls.radiance) > 0.0f && bsdf.mayReflect(ls.direction) && deltaVisible(hit, ls, rays))
             visible |= std::uint64_t(1) << i;
     }
     return visible;
@@ -125,7 +128,7 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
     const glm::vec3 p = hit.position;
     glm::vec3 sum(0.0f);
     for (std::size_t i = 0; i < lights_.deltaCount(); ++i) {
-        const bool early = i < kEarlyDeltaShadows;
+        const bool early = i < kEarlyDeltaShadows;  // its shadow ray traced by deltaShadows
         if (early && !(visibleDeltas >> i & 1u)) continue;
         LightSample ls = lights_.sampleDelta(i, p, uDisc);
         if (maxComponent(ls.radiance) <= 0.0f) continue;
@@ -141,13 +144,7 @@ glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec
                                                             [&] { return reverseArea(bsdf, ls.direction, *history); }, 0));
             }
         }
-        if (early) {
-            sum += f * ls.radiance * weight;
-            continue;
-        }
-        glm::vec3 o = leavingPoint(hit, ls.direction, sceneScale_);
-        ++rays;
-        if (!tracer_.occluded(o, ls.direction, 0.0f, shadowRayEnd(ls.distance))) sum += f * ls.radiance * weight;
+        if (early || deltaVisible(hit, ls, rays)) sum += f * ls.radiance * weight;
     }
     const float skyShare = environmentShare();
     if (u.z < skyShare) {
@@ -389,8 +386,9 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
         }
         const Material& material = scene_.materials[hit.material];
         // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
-        // direction in a sun's disc (gi/pathtrace/sampler.h). Their points are computed while
-        // the texels of the albedo load: that cache miss was most of a texture lookup's time.
+        // direction in a sun's disc (gi/pathtrace/sampler.h). The albedo's texels are requested
+        // first: they load while the points are computed and the delta lights' shadow rays
+        // are traced (below).
         tracer_.prefetchAlbedo(hit);
         glm::vec3 uLight(0.0f), uBsdf(0.0f);
         glm::vec2 uDisc(0.0f);

@@ -63,6 +63,8 @@ private:
     // Bsdf::mayReflect is read), and the albedo's texels load while Embree traces. Bit i of
     // the result: light i is visible (and was traced).
     static constexpr std::size_t kEarlyDeltaShadows = 64;
+    // The shadow ray of delta-light sample `ls` at the hit: true when nothing blocks it.
+    bool deltaVisible(const RayHit& hit, const LightSample& ls, std::uint32_t& rays) const;
     std::uint64_t deltaShadows(const class Bsdf& bsdf, const RayHit& hit, glm::vec2 uDisc, std::uint32_t& rays) const;
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
     // u: the emitter point or sky direction (x, y) and the choice between them (z); uDisc: the
@@ -86,14 +88,14 @@ private:
     template <class Deposit>
     void connect(const class Bsdf& bsdf, const RayHit& hit, const LightVertices& pool, glm::vec2 u,
                  const CameraHistory& history, Deposit deposit, std::uint32_t& rays) const;
+    // The area pdf of a light subpath reaching the camera subpath's previous surface from its
+    // newest one (at `bsdf`), having come there along `onwards` (pointing away).
+    static float reverseArea(const class Bsdf& bsdf, glm::vec3 onwards, const CameraHistory& history);
     // The MIS weights' sum over the strategies that give a light subpath more of the path's
     // surfaces than the one evaluated, relative to it: the evaluated one joins the camera
     // subpath's newest surface v_k to a light subpath of `lightSurfaces` surfaces, which
     // reaches v_k with area pdf `lightAreaAtK`; reverseAtK() is the area pdf of a light subpath
     // going on from v_k to v_(k-1).
-    // The area pdf of a light subpath reaching the camera subpath's previous surface from its
-    // newest one (at `bsdf`), having come there along `onwards` (pointing away).
-    static float reverseArea(const class Bsdf& bsdf, glm::vec3 onwards, const CameraHistory& history);
     template <class ReverseAtK>
     float longerLightSubpaths(const CameraHistory& history, float lightAreaAtK, ReverseAtK reverseAtK,
                               int lightSurfaces) const;
