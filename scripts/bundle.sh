@@ -35,7 +35,9 @@ cp "$binary" "$out/bin/voxgi"
 ldd "$binary" | awk '/=> \//{print $3} /^\s*\/lib.*ld-linux/{print $1}' | while read -r lib; do cp -L "$lib" "$out/lib/"; done
 # Loaded at run time, not linked: the GL/EGL dispatch (libepoxy opens them by name).
 for name in libEGL.so.1 libGL.so.1 libGLX.so.0 libOpenGL.so.0 libGLdispatch.so.0 ld-linux-x86-64.so.2; do
-  path=$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ {print $NF; exit}')
+  # awk reads to the end: an early exit would end ldconfig with SIGPIPE, which pipefail and
+  # set -e turn into the script's exit status (141) where ldconfig's list outgrows a pipe's buffer.
+  path=$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ && p == "" {p = $NF} END {print p}')
   [ -n "$path" ] && cp -L "$path" "$out/lib/"
 done
 [ -f "$out/lib/ld-linux-x86-64.so.2" ] || { echo "bundle.sh: glibc's loader ld-linux-x86-64.so.2 not found" >&2; exit 2; }

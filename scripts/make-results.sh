@@ -30,9 +30,9 @@ big=()
 # sponza-noon is Sponza under the atmosphere (it extends sponza.json, whose mesh it needs).
 for scene in sibenik sponza sponza-noon; do
   file="scenes/$scene.json"
-  base=$(grep -o '"extends": *"[^"]*"' "$file" | head -1 | sed 's/.*"\(.*\)"$/\1/' || true)
+  base=$(grep -m1 -o '"extends": *"[^"]*"' "$file" | sed 's/.*"\(.*\)"$/\1/' || true)
   [ -n "$base" ] && file="scenes/$base"
-  mesh=$(grep -o '"path": *"[^"]*"' "$file" | head -1 | sed 's/.*"\(.*\)"$/\1/')
+  mesh=$(grep -m1 -o '"path": *"[^"]*"' "$file" | sed 's/.*"\(.*\)"$/\1/')
   if [ -f "scenes/$mesh" ]; then
     big+=("scenes/$scene.json")
   else
