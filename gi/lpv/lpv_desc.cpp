@@ -1,5 +1,6 @@
 #include "gi/lpv/lpv_desc.h"
 
+#include "scenes/errors.h"
 #include "shaders/lpv/limits.h"
 
 namespace voxgi {
@@ -42,6 +43,10 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
     t.number("fade_cells", &D::fadeCells, 0.0, 4.0, "clpv: width of each cascade's border fade, in cells");
     t.choice("backend", &D::backend, backendChoices(), "cpu (TBB reference) or gl (compute shaders)").main();
     t.flag("sparse", &D::sparse, "cpu: propagate only the bricks holding light");
+    t.choice("transport", &D::transport, {{"sh", LpvTransport::Sh}, {"ordinates", LpvTransport::Ordinates}},
+             "sh: seed 000's SH propagation; ordinates: direction bins swept across each cascade, every bounce (cpu)");
+    t.integer("ordinates_per_face", &D::ordinatesPerFace, 2, 8,
+              "ordinates: direction bins per cube face along each lateral axis (6 x n^2 bins)", 2);
     t.flag("reuse", &D::reuse, "skip the update while lights, geometry and placement are unchanged");
     return t;
 }
@@ -59,7 +64,12 @@ LpvDesc lpvDefaults(bool cascaded) {
     return d;
 }
 
-LpvDesc readLpvDesc(const GiSettings& gi, bool cascaded) { return lpvSettings(cascaded).read(gi, lpvDefaults(cascaded)); }
+LpvDesc readLpvDesc(const GiSettings& gi, bool cascaded) {
+    LpvDesc d = lpvSettings(cascaded).read(gi, lpvDefaults(cascaded));
+    if (d.transport == LpvTransport::Ordinates && d.backend == Backend::Gl)
+        throw InputError("gi.lpv.transport: ordinates runs on the cpu back end only (set lpv.backend=cpu)");
+    return d;
+}
 
 int propagationSteps(const LpvDesc& desc) { return desc.steps == kFittedInteger ? desc.resolution : desc.steps; }
 

@@ -8,6 +8,10 @@
 
 namespace voxgi {
 
+// How light moves between cells: seed 000's 2-band SH propagation, or direction bins swept
+// across the volume (gi/lpv/ordinates.h), which keep a surface's light from returning to it.
+enum class LpvTransport { Sh, Ordinates };
+
 struct LpvDesc {
     int resolution = 32;        // cells per side of every cascade (32^3, as CryEngine and seed 000)
     int cascades = 1;           // 1 for lpv, 3 for clpv
@@ -40,6 +44,9 @@ struct LpvDesc {
     // (the surfels' blockers follow the G-buffer's jitter and every light move). See docs/lpv.md,
     // "Surfel blockers", for what each choice does to the light.
     bool surfelBlockers = true;
+    LpvTransport transport = LpvTransport::Sh;
+    // ordinates: bins per cube face along each lateral axis (6 x n^2 bins: 24 at 2, 96 at 4).
+    int ordinatesPerFace = 2;
 };
 
 // The table of `lpv` (cascaded = false: one volume) or `clpv`.

@@ -87,4 +87,32 @@ void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
     writeVdbFile(path, grids);
 }
 
+void writeOrdinatesVdb(const std::string& path, const std::vector<CascadeGrid>& cascades,
+                       const std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>>& irradiance) {
+    initializeOpenVdb();
+    openvdb::GridPtrVec grids;
+    const char* faces[kOrdinateFaces] = {"px", "nx", "py", "ny", "pz", "nz"};
+    for (std::size_t c = 0; c < cascades.size() && c < irradiance.size(); ++c) {
+        const CascadeGrid& g = cascades[c];
+        for (int f = 0; f < kOrdinateFaces; ++f) {
+            auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+            grid->setTransform(transformFor(g.cellSize, true));
+            tag(*grid, "irradiance_" + std::string(faces[f]) + "_L" + std::to_string(c), int(c), g.cellSize);
+            grid->insertMeta("units", openvdb::StringMetadata("W/m^2"));
+            auto acc = grid->getAccessor();
+            const std::vector<glm::vec4>& e = irradiance[c][std::size_t(f)];
+            for (int z = 0; z < g.resolution; ++z)
+                for (int y = 0; y < g.resolution; ++y)
+                    for (int x = 0; x < g.resolution; ++x) {
+                        const glm::vec4 v = e[g.index({x, y, z})];
+                        if (v.x != 0.0f || v.y != 0.0f || v.z != 0.0f)
+                            acc.setValue(openvdb::Coord(g.origin.x + x, g.origin.y + y, g.origin.z + z),
+                                         openvdb::Vec3s(v.x, v.y, v.z));
+                    }
+            grids.push_back(grid);
+        }
+    }
+    writeVdbFile(path, grids);
+}
+
 }  // namespace voxgi

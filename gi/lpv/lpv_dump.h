@@ -9,10 +9,17 @@
 #include <vector>
 
 #include "gi/lpv/light_volume.h"
+#include "gi/lpv/ordinates.h"
 
 namespace voxgi {
 
 void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
                  const std::vector<BlockerVolume>& geometry);
+
+// lpv.transport=ordinates: per cascade L, the Vec3 grids `irradiance_<face>_L<L>` (face px, nx, py,
+// ny, pz, nz: a receiver facing +x, -x, ...; W/m^2, cell-centred), the irradiance cube the apply
+// pass reads (ring and inner light summed).
+void writeOrdinatesVdb(const std::string& path, const std::vector<CascadeGrid>& grids,
+                       const std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>>& irradiance);
 
 }  // namespace voxgi

@@ -2,6 +2,7 @@
 // cases and benchmark variants.
 #include <algorithm>
 #include <string>
+#include <thread>
 
 #include "gi/lpv/lpv_debug_views.h"
 #include "gi/lpv/lpv_desc.h"
@@ -37,8 +38,11 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
     const bool voxels = d.staticBlockers && scene.triangleCount() > 0;
     const std::string volumes = count(std::size_t(d.cascades), "cascade") + " of " + std::to_string(d.resolution) + "^3";
     p.updateIf(voxels, "lpv.static_blockers",
-               std::string("voxelized-scene blockers made") + (gl ? " and uploaded" : "") +
-                   " when a cascade moves, kept while it stays",
+               d.transport == LpvTransport::Ordinates
+                   ? std::string("the voxelized scene's surfaces (area, normal, albedo) per cell, made when a cascade "
+                                 "moves, kept while it stays")
+                   : std::string("voxelized-scene blockers made") + (gl ? " and uploaded" : "") +
+                         " when a cascade moves, kept while it stays",
                d.staticBlockers ? "no triangles" : "lpv.static_blockers=false");
     p.updateIf(!scene.lights.empty(), "lpv.rsm",
                count(rsmFaceCount(scene), "reflective shadow map face") + " of " + std::to_string(d.rsmSize) + "^2 for " +
@@ -48,27 +52,42 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
                "the G-buffer on a " + std::to_string(d.skyBounceSize) +
                    "^2 grid, lit by the sky volume, as VPLs (surfaces on screen only)",
                noSkyBounce);
-    const bool surfelBlockers = d.surfelBlockers;
+    const bool ordinates = d.transport == LpvTransport::Ordinates;
+    const bool surfelBlockers = d.surfelBlockers && !ordinates;
     if (!gl)
         p.updateIf(surfelBlockers && d.gbufferBlockerSize > 0, "lpv.gbuffer_readback",
                    "camera blockers: the G-buffer read back on a " + std::to_string(d.gbufferBlockerSize) + " grid",
-                   !surfelBlockers ? "lpv.surfel_blockers=false" : "lpv.gbuffer_blocker_size=0");
-    p.update.push_back({"lpv.inject", std::string(scene.lights.empty() ? "sky-bounce" : "RSM") +
-                                          " surfels as virtual point lights into " + volumes});
-    std::vector<std::string> sources;
-    if (surfelBlockers) sources.push_back("the RSMs");
-    if (surfelBlockers && d.gbufferBlockerSize > 0) sources.push_back("the G-buffer");
-    if (voxels) sources.push_back("the voxelized scene");
-    std::string from;
-    for (std::size_t i = 0; i < sources.size(); ++i) from += (i == 0 ? "" : ", ") + sources[i];
-    p.updateIf(!sources.empty(), "lpv.blockers",
-               "blockers from " + from + (surfelBlockers ? "" : " (kept while the cascades stay)"),
-               "no blocker source: lpv.static_blockers=false and lpv.surfel_blockers=false");
-    p.update.push_back({"lpv.propagate", std::to_string(propagationSteps(d)) + " steps in " + volumes + " on " +
-                                             (gl ? "gl" : d.sparse ? "cpu (sparse)" : "cpu (dense)")});
-    if (!gl) p.update.push_back({"lpv.upload", "light volumes to 3D textures"});
-    p.apply.push_back({"lpv.apply", std::string("irradiance from the light volumes") +
-                                        (d.glossy && scene.hasGlossyOrRefractive() ? " and the glossy march" : "")});
+                   ordinates ? "lpv.transport=ordinates: surfaces from the voxelized scene only"
+                   : !d.surfelBlockers ? "lpv.surfel_blockers=false"
+                                       : "lpv.gbuffer_blocker_size=0");
+    const std::string sourcesName = scene.lights.empty() ? "sky-bounce" : "RSM";
+    if (ordinates) {
+        const int bins = 6 * d.ordinatesPerFace * d.ordinatesPerFace;
+        p.update.push_back({"lpv.inject", sourcesName + " surfels' power into " + std::to_string(bins) +
+                                              " direction bins of " + volumes});
+        p.skipped.push_back({"lpv.blockers", "lpv.transport=ordinates: the voxelized surfaces stop the light"});
+        p.update.push_back({"lpv.propagate", std::to_string(bins) + " bins swept across " + volumes +
+                                                 (d.bounces ? ", one sweep per bounce until under 1e-3 of the light is left"
+                                                            : ", one sweep (lpv.bounces=false)") +
+                                                 " (cpu), irradiance cubes to 3D textures"});
+    } else {
+        p.update.push_back({"lpv.inject", sourcesName + " surfels as virtual point lights into " + volumes});
+        std::vector<std::string> sources;
+        if (surfelBlockers) sources.push_back("the RSMs");
+        if (surfelBlockers && d.gbufferBlockerSize > 0) sources.push_back("the G-buffer");
+        if (voxels) sources.push_back("the voxelized scene");
+        std::string from;
+        for (std::size_t i = 0; i < sources.size(); ++i) from += (i == 0 ? "" : ", ") + sources[i];
+        p.updateIf(!sources.empty(), "lpv.blockers",
+                   "blockers from " + from + (surfelBlockers ? "" : " (kept while the cascades stay)"),
+                   "no blocker source: lpv.static_blockers=false and lpv.surfel_blockers=false");
+        p.update.push_back({"lpv.propagate", std::to_string(propagationSteps(d)) + " steps in " + volumes + " on " +
+                                                 (gl ? "gl" : d.sparse ? "cpu (sparse)" : "cpu (dense)")});
+        if (!gl) p.update.push_back({"lpv.upload", "light volumes to 3D textures"});
+    }
+    p.apply.push_back({"lpv.apply", ordinates ? std::string("irradiance from the cubes (no glossy march)")
+                                              : std::string("irradiance from the light volumes") +
+                                                    (d.glossy && scene.hasGlossyOrRefractive() ? " and the glossy march" : "")});
     if (d.reuse) p.notes.push_back("lpv update passes run again only when the lights, geometry or cascade placement change");
     return p;
 }
@@ -120,10 +139,21 @@ MethodInfo lpvFamily(bool cascaded) {
         const LpvDesc d = readLpvDesc(gi, cascaded);
         const double texels = double(d.rsmSize) * double(d.rsmSize);
         const double cells = double(d.resolution) * double(d.resolution) * double(d.resolution);
+        const double rsm = std::max(256.0 * 1024.0 * 1024.0, 68.0 * texels) + 132.0 * texels;
+        if (d.transport == LpvTransport::Ordinates) {
+            // Per cell of each cascade: the ring and inner irradiance cubes on the CPU and as
+            // textures (4 x 96 bytes), one cube per worker thread while solving (96 each), the
+            // surface index (4). Per surface cell: the ring and inner sources and the sweeps'
+            // copy (3 x 12 bytes per bin) and its area, normal, albedo and reflections (110);
+            // surface cells were 18 % of the cells on the Cornell box and Sponza at 32^3, a
+            // quarter is assumed.
+            const double threads = std::max(1.0, double(std::thread::hardware_concurrency()));
+            const double bins = 6.0 * double(d.ordinatesPerFace) * double(d.ordinatesPerFace);
+            return double(d.cascades) * cells * (388.0 + 96.0 * threads + 0.25 * (36.0 * bins + 110.0)) + rsm;
+        }
         const double corners = double(d.resolution + 1) * double(d.resolution + 1) * double(d.resolution + 1);
         return 500.0 * cells * double(d.cascades) + 192.0 * cells * double(d.cascades - 1) +
-               96.0 * corners * double(d.cascades) +
-               std::max(256.0 * 1024.0 * 1024.0, 68.0 * texels) + 132.0 * texels;
+               96.0 * corners * double(d.cascades) + rsm;
     };
     m.create = [cascaded](const Scene& s) { return createLpvTechnique(s, readLpvDesc(s.gi, cascaded), cascaded); };
     m.plan = [cascaded](const Scene& s) { return lpvPlan(s, cascaded); };

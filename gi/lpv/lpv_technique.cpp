@@ -14,6 +14,7 @@
 #include "gi/lpv/gl_propagation.h"
 #include "gi/lpv/injection.h"
 #include "gi/lpv/lpv_dump.h"
+#include "gi/lpv/ordinates_light.h"
 #include "gi/lpv/propagation.h"
 #include "gi/lpv/rsm.h"
 #include "gi/lpv/sky_bounce.h"
@@ -89,6 +90,7 @@ class LpvTechnique final : public GiTechnique {
     std::vector<gl::Handle> textures;  // 6 per cascade: ring r, g, b, inner r, g, b
     std::vector<glm::ivec3> lastOrigins;
     std::unique_ptr<SparseGeometryVolume> voxels;  // static geometry, voxelized once (cached .vdb)
+    std::unique_ptr<OrdinatesLight> ordinatesLight;  // lpv.transport=ordinates: replaces the SH volumes
     std::unique_ptr<SkyBounceFace> skyBounce;      // made on the first update that runs lpv.sky_bounce
     glm::vec3 skyBounceEye{0.0f}, skyBounceForward{0.0f};  // the view the sky bounce was injected from
     bool valid = false;
@@ -110,6 +112,10 @@ public:
                 // OpenVDB cannot hold cells this small (or this many): dynamic blockers only.
                 std::fprintf(stderr, "voxgi: lpv: static blockers off (%s)\n", e.what());
             }
+        }
+        if (desc.transport == LpvTransport::Ordinates) {
+            ordinatesLight = std::make_unique<OrdinatesLight>(desc);
+            return;
         }
         for (auto* v : {&injected, &accumulated, &injectedInner, &accumulatedInner}) v->resize(std::size_t(desc.cascades));
         geometry.resize(std::size_t(desc.cascades));
@@ -153,6 +159,10 @@ public:
         skyBounceForward = forward;
         lastOrigins.clear();
         for (const auto& p : placements) lastOrigins.push_back(p.grid.origin);
+        if (ordinatesLight) {
+            updateOrdinates(input, g, bounceSky);
+            return;
+        }
         if (glInjector) {
             updateOnGpu(input, g);
             return;
@@ -253,6 +263,39 @@ public:
                                     channels[k]->data());
         }
         input.timers.addCpu("lpv.upload", millisecondsSince(t0));
+        valid = true;
+    }
+
+    // lpv.transport=ordinates: the surfaces once per placement, the surfels' light each update.
+    void updateOrdinates(const FrameInput& input, const GBufferView& g, bool bounceSky) {
+        auto t0 = std::chrono::steady_clock::now();
+        if (ordinatesLight->place(placements, voxels.get())) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
+        ordinatesLight->clearSources();
+        double rsmMs = 0.0, injectMs = 0.0;
+        const std::size_t faceCount = rsmFaceCount(scene), batch = rsm.facesPerBatch();
+        for (std::size_t first = 0; first < faceCount; first += batch) {
+            t0 = std::chrono::steady_clock::now();
+            const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu, first, batch);
+            rsmMs += millisecondsSince(t0);
+            for (const RsmFace& face : faces) {
+                t0 = std::chrono::steady_clock::now();
+                const SurfelSource surfels = readSurfels(face);
+                rsmMs += millisecondsSince(t0);
+                t0 = std::chrono::steady_clock::now();
+                ordinatesLight->addSurfels(surfels);
+                injectMs += millisecondsSince(t0);
+            }
+        }
+        if (faceCount > 0) input.timers.addCpu("lpv.rsm", rsmMs);
+        if (bounceSky) {
+            t0 = std::chrono::steady_clock::now();
+            ordinatesLight->addSurfels(readSurfels(skyBounceFace().render(g, scene.camera, *input.sky)));
+            input.timers.addCpu("lpv.sky_bounce", millisecondsSince(t0));
+        }
+        input.timers.addCpu("lpv.inject", injectMs);
+        t0 = std::chrono::steady_clock::now();
+        ordinatesLight->solve();
+        input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
         valid = true;
     }
 
@@ -370,6 +413,11 @@ public:
     void applyIndirect(const FrameInput& input, const GBufferView& g) override {
         if (!input.plan.runs("lpv.apply") || placements.empty()) return;
         input.timers.begin("lpv.apply");
+        if (ordinatesLight) {
+            ordinatesLight->apply(input, g);
+            input.timers.end();
+            return;
+        }
         apply.use();
         bindGBufferTextures(apply, g);
         apply.set("uCascadeCount", int(placements.size()));
@@ -404,6 +452,16 @@ public:
 
     void dumpVdb(const std::string& path) const override {
         if (!valid) throw NotImplementedError("lpv: nothing to dump before the first frame");
+        if (ordinatesLight) {
+            std::vector<CascadeGrid> grids;
+            std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>> cubes;
+            for (std::size_t c = 0; c < placements.size(); ++c) {
+                grids.push_back(placements[c].grid);
+                cubes.push_back(ordinatesLight->irradiance(c));
+            }
+            writeOrdinatesVdb(path, grids, cubes);
+            return;
+        }
         writeLpvVdb(path, lightVolumes(), geometryVolumes());
     }
 
@@ -412,7 +470,7 @@ public:
             const Camera& c = context.camera;
             return cascadeBounds(placeCascades(desc, scene.bounds(), c.eye, c.target - c.eye));
         }
-        if (view == kLpvCellsView && valid) {
+        if (view == kLpvCellsView && valid && !ordinatesLight) {
             const LpvCellsOptions o = lpvCellsOptions().read(context.options);
             if (o.cascade >= int(placements.size())) return {};
             return lpvCellSpheres(lightVolume(std::size_t(o.cascade)), o.stride, context.exposureStops);
@@ -422,6 +480,14 @@ public:
 
     // The CPU propagation's parts (the gl back end propagates in one dispatch per step).
     std::vector<TechniqueStat> stats() const override {
+        if (ordinatesLight) {
+            const OrdinatesLight::Stats& o = ordinatesLight->stats();
+            return {{"ordinates_solve", o.solveMs, "ms"},
+                    {"ordinate_sweeps", double(o.sweeps), "sweeps"},
+                    {"surface_cells", double(o.surfaceCells), "cells"},
+                    {"emitted", o.emittedWatts, "W"},
+                    {"emitted_outside", o.outsideWatts, "W"}};
+        }
         if (desc.backend != Backend::Cpu) return {};
         return {{"propagate_operator", last.operatorMs, "ms"},
                 {"operator_builds", double(last.operatorBuilds), "operators"},

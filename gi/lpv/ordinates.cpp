@@ -1,0 +1,317 @@
+#include "gi/lpv/ordinates.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+namespace voxgi {
+
+namespace {
+// Sweeps stop once the reflected light to carry is below this share of the sources' power: with
+// albedo a the light left out is at most kConverged x a / (1 - a) of it (under 1 % up to a = 0.9).
+constexpr double kConverged = 1e-3;
+}  // namespace
+
+std::vector<OrdinateBin> makeOrdinateBins(int perFace) {
+    if (perFace < 2 || perFace % 2 != 0) throw std::invalid_argument("ordinate bins: perFace must be even and >= 2");
+    // Midpoint rule over each bin's square of slopes; dw = ds dt / (1 + s^2 + t^2)^(3/2).
+    constexpr int kSamples = 48;
+    std::vector<OrdinateBin> bins;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int sign : {1, -1})
+            for (int j = 0; j < perFace; ++j)
+                for (int i = 0; i < perFace; ++i) {
+                    OrdinateBin b;
+                    b.axis = axis;
+                    b.sign = sign;
+                    const float width = 2.0f / float(perFace);
+                    const float s0 = -1.0f + width * float(i), t0 = -1.0f + width * float(j);
+                    // Slopes of one sign per lateral axis: the second tap steps that way.
+                    b.lateralStep = {s0 >= 0.0f ? 1 : -1, t0 >= 0.0f ? 1 : -1};
+                    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+                    double taps[4] = {0, 0, 0, 0}, flux = 0.0, solid = 0.0;
+                    glm::dvec3 moment(0.0);
+                    for (int y = 0; y < kSamples; ++y)
+                        for (int x = 0; x < kSamples; ++x) {
+                            const double s = s0 + width * (x + 0.5) / kSamples, t = t0 + width * (y + 0.5) / kSamples;
+                            const double r2 = 1.0 + s * s + t * t, r = std::sqrt(r2);
+                            const double dw = (width / kSamples) * (width / kSamples) / (r2 * r);
+                            glm::dvec3 w(0.0);
+                            w[axis] = sign / r;
+                            w[u] = s / r;
+                            w[v] = t / r;
+                            const double a = 1.0 / r;  // |w_axis|
+                            solid += dw;
+                            moment += w * dw;
+                            flux += a * dw;
+                            // A ray entering at a uniform lateral point moves |slope| cells over
+                            // one slab: it lands one cell over with probability |slope|.
+                            const double ps = std::abs(s), pt = std::abs(t), fw = a * dw;
+                            taps[0] += (1 - ps) * (1 - pt) * fw;
+                            taps[1] += ps * (1 - pt) * fw;
+                            taps[2] += (1 - ps) * pt * fw;
+                            taps[3] += ps * pt * fw;
+                        }
+                    for (int k = 0; k < 4; ++k) b.taps[std::size_t(k)] = float(taps[k] / flux);
+                    b.moment = glm::vec3(moment);
+                    b.direction = glm::normalize(b.moment);
+                    b.solidAngle = float(solid);
+                    b.axisFlux = float(flux);
+                    bins.push_back(b);
+                }
+    return bins;
+}
+
+void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, std::vector<float>& shares) {
+    shares.assign(bins.size(), 0.0f);
+    float sum = 0.0f;
+    const bool isotropic = glm::dot(n, n) == 0.0f;
+    for (std::size_t k = 0; k < bins.size(); ++k) {
+        shares[k] = isotropic ? bins[k].solidAngle : std::max(glm::dot(n, bins[k].moment), 0.0f);
+        sum += shares[k];
+    }
+    if (sum > 0.0f)
+        for (float& s : shares) s /= sum;
+}
+
+OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace)
+    : grid_(grid), bins_(makeOrdinateBins(perFace)), surfaceOf_(grid.cellCount(), -1) {}
+
+int OrdinatesTransport::surfaceIndex(glm::ivec3 cell) const {
+    return grid_.contains(cell) ? surfaceOf_[grid_.index(cell)] : -1;
+}
+
+int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
+    int& s = surfaceOf_[grid_.index(cell)];
+    if (s < 0) {
+        s = int(cells_.size());
+        cells_.push_back(cell);
+        coverage_.push_back(0.0f);
+        vectorCoverage_.push_back(glm::vec3(0.0f));
+        albedo_.push_back(glm::vec3(0.0f));
+    }
+    return s;
+}
+
+void OrdinatesTransport::addSurface(const OrdinateSurface& surface) {
+    if (!grid_.contains(surface.cell) || surface.coverage <= 0.0f) return;
+    const int s = surfaceFor(surface.cell);
+    const float total = coverage_[std::size_t(s)] + surface.coverage;
+    albedo_[std::size_t(s)] =
+        (albedo_[std::size_t(s)] * coverage_[std::size_t(s)] + surface.albedo * surface.coverage) / total;
+    coverage_[std::size_t(s)] = total;
+    vectorCoverage_[std::size_t(s)] += surface.vectorCoverage;
+}
+
+OrdinatesTransport::Sources OrdinatesTransport::emptySources() const {
+    Sources s;
+    s.power.assign(coverage_.size() * bins_.size() * 3, 0.0f);
+    return s;
+}
+
+void OrdinatesTransport::addPower(int surface, glm::vec3 flux, glm::vec3 normal, Sources& sources) {
+    const std::size_t nb = bins_.size();
+    if (sources.power.size() < coverage_.size() * nb * 3) sources.power.resize(coverage_.size() * nb * 3, 0.0f);
+    emissionShares(bins_, normal, shares_);
+    float* p = sources.power.data() + std::size_t(surface) * nb * 3;
+    for (std::size_t k = 0; k < nb; ++k) {
+        if (shares_[k] == 0.0f) continue;
+        p[3 * k] += flux.r * shares_[k];
+        p[3 * k + 1] += flux.g * shares_[k];
+        p[3 * k + 2] += flux.b * shares_[k];
+    }
+    sources.watts += double(flux.r + flux.g + flux.b);
+}
+
+// One bin over the whole volume: slab by slab along its axis, each slab's incoming power from
+// the previous slab's outgoing power through the four landing taps.
+void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, bool occlusion,
+                               std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance,
+                               std::vector<glm::vec3>& reflected) const {
+    const OrdinateBin& b = bins_[k];
+    const int n = grid_.resolution, nb = int(bins_.size());
+    const int axis = b.axis, u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const std::size_t stride[3] = {1, std::size_t(n), std::size_t(n) * std::size_t(n)};
+    const int su = b.lateralStep.x, sv = b.lateralStep.y;
+    // Receivers: the power entering a cell through its faces of axis a, over h^2, is the
+    // irradiance on a surface facing against the move (moving along +e_a, light arrives on faces
+    // facing -e_a: face 2a + 1). In free space this equals radiance x the bin's cosine moment; in a
+    // cell whose surfaces stop the light it counts only what crosses into it, as a surface there
+    // receives it.
+    const float perArea = 1.0f / (grid_.cellSize * grid_.cellSize);
+    const std::size_t slabFace = std::size_t(2 * axis + (b.sign > 0 ? 1 : 0)),
+                      uFace = std::size_t(2 * u + (su > 0 ? 1 : 0)), vFace = std::size_t(2 * v + (sv > 0 ? 1 : 0));
+    // Per lateral cell of the previous slab, the power leaving along each tap.
+    // A border of zeros around each slab: taps that reach past the edge read nothing.
+    using Parts = std::array<glm::vec3, 4>;
+    const std::size_t row = std::size_t(n) + 2;
+    std::vector<Parts> prev(row * row, Parts{}), cur(prev.size(), Parts{});
+    // The taps' moves, in world axes: each crosses the slab face and, for taps 1-3, a side face.
+    const int axes[3] = {axis, u, v};
+    glm::vec3 move[4];
+    for (int j = 0; j < 4; ++j) {
+        move[j] = glm::vec3(0.0f);
+        move[j][axis] = float(b.sign);
+        if (j & 1) move[j][u] = float(su);
+        if (j & 2) move[j][v] = float(sv);
+    }
+    auto crossedBy = [&](int j, glm::vec3 perAxis) {  // perAxis[a] where tap j crosses axis a
+        return glm::vec3(perAxis[axis], (j & 1) ? perAxis[u] : 0.0f, (j & 2) ? perAxis[v] : 0.0f);
+    };
+    // Reflects `hit` (stopped by the surfaces of `s` on tap j's move) from the axis faces the
+    // light arrives on, each crossed axis by its part of the stopping area `parts`.
+    // With `cell`, the stopped light is also irradiance on those faces there: light that moved
+    // inside the cell (along a floor's layer, or from another surface of the cell) before meeting
+    // a surface, which no crossing into the cell counted.
+    auto reflect = [&](int s, int j, glm::vec3 hit, const glm::vec3& parts, std::size_t cell = SIZE_MAX) {
+        const float total = parts.x + parts.y + parts.z;
+        const glm::vec3 r = albedo_[std::size_t(s)] * hit;
+        for (int c = 0; c < 3; ++c) {
+            const float share = total > 0.0f ? parts[c] / total : (c == 0 ? 1.0f : 0.0f);
+            if (share <= 0.0f) continue;
+            const int ax = axes[c];
+            // Moving along +a, light meets the face facing -a (face 2a + 1).
+            const std::size_t face = std::size_t(2 * ax + (move[j][ax] > 0.0f ? 1 : 0));
+            reflected[kOrdinateFaces * std::size_t(s) + face] += r * share;
+            if (cell != SIZE_MAX) irradiance[face][cell] += glm::vec4(hit * (share * perArea), 0.0f);
+        }
+    };
+    for (int t = 0; t < n; ++t) {
+        const int a = b.sign > 0 ? t : n - 1 - t;
+        const std::size_t base = std::size_t(a) * stride[axis];
+        // Slab offsets of the taps' upstream cells.
+        const std::ptrdiff_t du = su, dv = std::ptrdiff_t(sv) * std::ptrdiff_t(row);
+        const std::ptrdiff_t from[4] = {0, -du, -dv, -du - dv};
+        // The inner loop runs along whichever lateral axis is contiguous in the volumes.
+        const bool uInner = stride[u] < stride[v];
+        for (int outer = 0; outer < n; ++outer)
+            for (int inner = 0; inner < n; ++inner) {
+                const int x = uInner ? inner : outer, y = uInner ? outer : inner;
+                const std::size_t here = (std::size_t(y) + 1) * row + std::size_t(x) + 1;
+                glm::vec3 part[4];
+                for (int j = 0; j < 4; ++j) part[j] = prev[std::size_t(std::ptrdiff_t(here) + from[j])][std::size_t(j)];
+                const glm::vec3 in = part[0] + part[1] + part[2] + part[3];
+                const std::size_t cell = base + std::size_t(x) * stride[u] + std::size_t(y) * stride[v];
+                glm::vec3 out = in;
+                const bool lit = in != glm::vec3(0.0f);
+                if (lit) {
+                    irradiance[slabFace][cell] += glm::vec4(in * perArea, 0.0f);
+                    irradiance[uFace][cell] += glm::vec4((part[1] + part[3]) * perArea, 0.0f);
+                    irradiance[vFace][cell] += glm::vec4((part[2] + part[3]) * perArea, 0.0f);
+                }
+                Parts& leaving = cur[here];
+                const int s = surfaceOf_[cell];
+                if (s < 0) {
+                    for (int j = 0; j < 4; ++j) leaving[std::size_t(j)] = b.taps[std::size_t(j)] * out;
+                    continue;
+                }
+                const glm::vec3 m = vectorCoverage_[std::size_t(s)];
+                if (occlusion && lit) {
+                    // Entering a cell, a move meets the surfaces whose normal axis it crosses, from
+                    // either side: a floor stops what moves up or down into its cell, not what
+                    // slides along it.
+                    const float clutter = 0.25f * std::max(coverage_[std::size_t(s)] - glm::length(m), 0.0f);
+                    for (int j = 0; j < 4; ++j) {
+                        if (part[j] == glm::vec3(0.0f)) continue;
+                        const glm::vec3 crossed = crossedBy(j, glm::abs(m));
+                        const float stopped = std::min(crossed.x + crossed.y + crossed.z + clutter, 1.0f);
+                        if (stopped <= 0.0f) continue;
+                        const glm::vec3 hit = part[j] * stopped;
+                        out -= hit;
+                        reflect(s, j, hit, crossed);
+                    }
+                }
+                const float* p = source.data() + (std::size_t(s) * std::size_t(nb) + k) * 3;
+                out += glm::vec3(p[0], p[1], p[2]);
+                for (int j = 0; j < 4; ++j) {
+                    glm::vec3 go = b.taps[std::size_t(j)] * out;
+                    if (occlusion && go != glm::vec3(0.0f)) {
+                        // Leaving a cell, a move meets the surfaces there that face against it (a
+                        // corner cell's wall, for the light its floor reflects towards the wall).
+                        const glm::vec3 facing = crossedBy(j, glm::max(-m * move[j], glm::vec3(0.0f)));
+                        const float stopped = std::min(facing.x + facing.y + facing.z, 1.0f);
+                        if (stopped > 0.0f) {
+                            reflect(s, j, go * stopped, facing, cell);
+                            go *= 1.0f - stopped;
+                        }
+                    }
+                    leaving[std::size_t(j)] = go;
+                }
+            }
+        std::swap(prev, cur);
+    }
+}
+
+std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(const Sources& sources, bool occlusion,
+                                                                             int maxBounces) {
+    const auto t0 = std::chrono::steady_clock::now();
+    stats_ = {};
+    stats_.emittedWatts = sources.watts;
+    const std::size_t cells = grid_.cellCount(), surfaces = coverage_.size(), nb = bins_.size();
+    using Cube = std::array<std::vector<glm::vec4>, kOrdinateFaces>;
+    Cube irradiance;
+    for (auto& f : irradiance) f.assign(cells, glm::vec4(0.0f));
+    std::vector<float> source = sources.power;
+    source.resize(surfaces * nb * 3, 0.0f);
+    struct Local {
+        Cube irradiance;
+        std::vector<glm::vec3> reflected;
+    };
+    tbb::enumerable_thread_specific<Local> locals;
+    // The hemisphere shares of the six axis faces, for the reflections.
+    std::array<std::vector<float>, kOrdinateFaces> faceShares;
+    for (int f = 0; f < kOrdinateFaces; ++f) {
+        glm::vec3 nrm(0.0f);
+        nrm[f / 2] = f % 2 == 0 ? 1.0f : -1.0f;
+        emissionShares(bins_, nrm, faceShares[std::size_t(f)]);
+    }
+    double carried = sources.watts;
+    for (int bounce = 0; bounce < maxBounces && carried > 0.0; ++bounce) {
+        // Each thread's irradiance sums over every sweep; its reflections start anew each sweep.
+        for (Local& l : locals) std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
+        tbb::parallel_for(std::size_t(0), nb, [&](std::size_t k) {
+            Local& l = locals.local();
+            if (l.reflected.empty()) {
+                for (auto& f : l.irradiance) f.assign(cells, glm::vec4(0.0f));
+                l.reflected.assign(kOrdinateFaces * surfaces, glm::vec3(0.0f));
+            }
+            sweep(k, source, occlusion, l.irradiance, l.reflected);
+        });
+        std::vector<glm::vec3> reflected(kOrdinateFaces * surfaces, glm::vec3(0.0f));
+        for (const Local& l : locals)
+            for (std::size_t i = 0; i < l.reflected.size(); ++i) reflected[i] += l.reflected[i];
+        ++stats_.sweeps;
+        stats_.lastSweepWatts = carried;
+        // The next sweep's sources: each side's reflection into its hemisphere's bins.
+        carried = 0.0;
+        for (std::size_t s = 0; s < surfaces; ++s) {
+            const glm::vec3* r = reflected.data() + kOrdinateFaces * s;
+            for (int f = 0; f < kOrdinateFaces; ++f) carried += double(r[f].r + r[f].g + r[f].b);
+            for (std::size_t k = 0; k < nb; ++k) {
+                glm::vec3 p(0.0f);
+                for (std::size_t f = 0; f < std::size_t(kOrdinateFaces); ++f) p += r[f] * faceShares[f][k];
+                float* q = source.data() + (s * nb + k) * 3;
+                q[0] = p.r;
+                q[1] = p.g;
+                q[2] = p.b;
+            }
+        }
+        stats_.reflectedWatts += carried;
+        if (carried < kConverged * sources.watts) break;
+    }
+    for (const Local& l : locals) {
+        if (l.reflected.empty()) continue;
+        for (int f = 0; f < kOrdinateFaces; ++f)
+            for (std::size_t c = 0; c < cells; ++c) irradiance[std::size_t(f)][c] += l.irradiance[std::size_t(f)][c];
+    }
+    stats_.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return irradiance;
+}
+
+}  // namespace voxgi

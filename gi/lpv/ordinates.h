@@ -1,0 +1,158 @@
+// Discrete-ordinates transport for the light volumes (`lpv.transport=ordinates`): the light is
+// kept in direction bins on its way from surface to surface, instead of being re-emitted as a
+// hemisphere-wide 2-band SH lobe at every cell.
+//
+// Why (docs/lpv.md, "Self-illumination"): SH propagation turns light that leaves a surface
+// sideways back towards that surface within a few cells, so a sunlit floor lights itself (Sponza's
+// floor got 10-25x the path tracer's indirect light); more SH bands or re-emission along each
+// face's central direction removed a fifth of it at most. Here a bin's light only moves
+// downstream along its own directions, and no bin straddles an axis plane, so a plane along an
+// axis never receives its own light: a floor emits into the bins that travel upwards and reads the
+// bins that travel downwards.
+//
+// Bins: each cube face's pyramid of directions (the axis with the largest |component|) is split
+// into perFace x perFace squares of the two lateral slopes (lateral component / |axis
+// component|, each in [-1, 1]). A bin is swept slab by slab along its axis; its power moves to
+// the next slab and spreads over 2 x 2 lateral cells with the probabilities that a ray of the
+// bin, entering its cell at a uniform point, lands there (first-order upwind, averaged over the
+// bin). One sweep carries light across the whole volume, so there is no step count; each further
+// sweep adds one bounce.
+//
+// Units: a cell holds the power (W) its bin carries across one slab. The power entering a cell
+// through its faces of axis a, over h^2, is the irradiance on a surface facing against that move:
+// in free space that equals the bin's radiance (power / (h^2 * integral over the bin of
+// |w_axis|)) times its cosine moment, and in a cell whose surfaces stop light it counts only what
+// crosses into the cell, as a surface there receives it (a radiance estimate there read the
+// grazing light twice attenuated: walls came out at 0.7 of the path tracer). Each cell stores
+// this irradiance for the six axis normals (an ambient cube); a receiver blends them by n^2
+// (shaders/lpv/apply_ordinates.frag).
+//
+// Surfaces: each cell's coverage S (area / h^2) and vector coverage m (area x normal / h^2) from
+// the voxelizer. A tap's move into a cell crosses the slab face and possibly side faces; the
+// cell's surfaces stop the fraction sum over the crossed axes a of |m_a|, plus (S - |m|) / 2 for
+// surfaces whose normals cancel (clutter, both sides of a thin plate), at most all of it: a floor
+// stops what moves up or down into its cell, not what slides along it, so light neither leaks
+// through a one-cell wall nor is stopped by surfaces it runs parallel to. Each crossed axis's part
+// of the surfaces reflects its share of the stopped power times the albedo into the hemisphere of
+// the axis face the light arrived on (a cell holding a floor and a wall reflects up and sideways,
+// never into either).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gi/lpv/light_volume.h"
+#include "gi/lpv/surfels.h"
+
+namespace voxgi {
+
+struct OrdinateBin {
+    int axis = 0;                  // 0 x, 1 y, 2 z: the axis it is swept along
+    int sign = 1;                  // +1: swept towards increasing coordinates
+    glm::ivec2 lateralStep{1};     // +-1: the second tap's offset along (axis+1)%3 and (axis+2)%3
+    std::array<float, 4> taps{};   // landing weights: (0, 0), (step.x, 0), (0, step.y), (step.x, step.y)
+    glm::vec3 moment{0.0f};        // integral over the bin of w dw (sr)
+    glm::vec3 direction{0.0f};     // moment, normalized
+    float solidAngle = 0.0f;       // sr
+    float axisFlux = 0.0f;         // integral over the bin of |w_axis| dw (sr)
+};
+
+// 6 * perFace^2 bins (perFace even, so no bin straddles an axis plane).
+std::vector<OrdinateBin> makeOrdinateBins(int perFace);
+
+// Fractions of a Lambertian emitter's power (normal n) that each bin carries: max(n . moment, 0)
+// normalized to sum to 1 (isotropic, by solid angle, when n is zero).
+void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, std::vector<float>& shares);
+
+// The surfaces of one cell, as the voxelizer reports them (volumes/geometry_volume.h).
+struct OrdinateSurface {
+    glm::ivec3 cell{0};
+    float coverage = 0.0f;            // sum of areas / h^2
+    glm::vec3 vectorCoverage{0.0f};   // sum of area x unit normal / h^2
+    glm::vec3 albedo{0.0f};
+};
+
+// Axis faces of the irradiance cube: a receiver facing +x, -x, +y, -y, +z, -z.
+constexpr int kOrdinateFaces = 6;
+
+struct OrdinatesStats {
+    int sweeps = 0;                 // bounces solved (one sweep of every bin each)
+    double emittedWatts = 0.0;      // the sources' power, summed over colours
+    double reflectedWatts = 0.0;    // power reflected by the surfaces over all sweeps
+    double lastSweepWatts = 0.0;    // the power the last sweep carried (what stopping left out)
+    double ms = 0.0;
+};
+
+// One volume's transport: its grid, the bins and the cells' surfaces (kept while the geometry
+// stays); sources are power per cell and bin, set per update.
+class OrdinatesTransport {
+public:
+    OrdinatesTransport(const CascadeGrid& grid, int perFace);
+
+    const CascadeGrid& grid() const { return grid_; }
+    const std::vector<OrdinateBin>& bins() const { return bins_; }
+
+    // Adds a cell's surfaces (summed with any already there; albedo weighted by coverage).
+    void addSurface(const OrdinateSurface& surface);
+    std::size_t surfaceCells() const { return coverage_.size(); }
+
+    // Sources: power (W, rgb) per surface cell and bin, indexed by surfaceIndex.
+    struct Sources {
+        std::vector<float> power;  // [surface][bin][rgb]
+        double watts = 0.0;        // added, summed over colours
+        double outsideWatts = 0.0; // surfels outside the grid
+    };
+    Sources emptySources() const;
+    // Adds each surfel's flux, times `weight(position)` (1 when empty), at its position shifted
+    // `normalOffsetCells` along its normal; surfels landing in a cell without surfaces get one.
+    template <typename Weight>
+    void addSurfels(const SurfelSource& source, float normalOffsetCells, Weight weight, Sources& sources);
+    void addSurfels(const SurfelSource& source, float normalOffsetCells, Sources& sources) {
+        addSurfels(source, normalOffsetCells, [](glm::vec3) { return 1.0f; }, sources);
+    }
+
+    // Transports the sources and up to maxBounces - 1 reflections (stopping once a sweep would
+    // carry less than 1e-3 of the sources' power); occlusion = false lets light pass every surface.
+    // Returns the irradiance cube: kOrdinateFaces arrays over the cells (rgb, a = 0), W/m^2.
+    std::array<std::vector<glm::vec4>, kOrdinateFaces> solve(const Sources& sources, bool occlusion, int maxBounces);
+    const OrdinatesStats& stats() const { return stats_; }
+
+    // Where a blocker-free volume's source power goes: the cell index of a surface (for tests).
+    int surfaceIndex(glm::ivec3 cell) const;
+
+private:
+    int surfaceFor(glm::ivec3 cell);
+    void addPower(int surface, glm::vec3 flux, glm::vec3 normal, Sources& sources);
+    void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion,
+               std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance, std::vector<glm::vec3>& reflected) const;
+
+    CascadeGrid grid_;
+    std::vector<OrdinateBin> bins_;
+    std::vector<int> surfaceOf_;  // per cell: index into the surface arrays, -1 for none
+    std::vector<glm::ivec3> cells_;
+    std::vector<float> coverage_;
+    std::vector<glm::vec3> vectorCoverage_, albedo_;
+    OrdinatesStats stats_;
+    mutable std::vector<float> shares_;
+};
+
+template <typename Weight>
+void OrdinatesTransport::addSurfels(const SurfelSource& source, float normalOffsetCells, Weight weight,
+                                    Sources& sources) {
+    for (const Surfel& s : source.surfels) {
+        if (s.flux == glm::vec3(0.0f)) continue;
+        const glm::vec3 p = s.position + s.normal * (normalOffsetCells * grid_.cellSize);
+        const glm::vec3 flux = s.flux * weight(s.position);
+        const glm::ivec3 cell = grid_.cellOf(p);
+        if (!grid_.contains(cell)) {
+            sources.outsideWatts += double(flux.r + flux.g + flux.b);
+            continue;
+        }
+        addPower(surfaceFor(cell), flux, s.normal, sources);
+    }
+}
+
+}  // namespace voxgi

@@ -1,0 +1,128 @@
+#include "gi/lpv/ordinates_light.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+
+#include <tbb/parallel_for.h>
+
+#include "gi/lpv/gl_cascade_uniforms.h"
+#include "shaders/lpv/limits.h"
+#include "volumes/voxel_surfaces.h"
+
+namespace voxgi {
+
+OrdinatesLight::OrdinatesLight(const LpvDesc& desc)
+    : desc_(desc), program_(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag")) {}
+
+bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, const SparseGeometryVolume* voxels) {
+    const std::size_t count = placements.size();
+    transports_.resize(count);
+    ring_.resize(count);
+    inner_.resize(count);
+    cubes_.resize(2 * count);
+    const int n = desc_.resolution;
+    while (textures_.size() < 2 * count) textures_.push_back(gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, kOrdinateFaces * n));
+    std::vector<std::size_t> moved;
+    for (std::size_t c = 0; c < count; ++c) {
+        const CascadeGrid& g = placements[c].grid;
+        const OrdinatesTransport* t = transports_[c].get();
+        if (t && t->grid().origin == g.origin && t->grid().cellSize == g.cellSize && t->grid().resolution == g.resolution)
+            continue;
+        moved.push_back(c);
+    }
+    placements_ = placements;
+    tbb::parallel_for(std::size_t(0), moved.size(), [&](std::size_t i) {
+        const std::size_t c = moved[i];
+        const CascadeGrid& g = placements[c].grid;
+        auto t = std::make_unique<OrdinatesTransport>(g, desc_.ordinatesPerFace);
+        if (voxels && int(c) < voxels->levelCount()) {
+            IndexBox box;
+            box.min = g.origin;
+            box.max = g.origin + glm::ivec3(g.resolution - 1);
+            forEachVoxelSurface(*voxels, int(c), box, [&](const VoxelSurfaceArea& s) {
+                t->addSurface({s.voxel - g.origin, s.coverage, s.vectorCoverage, s.albedo});
+            });
+        }
+        transports_[c] = std::move(t);
+    });
+    return !moved.empty();
+}
+
+void OrdinatesLight::clearSources() {
+    for (std::size_t c = 0; c < transports_.size(); ++c) {
+        ring_[c] = transports_[c]->emptySources();
+        inner_[c] = transports_[c]->emptySources();
+    }
+}
+
+void OrdinatesLight::addSurfels(const SurfelSource& surfels) {
+    // Cascades hold their own transports and sources: one task each.
+    tbb::parallel_for(std::size_t(0), transports_.size(), [&](std::size_t c) {
+        const float offset = desc_.injectNormalOffset;
+        transports_[c]->addSurfels(surfels, offset, [&](glm::vec3 x) { return sourceShares(placements_, c, x).ring; },
+                                   ring_[c]);
+        if (c > 0)
+            transports_[c]->addSurfels(surfels, offset, [&](glm::vec3 x) { return sourceShares(placements_, c, x).inner; },
+                                       inner_[c]);
+    });
+}
+
+void OrdinatesLight::solve() {
+    const auto t0 = std::chrono::steady_clock::now();
+    stats_ = {};
+    const int maxBounces = desc_.bounces ? 256 : 1;
+    const int n = desc_.resolution;
+    for (std::size_t c = 0; c < transports_.size(); ++c) {
+        for (int set = 0; set < 2; ++set) {
+            const OrdinatesTransport::Sources& sources = set == 0 ? ring_[c] : inner_[c];
+            auto& cube = cubes_[2 * c + std::size_t(set)];
+            if (set == 1 && sources.watts <= 0.0) {
+                for (auto& f : cube) f.assign(transports_[c]->grid().cellCount(), glm::vec4(0.0f));
+            } else {
+                cube = transports_[c]->solve(sources, desc_.occlusion, maxBounces);
+                stats_.sweeps = std::max(stats_.sweeps, transports_[c]->stats().sweeps);
+            }
+            const GLuint id = textures_[2 * c + std::size_t(set)].id();
+            for (int f = 0; f < kOrdinateFaces; ++f)
+                glTextureSubImage3D(id, 0, 0, 0, f * n, n, n, n, GL_RGBA, GL_FLOAT, cube[std::size_t(f)].data());
+        }
+        stats_.emittedWatts += ring_[c].watts;
+        stats_.surfaceCells += transports_[c]->surfaceCells();
+    }
+    if (!ring_.empty()) stats_.outsideWatts = ring_.back().outsideWatts;
+    stats_.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesLight::irradiance(std::size_t c) const {
+    std::array<std::vector<glm::vec4>, kOrdinateFaces> sum = cubes_.at(2 * c);
+    const auto& inner = cubes_.at(2 * c + 1);
+    for (int f = 0; f < kOrdinateFaces; ++f)
+        for (std::size_t i = 0; i < sum[std::size_t(f)].size() && i < inner[std::size_t(f)].size(); ++i)
+            sum[std::size_t(f)][i] += inner[std::size_t(f)][i];
+    return sum;
+}
+
+void OrdinatesLight::apply(const FrameInput& input, const GBufferView& g) const {
+    (void)input;
+    program_.use();
+    bindGBufferTextures(program_, g);
+    program_.set("uCascadeCount", int(placements_.size()));
+    program_.set("uApplyNormalOffset", desc_.applyNormalOffset);
+    program_.set("uResolution", desc_.resolution);
+    setCascadeUniforms(program_, placements_);
+    for (std::size_t c = 0; c < std::size_t(kLpvMaxCascades); ++c) {
+        const std::string idx = "[" + std::to_string(c) + "]";
+        const bool used = c < placements_.size();
+        if (used) program_.set(("uCellSize" + idx).c_str(), placements_[c].grid.cellSize);
+        // Units 4..: ring and inner cube of each cascade (unused samplers point at unit 4).
+        for (int set = 0; set < 2; ++set) {
+            const GLuint unit = GLuint(4 + 2 * c + std::size_t(set));
+            if (used) glBindTextureUnit(unit, textures_[2 * c + std::size_t(set)].id());
+            program_.set(((set == 0 ? "uRing" : "uInner") + idx).c_str(), int(used ? unit : 4));
+        }
+    }
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+}  // namespace voxgi

@@ -1,0 +1,58 @@
+// The light volumes of `lpv.transport=ordinates` (gi/lpv/ordinates.h): per cascade, the transport
+// with its surfaces from the voxelized scene (kept while the cascade stays), the ring and inner
+// sources of each update (split by gi/lpv/cascades.h's shares, as the SH light is), their
+// irradiance cubes as 3D textures, and the apply pass that reads them.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "gi/lpv/cascades.h"
+#include "gi/lpv/lpv_desc.h"
+#include "gi/lpv/ordinates.h"
+#include "gi/technique.h"
+#include "gl/program.h"
+#include "gl/resources.h"
+
+namespace voxgi {
+
+class SparseGeometryVolume;
+
+class OrdinatesLight {
+public:
+    explicit OrdinatesLight(const LpvDesc& desc);
+
+    // Makes the transports of cascades that moved, their surfaces from `voxels` (level = cascade;
+    // may be null: no surfaces but the emitters'). Returns whether any was made.
+    bool place(const std::vector<CascadePlacement>& placements, const SparseGeometryVolume* voxels);
+    // Starts an update's sources; surfels are added from every RSM face and the sky bounce.
+    void clearSources();
+    void addSurfels(const SurfelSource& surfels);
+    // Transports every cascade's sources and uploads the irradiance cubes.
+    void solve();
+    void apply(const FrameInput& input, const GBufferView& g) const;
+
+    struct Stats {
+        double solveMs = 0.0;
+        int sweeps = 0;              // the most any light set needed
+        double emittedWatts = 0.0;   // summed over cascades' ring sets (each surfel once)
+        double outsideWatts = 0.0;   // surfels outside every cascade
+        std::size_t surfaceCells = 0;
+    };
+    const Stats& stats() const { return stats_; }
+    // The irradiance cube of cascade c, ring + inner, for dumps and tests.
+    std::array<std::vector<glm::vec4>, kOrdinateFaces> irradiance(std::size_t c) const;
+
+private:
+    LpvDesc desc_;
+    std::vector<CascadePlacement> placements_;
+    std::vector<std::unique_ptr<OrdinatesTransport>> transports_;
+    std::vector<OrdinatesTransport::Sources> ring_, inner_;
+    // Per cascade, ring then inner: the six faces' irradiance stacked along z (N x N x 6N, RGBA32F).
+    std::vector<gl::Handle> textures_;
+    std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>> cubes_;
+    gl::Program program_;
+    Stats stats_;
+};
+
+}  // namespace voxgi
