@@ -68,8 +68,7 @@ std::vector<OrdinateBin> makeOrdinateBins(int perFace) {
     return bins;
 }
 
-void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, std::vector<float>& shares) {
-    shares.assign(bins.size(), 0.0f);
+void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, float* shares) {
     float sum = 0.0f;
     const bool isotropic = glm::dot(n, n) == 0.0f;
     for (std::size_t k = 0; k < bins.size(); ++k) {
@@ -77,7 +76,12 @@ void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, std::vect
         sum += shares[k];
     }
     if (sum > 0.0f)
-        for (float& s : shares) s /= sum;
+        for (std::size_t k = 0; k < bins.size(); ++k) shares[k] /= sum;
+}
+
+void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, std::vector<float>& shares) {
+    shares.resize(bins.size());
+    emissionShares(bins, n, shares.data());
 }
 
 OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace)
@@ -115,18 +119,32 @@ OrdinatesTransport::Sources OrdinatesTransport::emptySources() const {
     return s;
 }
 
-void OrdinatesTransport::addPower(int surface, glm::vec3 flux, glm::vec3 normal, Sources& sources) {
-    const std::size_t nb = bins_.size();
+void OrdinatesTransport::addFlux(glm::vec3 position, glm::vec3 normal, glm::vec3 flux, const float* shares,
+                                 float normalOffsetCells, Sources& sources) {
+    const glm::ivec3 cell = grid_.cellOf(position + normal * (normalOffsetCells * grid_.cellSize));
+    if (!grid_.contains(cell)) {
+        sources.outsideWatts += double(flux.r + flux.g + flux.b);
+        return;
+    }
+    const std::size_t surface = std::size_t(surfaceFor(cell)), nb = bins_.size();
     if (sources.power.size() < coverage_.size() * nb * 3) sources.power.resize(coverage_.size() * nb * 3, 0.0f);
-    emissionShares(bins_, normal, shares_);
-    float* p = sources.power.data() + std::size_t(surface) * nb * 3;
+    float* p = sources.power.data() + surface * nb * 3;
     for (std::size_t k = 0; k < nb; ++k) {
-        if (shares_[k] == 0.0f) continue;
-        p[3 * k] += flux.r * shares_[k];
-        p[3 * k + 1] += flux.g * shares_[k];
-        p[3 * k + 2] += flux.b * shares_[k];
+        if (shares[k] == 0.0f) continue;
+        p[3 * k] += flux.r * shares[k];
+        p[3 * k + 1] += flux.g * shares[k];
+        p[3 * k + 2] += flux.b * shares[k];
     }
     sources.watts += double(flux.r + flux.g + flux.b);
+}
+
+void OrdinatesTransport::addSurfels(const SurfelSource& source, float normalOffsetCells, Sources& sources) {
+    std::vector<float> shares;
+    for (const Surfel& s : source.surfels) {
+        if (s.flux == glm::vec3(0.0f)) continue;
+        emissionShares(bins_, s.normal, shares);
+        addFlux(s.position, s.normal, s.flux, shares.data(), normalOffsetCells, sources);
+    }
 }
 
 // One bin over the whole volume: slab by slab along its axis, each slab's incoming power from

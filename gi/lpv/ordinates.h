@@ -65,6 +65,7 @@ std::vector<OrdinateBin> makeOrdinateBins(int perFace);
 
 // Fractions of a Lambertian emitter's power (normal n) that each bin carries: max(n . moment, 0)
 // normalized to sum to 1 (isotropic, by solid angle, when n is zero).
+void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, float* shares);
 void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, std::vector<float>& shares);
 
 // The surfaces of one cell, as the voxelizer reports them (volumes/geometry_volume.h).
@@ -106,13 +107,13 @@ public:
         double outsideWatts = 0.0; // surfels outside the grid
     };
     Sources emptySources() const;
-    // Adds each surfel's flux, times `weight(position)` (1 when empty), at its position shifted
-    // `normalOffsetCells` along its normal; surfels landing in a cell without surfaces get one.
-    template <typename Weight>
-    void addSurfels(const SurfelSource& source, float normalOffsetCells, Weight weight, Sources& sources);
-    void addSurfels(const SurfelSource& source, float normalOffsetCells, Sources& sources) {
-        addSurfels(source, normalOffsetCells, [](glm::vec3) { return 1.0f; }, sources);
-    }
+    // Adds a surfel's flux at its position shifted `normalOffsetCells` along its normal, split over
+    // the bins by `shares` (emissionShares of its normal, one per bin); a cell without surfaces
+    // gets one. Outside the grid the flux is counted in outsideWatts.
+    void addFlux(glm::vec3 position, glm::vec3 normal, glm::vec3 flux, const float* shares, float normalOffsetCells,
+                 Sources& sources);
+    // Every surfel of `source` (zero-flux ones skipped) with its own shares.
+    void addSurfels(const SurfelSource& source, float normalOffsetCells, Sources& sources);
 
     // Transports the sources and up to maxBounces - 1 reflections (stopping once a sweep would
     // carry less than 1e-3 of the sources' power); occlusion = false lets light pass every surface.
@@ -125,7 +126,6 @@ public:
 
 private:
     int surfaceFor(glm::ivec3 cell);
-    void addPower(int surface, glm::vec3 flux, glm::vec3 normal, Sources& sources);
     void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion,
                std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance, std::vector<glm::vec3>& reflected) const;
 
@@ -136,23 +136,6 @@ private:
     std::vector<float> coverage_;
     std::vector<glm::vec3> vectorCoverage_, albedo_;
     OrdinatesStats stats_;
-    mutable std::vector<float> shares_;
 };
-
-template <typename Weight>
-void OrdinatesTransport::addSurfels(const SurfelSource& source, float normalOffsetCells, Weight weight,
-                                    Sources& sources) {
-    for (const Surfel& s : source.surfels) {
-        if (s.flux == glm::vec3(0.0f)) continue;
-        const glm::vec3 p = s.position + s.normal * (normalOffsetCells * grid_.cellSize);
-        const glm::vec3 flux = s.flux * weight(s.position);
-        const glm::ivec3 cell = grid_.cellOf(p);
-        if (!grid_.contains(cell)) {
-            sources.outsideWatts += double(flux.r + flux.g + flux.b);
-            continue;
-        }
-        addPower(surfaceFor(cell), flux, s.normal, sources);
-    }
-}
 
 }  // namespace voxgi

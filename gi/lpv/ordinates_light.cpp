@@ -57,15 +57,34 @@ void OrdinatesLight::clearSources() {
 }
 
 void OrdinatesLight::addSurfels(const SurfelSource& surfels) {
-    // Cascades hold their own transports and sources: one task each.
-    tbb::parallel_for(std::size_t(0), transports_.size(), [&](std::size_t c) {
-        const float offset = desc_.injectNormalOffset;
-        transports_[c]->addSurfels(surfels, offset, [&](glm::vec3 x) { return sourceShares(placements_, c, x).ring; },
-                                   ring_[c]);
-        if (c > 0)
-            transports_[c]->addSurfels(surfels, offset, [&](glm::vec3 x) { return sourceShares(placements_, c, x).inner; },
-                                       inner_[c]);
-    });
+    if (transports_.empty()) return;
+    // Chunks of surfels: each one's bin shares once (every cascade has the same bins), then every
+    // cascade adds the chunk's ring and inner shares (its own sources: one task each).
+    const std::vector<OrdinateBin>& bins = transports_[0]->bins();
+    const std::size_t nb = bins.size(), chunk = 16384;
+    std::vector<float> shares;
+    for (std::size_t first = 0; first < surfels.surfels.size(); first += chunk) {
+        const std::size_t count = std::min(chunk, surfels.surfels.size() - first);
+        shares.assign(count * nb, 0.0f);
+        tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) {
+            const Surfel& s = surfels.surfels[first + i];
+            if (s.flux == glm::vec3(0.0f)) return;
+            emissionShares(bins, s.normal, shares.data() + i * nb);
+        });
+        tbb::parallel_for(std::size_t(0), transports_.size(), [&](std::size_t c) {
+            for (std::size_t i = 0; i < count; ++i) {
+                const Surfel& s = surfels.surfels[first + i];
+                if (s.flux == glm::vec3(0.0f)) continue;
+                const SourceShares split = sourceShares(placements_, c, s.position);
+                const float* sh = shares.data() + i * nb;
+                if (split.ring > 0.0f)
+                    transports_[c]->addFlux(s.position, s.normal, s.flux * split.ring, sh, desc_.injectNormalOffset, ring_[c]);
+                if (c > 0 && split.inner > 0.0f)
+                    transports_[c]->addFlux(s.position, s.normal, s.flux * split.inner, sh, desc_.injectNormalOffset,
+                                            inner_[c]);
+            }
+        });
+    }
 }
 
 void OrdinatesLight::solve() {
