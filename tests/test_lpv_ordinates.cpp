@@ -161,3 +161,33 @@ TEST(LpvOrdinates, BouncesInAClosedBoxSumToTheGeometricSeries) {
             << "albedo " << albedo << ", " << st.sweeps << " sweeps";
     }
 }
+
+// lpv.sweeps=N: one sweep per update, carrying the last sweep's reflections into the next,
+// reaches the all-bounces solution over updates (a fixed point), and is short of it at first.
+TEST(LpvOrdinates, OneSweepPerUpdateConvergesToEveryBounceOverUpdates) {
+    const int n = 10;
+    OrdinatesTransport t(gridOf(n), 2);
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            t.addSurface({{a, 0, b}, 1.0f, {0, 1, 0}, glm::vec3(0.6f)});
+            t.addSurface({{a, n - 1, b}, 1.0f, {0, -1, 0}, glm::vec3(0.6f)});
+            t.addSurface({{0, a, b}, 1.0f, {1, 0, 0}, glm::vec3(0.6f)});
+        }
+    OrdinatesTransport::Sources s = t.emptySources();
+    t.addSurfels(floorSurfels(0, 2, n - 2, 1.0f), 0.0f, s);
+    auto floorLight = [&](const std::array<std::vector<glm::vec4>, kOrdinateFaces>& e) {
+        double sum = 0.0;
+        for (int z = 1; z < n - 1; ++z)
+            for (int x = 1; x < n - 1; ++x) sum += e[2][t.grid().index({x, 0, z})].r;
+        return sum;
+    };
+    const double full = floorLight(t.solve(s, true, 1000));
+    std::vector<glm::vec3> carry;
+    const double first = floorLight(t.solve(s, true, 1, &carry));
+    EXPECT_LT(first, 0.5 * full) << "the floor's light is all bounce light";
+    double last = first;
+    for (int update = 1; update < 40; ++update) last = floorLight(t.solve(s, true, 1, &carry));
+    // The full solve stops once a sweep would carry under 1e-3 of the sources' power, leaving out
+    // up to 1e-3 x a / (1 - a) of the light: the carried updates end slightly above it.
+    EXPECT_NEAR(last / full, 1.0, 3e-3);
+}

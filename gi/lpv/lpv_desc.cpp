@@ -47,6 +47,10 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
              "sh: seed 000's SH propagation; ordinates: direction bins swept across each cascade, every bounce (cpu)");
     t.integer("ordinates_per_face", &D::ordinatesPerFace, 2, 8,
               "ordinates: direction bins per cube face along each lateral axis (6 x n^2 bins)", 2);
+    t.integerOrFit("sweeps", &D::sweeps, 1, 256,
+                   "ordinates: sweeps (bounces) per update; fit: until converged; a number continues from the last "
+                   "update's reflections, converging over updates",
+                   "fit");
     t.flag("reuse", &D::reuse, "skip the update while lights, geometry and placement are unchanged");
     return t;
 }

@@ -47,6 +47,10 @@ struct LpvDesc {
     LpvTransport transport = LpvTransport::Sh;
     // ordinates: bins per cube face along each lateral axis (6 x n^2 bins: 24 at 2, 96 at 4).
     int ordinatesPerFace = 2;
+    // ordinates: sweeps (bounces) per update; fit: until converged. A number carries the last
+    // sweep's reflections into the next update, which converges over updates (one bounce of lag
+    // per sweep) at that many sweeps' cost each.
+    int sweeps = kFittedInteger;
 };
 
 // The table of `lpv` (cascaded = false: one volume) or `clpv`.

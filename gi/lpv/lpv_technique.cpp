@@ -94,6 +94,7 @@ class LpvTechnique final : public GiTechnique {
     std::unique_ptr<SkyBounceFace> skyBounce;      // made on the first update that runs lpv.sky_bounce
     glm::vec3 skyBounceEye{0.0f}, skyBounceForward{0.0f};  // the view the sky bounce was injected from
     bool valid = false;
+    bool complete = true;  // no bounces left to carry into the next update (lpv.sweeps=N)
 
 public:
     LpvTechnique(const Scene& s, const LpvDesc& d, bool c)
@@ -154,7 +155,7 @@ public:
         const glm::vec3 forward = viewForward(g.viewProjection);
         const bool viewChanged = bounceSky && (g.eye != skyBounceEye || forward != skyBounceForward);
         // Static scene, lights and placement: the propagated light is still valid.
-        if (desc.reuse && valid && !placementChanged() && !viewChanged) return;
+        if (desc.reuse && valid && complete && !placementChanged() && !viewChanged) return;
         skyBounceEye = g.eye;
         skyBounceForward = forward;
         lastOrigins.clear();
@@ -296,6 +297,9 @@ public:
         t0 = std::chrono::steady_clock::now();
         ordinatesLight->solve();
         input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
+        // With lpv.sweeps=N the light is complete only once the carried bounces have died out:
+        // until then every frame updates, even in a still scene.
+        complete = ordinatesLight->stats().converged;
         valid = true;
     }
 
@@ -486,7 +490,8 @@ public:
                     {"ordinate_sweeps", double(o.sweeps), "sweeps"},
                     {"surface_cells", double(o.surfaceCells), "cells"},
                     {"emitted", o.emittedWatts, "W"},
-                    {"emitted_outside", o.outsideWatts, "W"}};
+                    {"emitted_outside", o.outsideWatts, "W"},
+                    {"reflections_left", o.leftWatts, "W"}};
         }
         if (desc.backend != Backend::Cpu) return {};
         return {{"propagate_operator", last.operatorMs, "ms"},

@@ -267,7 +267,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
 }
 
 std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(const Sources& sources, bool occlusion,
-                                                                             int maxBounces) {
+                                                                             int maxBounces, std::vector<glm::vec3>* carry) {
     const auto t0 = std::chrono::steady_clock::now();
     stats_ = {};
     stats_.emittedWatts = sources.watts;
@@ -275,13 +275,6 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
     using Cube = std::array<std::vector<glm::vec4>, kOrdinateFaces>;
     Cube irradiance;
     for (auto& f : irradiance) f.assign(cells, glm::vec4(0.0f));
-    std::vector<float> source = sources.power;
-    source.resize(surfaces * nb * 3, 0.0f);
-    struct Local {
-        Cube irradiance;
-        std::vector<glm::vec3> reflected;
-    };
-    tbb::enumerable_thread_specific<Local> locals;
     // The hemisphere shares of the six axis faces, for the reflections.
     std::array<std::vector<float>, kOrdinateFaces> faceShares;
     for (int f = 0; f < kOrdinateFaces; ++f) {
@@ -289,7 +282,34 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         nrm[f / 2] = f % 2 == 0 ? 1.0f : -1.0f;
         emissionShares(bins_, nrm, faceShares[std::size_t(f)]);
     }
+    // Sources of the next sweep from reflections per surface and axis face (W, rgb).
+    auto reflectionSources = [&](const std::vector<glm::vec3>& reflected, std::vector<float>& out) {
+        double watts = 0.0;
+        for (std::size_t s = 0; s < surfaces; ++s) {
+            const glm::vec3* r = reflected.data() + kOrdinateFaces * s;
+            for (int f = 0; f < kOrdinateFaces; ++f) watts += double(r[f].r + r[f].g + r[f].b);
+            for (std::size_t k = 0; k < nb; ++k) {
+                glm::vec3 p(0.0f);
+                for (std::size_t f = 0; f < std::size_t(kOrdinateFaces); ++f) p += r[f] * faceShares[f][k];
+                float* q = out.data() + (s * nb + k) * 3;
+                q[0] += p.r;
+                q[1] += p.g;
+                q[2] += p.b;
+            }
+        }
+        return watts;
+    };
+    std::vector<float> source = sources.power;
+    source.resize(surfaces * nb * 3, 0.0f);
     double carried = sources.watts;
+    // The reflections an earlier solve left to carry start this one's bounces.
+    if (carry && carry->size() == kOrdinateFaces * surfaces) carried += reflectionSources(*carry, source);
+    struct Local {
+        Cube irradiance;
+        std::vector<glm::vec3> reflected;
+    };
+    tbb::enumerable_thread_specific<Local> locals;
+    std::vector<glm::vec3> reflected(kOrdinateFaces * surfaces, glm::vec3(0.0f));
     for (int bounce = 0; bounce < maxBounces && carried > 0.0; ++bounce) {
         // Each thread's irradiance sums over every sweep; its reflections start anew each sweep.
         for (Local& l : locals) std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
@@ -301,28 +321,19 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
             }
             sweep(k, source, occlusion, l.irradiance, l.reflected);
         });
-        std::vector<glm::vec3> reflected(kOrdinateFaces * surfaces, glm::vec3(0.0f));
+        std::fill(reflected.begin(), reflected.end(), glm::vec3(0.0f));
         for (const Local& l : locals)
             for (std::size_t i = 0; i < l.reflected.size(); ++i) reflected[i] += l.reflected[i];
         ++stats_.sweeps;
         stats_.lastSweepWatts = carried;
-        // The next sweep's sources: each side's reflection into its hemisphere's bins.
-        carried = 0.0;
-        for (std::size_t s = 0; s < surfaces; ++s) {
-            const glm::vec3* r = reflected.data() + kOrdinateFaces * s;
-            for (int f = 0; f < kOrdinateFaces; ++f) carried += double(r[f].r + r[f].g + r[f].b);
-            for (std::size_t k = 0; k < nb; ++k) {
-                glm::vec3 p(0.0f);
-                for (std::size_t f = 0; f < std::size_t(kOrdinateFaces); ++f) p += r[f] * faceShares[f][k];
-                float* q = source.data() + (s * nb + k) * 3;
-                q[0] = p.r;
-                q[1] = p.g;
-                q[2] = p.b;
-            }
-        }
+        // The next sweep's sources: each face's reflection into its hemisphere's bins.
+        std::fill(source.begin(), source.end(), 0.0f);
+        carried = reflectionSources(reflected, source);
         stats_.reflectedWatts += carried;
+        stats_.leftWatts = carried;
         if (carried < kConverged * sources.watts) break;
     }
+    if (carry) *carry = reflected;
     for (const Local& l : locals) {
         if (l.reflected.empty()) continue;
         for (int f = 0; f < kOrdinateFaces; ++f)

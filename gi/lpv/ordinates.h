@@ -83,7 +83,8 @@ struct OrdinatesStats {
     int sweeps = 0;                 // bounces solved (one sweep of every bin each)
     double emittedWatts = 0.0;      // the sources' power, summed over colours
     double reflectedWatts = 0.0;    // power reflected by the surfaces over all sweeps
-    double lastSweepWatts = 0.0;    // the power the last sweep carried (what stopping left out)
+    double lastSweepWatts = 0.0;    // the power the last sweep carried
+    double leftWatts = 0.0;         // reflected by the last sweep and not carried (see solve's carry)
     double ms = 0.0;
 };
 
@@ -118,7 +119,12 @@ public:
     // Transports the sources and up to maxBounces - 1 reflections (stopping once a sweep would
     // carry less than 1e-3 of the sources' power); occlusion = false lets light pass every surface.
     // Returns the irradiance cube: kOrdinateFaces arrays over the cells (rgb, a = 0), W/m^2.
-    std::array<std::vector<glm::vec4>, kOrdinateFaces> solve(const Sources& sources, bool occlusion, int maxBounces);
+    // `carry` (per surface and axis face, W): on entry, reflections an earlier solve left, carried
+    // along with the sources (ignored when its size does not match); on return, the reflections of
+    // the last sweep. Solving k sweeps per update with the carry converges to the full solution
+    // over updates (a fixed point of sources + reflections), one bounce of lag per k sweeps.
+    std::array<std::vector<glm::vec4>, kOrdinateFaces> solve(const Sources& sources, bool occlusion, int maxBounces,
+                                                             std::vector<glm::vec3>* carry = nullptr);
     const OrdinatesStats& stats() const { return stats_; }
 
     // Where a blocker-free volume's source power goes: the cell index of a surface (for tests).

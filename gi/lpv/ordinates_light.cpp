@@ -21,6 +21,7 @@ bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, cons
     ring_.resize(count);
     inner_.resize(count);
     cubes_.resize(2 * count);
+    carry_.resize(2 * count);
     const int n = desc_.resolution;
     while (textures_.size() < 2 * count) textures_.push_back(gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, kOrdinateFaces * n));
     std::vector<std::size_t> moved;
@@ -45,6 +46,8 @@ bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, cons
             });
         }
         transports_[c] = std::move(t);
+        carry_[2 * c].clear();
+        carry_[2 * c + 1].clear();
     });
     return !moved.empty();
 }
@@ -90,7 +93,9 @@ void OrdinatesLight::addSurfels(const SurfelSource& surfels) {
 void OrdinatesLight::solve() {
     const auto t0 = std::chrono::steady_clock::now();
     stats_ = {};
-    const int maxBounces = desc_.bounces ? 256 : 1;
+    // Fitted: every bounce now; a number of sweeps continues from the last update's reflections.
+    const bool incremental = desc_.bounces && desc_.sweeps != kFittedInteger;
+    const int maxBounces = !desc_.bounces ? 1 : incremental ? desc_.sweeps : 256;
     const int n = desc_.resolution;
     for (std::size_t c = 0; c < transports_.size(); ++c) {
         for (int set = 0; set < 2; ++set) {
@@ -99,8 +104,14 @@ void OrdinatesLight::solve() {
             if (set == 1 && sources.watts <= 0.0) {
                 for (auto& f : cube) f.assign(transports_[c]->grid().cellCount(), glm::vec4(0.0f));
             } else {
-                cube = transports_[c]->solve(sources, desc_.occlusion, maxBounces);
-                stats_.sweeps = std::max(stats_.sweeps, transports_[c]->stats().sweeps);
+                std::vector<glm::vec3>* carry = incremental ? &carry_[2 * c + std::size_t(set)] : nullptr;
+                cube = transports_[c]->solve(sources, desc_.occlusion, maxBounces, carry);
+                const OrdinatesStats& st = transports_[c]->stats();
+                stats_.sweeps = std::max(stats_.sweeps, st.sweeps);
+                if (incremental) {
+                    stats_.leftWatts += st.leftWatts;
+                    if (st.leftWatts >= 1e-3 * st.emittedWatts) stats_.converged = false;
+                }
             }
             const GLuint id = textures_[2 * c + std::size_t(set)].id();
             for (int f = 0; f < kOrdinateFaces; ++f)

@@ -38,6 +38,8 @@ public:
         double emittedWatts = 0.0;   // summed over cascades' ring sets (each surfel once)
         double outsideWatts = 0.0;   // surfels outside every cascade
         std::size_t surfaceCells = 0;
+        double leftWatts = 0.0;      // reflections not yet carried (lpv.sweeps=N continues them)
+        bool converged = true;       // every light set's left-over under 1e-3 of its sources
     };
     const Stats& stats() const { return stats_; }
     // The irradiance cube of cascade c, ring + inner, for dumps and tests.
@@ -48,6 +50,8 @@ private:
     std::vector<CascadePlacement> placements_;
     std::vector<std::unique_ptr<OrdinatesTransport>> transports_;
     std::vector<OrdinatesTransport::Sources> ring_, inner_;
+    // Per cascade, ring then inner: the reflections the last solve left (lpv.sweeps=N).
+    std::vector<std::vector<glm::vec3>> carry_;
     // Per cascade, ring then inner: the six faces' irradiance stacked along z (N x N x 6N, RGBA32F).
     std::vector<gl::Handle> textures_;
     std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>> cubes_;
