@@ -154,11 +154,15 @@ TEST(LpvOrdinates, BouncesInAClosedBoxSumToTheGeometricSeries) {
             }
         OrdinatesTransport::Sources s = t.emptySources();
         t.addSurfels(floorSurfels(0, 1, n - 1, 1.0f), 0.0f, s);
-        t.solve(s, true, 1000);
+        const auto first = t.solve(s, true, 1000);
         const OrdinatesStats& st = t.stats();
         EXPECT_GT(st.sweeps, 5);
         EXPECT_NEAR(st.reflectedWatts / st.emittedWatts, albedo / (1.0 - albedo), 0.01 * albedo / (1.0 - albedo))
             << "albedo " << albedo << ", " << st.sweeps << " sweeps";
+        // The same bits again, whichever threads swept which bins.
+        const auto again = t.solve(s, true, 1000);
+        for (int f = 0; f < kOrdinateFaces; ++f)
+            EXPECT_TRUE(first[std::size_t(f)] == again[std::size_t(f)]) << "face " << f;
     }
 }
 

@@ -2,7 +2,6 @@
 // cases and benchmark variants.
 #include <algorithm>
 #include <string>
-#include <thread>
 
 #include "gi/lpv/lpv_debug_views.h"
 #include "gi/lpv/lpv_desc.h"
@@ -142,14 +141,13 @@ MethodInfo lpvFamily(bool cascaded) {
         const double rsm = std::max(256.0 * 1024.0 * 1024.0, 68.0 * texels) + 132.0 * texels;
         if (d.transport == LpvTransport::Ordinates) {
             // Per cell of each cascade: the ring and inner irradiance cubes on the CPU and as
-            // textures (4 x 96 bytes), one cube per worker thread while solving (96 each), the
-            // surface index (4). Per surface cell: the ring and inner sources and the sweeps'
-            // copy (3 x 12 bytes per bin) and its area, normal, albedo and reflections (110);
-            // surface cells were 18 % of the cells on the Cornell box and Sponza at 32^3, a
-            // quarter is assumed.
-            const double threads = std::max(1.0, double(std::thread::hardware_concurrency()));
+            // textures (4 x 96 bytes), one cube per group of bins while solving (4 x 96), the
+            // returned cube (96) and the surface index (4). Per surface cell: the ring and inner
+            // sources and the sweeps' copy (3 x 12 bytes per bin) and its area, normal, albedo and
+            // reflections (5 x 72 + 40); surface cells were 18 % of the cells on the Cornell box
+            // and Sponza at 32^3, a quarter is assumed.
             const double bins = 6.0 * double(d.ordinatesPerFace) * double(d.ordinatesPerFace);
-            return double(d.cascades) * cells * (388.0 + 96.0 * threads + 0.25 * (36.0 * bins + 110.0)) + rsm;
+            return double(d.cascades) * cells * (868.0 + 0.25 * (36.0 * bins + 400.0)) + rsm;
         }
         const double corners = double(d.resolution + 1) * double(d.resolution + 1) * double(d.resolution + 1);
         return 500.0 * cells * double(d.cascades) + 192.0 * cells * double(d.cascades - 1) +

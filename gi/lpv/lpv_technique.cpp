@@ -169,10 +169,8 @@ public:
             return;
         }
 
-        // Each RSM face's surfels are injected and dropped before the next face is read back (a
-        // 4096^2 face holds 1 GiB of them); faces render in batches (RsmRenderer::facesPerBatch).
         // Sources merge in order: RSM faces, the camera, static blockers.
-        double rsmMs = 0.0, injectMs = 0.0, blockersMs = 0.0;
+        double injectMs = 0.0, blockersMs = 0.0;
         const InjectionOffsets offsets{desc.injectNormalOffset, desc.injectLightOffset};
         std::vector<BlockerVolume> scratch(placements.size());
         for (std::size_t c = 0; c < placements.size(); ++c) {
@@ -181,28 +179,18 @@ public:
             geometry[c].reset(placements[c].grid);
             scratch[c].reset(placements[c].grid);
         }
-        const std::size_t faceCount = rsmFaceCount(scene), batch = rsm.facesPerBatch();
-        for (std::size_t first = 0; first < faceCount; first += batch) {
+        forEachRsmFace(input, [&](const SurfelSource& surfels) {
             auto t0 = std::chrono::steady_clock::now();
-            const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu, first, batch);
-            rsmMs += millisecondsSince(t0);
-            for (const RsmFace& face : faces) {
-                t0 = std::chrono::steady_clock::now();
-                const SurfelSource surfels = readSurfels(face);
-                rsmMs += millisecondsSince(t0);
-                t0 = std::chrono::steady_clock::now();
-                // Cascades write their own volumes: one task each.
-                tbb::parallel_for(std::size_t(0), placements.size(), [&](std::size_t c) {
-                    injectLight(surfels, offsets, placements, c, injected[c], injectedInner[c]);
-                });
-                injectMs += millisecondsSince(t0);
-                if (!desc.surfelBlockers) continue;
-                t0 = std::chrono::steady_clock::now();
-                for (std::size_t c = 0; c < placements.size(); ++c) injectBlockers(surfels, scratch[c], geometry[c]);
-                blockersMs += millisecondsSince(t0);
-            }
-        }
-        if (faceCount > 0) input.timers.addCpu("lpv.rsm", rsmMs);
+            // Cascades write their own volumes: one task each.
+            tbb::parallel_for(std::size_t(0), placements.size(), [&](std::size_t c) {
+                injectLight(surfels, offsets, placements, c, injected[c], injectedInner[c]);
+            });
+            injectMs += millisecondsSince(t0);
+            if (!desc.surfelBlockers) return;
+            t0 = std::chrono::steady_clock::now();
+            for (std::size_t c = 0; c < placements.size(); ++c) injectBlockers(surfels, scratch[c], geometry[c]);
+            blockersMs += millisecondsSince(t0);
+        });
         if (bounceSky) {
             const auto t0 = std::chrono::steady_clock::now();
             const SurfelSource surfels = readSurfels(skyBounceFace().render(g, scene.camera, *input.sky));
@@ -267,27 +255,38 @@ public:
         valid = true;
     }
 
-    // lpv.transport=ordinates: the surfaces once per placement, the surfels' light each update.
-    void updateOrdinates(const FrameInput& input, const GBufferView& g, bool bounceSky) {
-        auto t0 = std::chrono::steady_clock::now();
-        if (ordinatesLight->place(placements, voxels.get())) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
-        ordinatesLight->clearSources();
-        double rsmMs = 0.0, injectMs = 0.0;
+    // Renders the RSM faces in batches (RsmRenderer::facesPerBatch) and hands each face's surfels
+    // to `use`, dropped before the next face is read back (a 4096^2 face holds 1 GiB of them);
+    // the rendering and read-back go to the lpv.rsm timer.
+    template <typename Use>
+    void forEachRsmFace(const FrameInput& input, Use use) {
+        double rsmMs = 0.0;
         const std::size_t faceCount = rsmFaceCount(scene), batch = rsm.facesPerBatch();
         for (std::size_t first = 0; first < faceCount; first += batch) {
-            t0 = std::chrono::steady_clock::now();
+            auto t0 = std::chrono::steady_clock::now();
             const std::vector<RsmFace>& faces = rsm.renderToTextures(scene, input.sceneGpu, first, batch);
             rsmMs += millisecondsSince(t0);
             for (const RsmFace& face : faces) {
                 t0 = std::chrono::steady_clock::now();
                 const SurfelSource surfels = readSurfels(face);
                 rsmMs += millisecondsSince(t0);
-                t0 = std::chrono::steady_clock::now();
-                ordinatesLight->addSurfels(surfels);
-                injectMs += millisecondsSince(t0);
+                use(surfels);
             }
         }
         if (faceCount > 0) input.timers.addCpu("lpv.rsm", rsmMs);
+    }
+
+    // lpv.transport=ordinates: the surfaces once per placement, the surfels' light each update.
+    void updateOrdinates(const FrameInput& input, const GBufferView& g, bool bounceSky) {
+        auto t0 = std::chrono::steady_clock::now();
+        if (ordinatesLight->place(placements, voxels.get())) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
+        ordinatesLight->clearSources();
+        double injectMs = 0.0;
+        forEachRsmFace(input, [&](const SurfelSource& surfels) {
+            const auto start = std::chrono::steady_clock::now();
+            ordinatesLight->addSurfels(surfels);
+            injectMs += millisecondsSince(start);
+        });
         if (bounceSky) {
             t0 = std::chrono::steady_clock::now();
             ordinatesLight->addSurfels(readSurfels(skyBounceFace().render(g, scene.camera, *input.sky)));

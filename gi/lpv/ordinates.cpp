@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 namespace voxgi {
@@ -17,6 +16,9 @@ namespace {
 // albedo a the light left out is at most kConverged x a / (1 - a) of it (under 1 % up to a = 0.9).
 constexpr double kConverged = 1e-3;
 }  // namespace
+
+// Bins are swept in this many groups, each summing into its own irradiance and reflections.
+constexpr std::size_t kBinGroups = 4;
 
 std::vector<OrdinateBin> makeOrdinateBins(int perFace) {
     if (perFace < 2 || perFace % 2 != 0) throw std::invalid_argument("ordinate bins: perFace must be even and >= 2");
@@ -304,22 +306,26 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
     double carried = sources.watts;
     // The reflections an earlier solve left to carry start this one's bounces.
     if (carry && carry->size() == kOrdinateFaces * surfaces) carried += reflectionSources(*carry, source);
+    // Bins in a fixed number of groups, each summing into its own buffers, added in group order:
+    // the same image whichever thread sweeps which bin.
     struct Local {
         Cube irradiance;
         std::vector<glm::vec3> reflected;
     };
-    tbb::enumerable_thread_specific<Local> locals;
+    const std::size_t groups = std::min<std::size_t>(nb, kBinGroups);
+    std::vector<Local> locals(groups);
     std::vector<glm::vec3> reflected(kOrdinateFaces * surfaces, glm::vec3(0.0f));
     for (int bounce = 0; bounce < maxBounces && carried > 0.0; ++bounce) {
-        // Each thread's irradiance sums over every sweep; its reflections start anew each sweep.
-        for (Local& l : locals) std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
-        tbb::parallel_for(std::size_t(0), nb, [&](std::size_t k) {
-            Local& l = locals.local();
+        // Each group's irradiance sums over every sweep; its reflections start anew each sweep.
+        tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
+            Local& l = locals[g];
             if (l.reflected.empty()) {
                 for (auto& f : l.irradiance) f.assign(cells, glm::vec4(0.0f));
                 l.reflected.assign(kOrdinateFaces * surfaces, glm::vec3(0.0f));
+            } else {
+                std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
             }
-            sweep(k, source, occlusion, l.irradiance, l.reflected);
+            for (std::size_t k = g; k < nb; k += groups) sweep(k, source, occlusion, l.irradiance, l.reflected);
         });
         std::fill(reflected.begin(), reflected.end(), glm::vec3(0.0f));
         for (const Local& l : locals)
