@@ -172,7 +172,8 @@ MethodInfo lpvFamily(bool cascaded) {
     if (!cascaded) m.stressCases = lpvStressCases();
     m.benchVariants = {{"cpu-sparse", {{"lpv.backend", "cpu"}, {"lpv.sparse", "true"}, {"lpv.reuse", "false"}}},
                        {"cpu-dense", {{"lpv.backend", "cpu"}, {"lpv.sparse", "false"}, {"lpv.reuse", "false"}}},
-                       {"gl", {{"lpv.backend", "gl"}, {"lpv.reuse", "false"}}}};
+                       {"gl", {{"lpv.backend", "gl"}, {"lpv.reuse", "false"}}},
+                       {"cpu-ordinates", {{"lpv.backend", "cpu"}, {"lpv.transport", "ordinates"}, {"lpv.reuse", "false"}}}};
     return m;
 }
 
