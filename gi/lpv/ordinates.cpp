@@ -9,6 +9,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "gi/lpv/detail/subnormals_flushed.h"
+
 namespace voxgi {
 
 namespace {
@@ -329,6 +331,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
             } else {
                 std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
             }
+            const detail::SubnormalsFlushed flushed;
             for (std::size_t k = g; k < nb; k += groups) sweep(k, source, occlusion, l.irradiance, l.reflected);
         });
         std::fill(reflected.begin(), reflected.end(), glm::vec3(0.0f));

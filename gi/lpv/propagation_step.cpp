@@ -9,6 +9,7 @@
 #endif
 
 #include "gi/lpv/detail/propagation_soa.h"
+#include "gi/lpv/detail/subnormals_flushed.h"
 
 // Every function taking or returning a vector is internal and always inlined, so the warning
 // about the AVX calling convention of 32-byte vectors concerns no real call.
@@ -272,21 +273,6 @@ RowsFn rowsFn(SimdLevel level) {
     }
 }
 
-// Light that has decayed below FLT_MIN (1.2e-38) is treated as zero while a brick runs: on
-// x86, arithmetic on subnormal floats takes ~100 times as long, and a long propagation whose
-// light has died away (lpv.steps in the thousands) spent almost all its time there (4000
-// steps: 1.8 s, 8000: 34 s). The caller's floating-point mode is restored afterwards.
-class SubnormalsFlushed {
-public:
-#if defined(__SSE__)
-    SubnormalsFlushed() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero); }
-    ~SubnormalsFlushed() { _mm_setcsr(saved_); }
-
-private:
-    static constexpr unsigned kFlushToZero = 0x8000, kDenormalsAreZero = 0x0040;
-    unsigned saved_;
-#endif
-};
 
 }  // namespace
 
@@ -307,14 +293,14 @@ SimdLevel bestSimdLevel() {
 void propagateRows(const PropagationOperator& op, const StepBuffers& buffers, const StepBricks& bricks, int z, int y0,
                    int y1) {
     static const RowsFn fn = rowsFn(bestSimdLevel());
-    const SubnormalsFlushed flushed;
+    const detail::SubnormalsFlushed flushed;
     fn(op, buffers, bricks, z, y0, y1);
 }
 
 void propagateRows(const PropagationOperator& op, const StepBuffers& buffers, const StepBricks& bricks, int z, int y0,
                    int y1, SimdLevel level) {
     if (!simdLevelSupported(level)) throw std::logic_error("LPV propagation: SIMD level not supported by this CPU");
-    const SubnormalsFlushed flushed;
+    const detail::SubnormalsFlushed flushed;
     rowsFn(level)(op, buffers, bricks, z, y0, y1);
 }
 
