@@ -287,11 +287,31 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         emissionShares(bins_, nrm, faceShares[std::size_t(f)]);
     }
     // Sources of the next sweep from reflections per surface and axis face (W, rgb).
+    // A cell whose surfaces share one orientation (|m| near the coverage) reflects along its mean
+    // normal: a slanted wall or a vault sends its light where it faces, not into axis hemispheres.
+    std::vector<float> planeShares(surfaces * nb, -1.0f);
+    for (std::size_t s = 0; s < surfaces; ++s) {
+        const glm::vec3 m = vectorCoverage_[s];
+        const float lm = glm::length(m);
+        if (lm > 0.0f && lm >= 0.9f * coverage_[s]) emissionShares(bins_, m / lm, planeShares.data() + s * nb);
+    }
     auto reflectionSources = [&](const std::vector<glm::vec3>& reflected, std::vector<float>& out) {
         double watts = 0.0;
         for (std::size_t s = 0; s < surfaces; ++s) {
             const glm::vec3* r = reflected.data() + kOrdinateFaces * s;
             for (int f = 0; f < kOrdinateFaces; ++f) watts += double(r[f].r + r[f].g + r[f].b);
+            if (planeShares[s * nb] >= 0.0f) {
+                glm::vec3 total(0.0f);
+                for (int f = 0; f < kOrdinateFaces; ++f) total += r[f];
+                for (std::size_t k = 0; k < nb; ++k) {
+                    float* q = out.data() + (k * surfaces + s) * 3;
+                    const float w = planeShares[s * nb + k];
+                    q[0] += total.r * w;
+                    q[1] += total.g * w;
+                    q[2] += total.b * w;
+                }
+                continue;
+            }
             for (std::size_t k = 0; k < nb; ++k) {
                 glm::vec3 p(0.0f);
                 for (std::size_t f = 0; f < std::size_t(kOrdinateFaces); ++f) p += r[f] * faceShares[f][k];
