@@ -29,13 +29,16 @@
 //
 // Surfaces: each cell's coverage S (area / h^2) and vector coverage m (area x normal / h^2) from
 // the voxelizer. A tap's move into a cell crosses the slab face and possibly side faces; the
-// cell's surfaces stop the fraction sum over the crossed axes a of |m_a|, plus (S - |m|) / 2 for
-// surfaces whose normals cancel (clutter, both sides of a thin plate), at most all of it: a floor
-// stops what moves up or down into its cell, not what slides along it, so light neither leaks
-// through a one-cell wall nor is stopped by surfaces it runs parallel to. Each crossed axis's part
-// of the surfaces reflects its share of the stopped power times the albedo into the hemisphere of
-// the axis face the light arrived on (a cell holding a floor and a wall reflects up and sideways,
-// never into either).
+// cell's surfaces stop the fraction sum over the crossed axes a of |m_a|, plus (S - |m|) / 4 for
+// surfaces whose normals cancel (clutter, both sides of a thin plate: a closed surface's mean
+// projected area is a quarter of its area), at most all of it: a floor stops what moves up or down
+// into its cell, not what slides along it, so light neither leaks through a one-cell wall nor is
+// stopped by surfaces it runs parallel to. A move out of a cell is stopped by the cell's surfaces
+// that face against it (a corner cell's wall, for its floor's light). Stopped power times the
+// albedo is reflected: by a cell whose surfaces share one orientation into its normal's
+// hemisphere, else by each crossed axis's part of the surfaces into the hemisphere of the axis
+// face the light arrived on (a cell holding a floor and a wall reflects up and sideways, never
+// into either).
 #pragma once
 
 #include <array>
