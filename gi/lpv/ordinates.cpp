@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
-#include <string>
 
 #include <tbb/parallel_for.h>
 
@@ -17,10 +16,9 @@ namespace {
 // Sweeps stop once the reflected light to carry is below this share of the sources' power: with
 // albedo a the light left out is at most kConverged x a / (1 - a) of it (under 1 % up to a = 0.9).
 constexpr double kConverged = 1e-3;
-}  // namespace
-
 // Bins are swept in this many groups, each summing into its own irradiance and reflections.
 constexpr std::size_t kBinGroups = 4;
+}  // namespace
 
 std::vector<OrdinateBin> makeOrdinateBins(int perFace) {
     if (perFace < 2 || perFace % 2 != 0) throw std::invalid_argument("ordinate bins: perFace must be even and >= 2");
@@ -64,7 +62,6 @@ std::vector<OrdinateBin> makeOrdinateBins(int perFace) {
                         }
                     for (int k = 0; k < 4; ++k) b.taps[std::size_t(k)] = float(taps[k] / flux);
                     b.moment = glm::vec3(moment);
-                    b.direction = glm::normalize(b.moment);
                     b.solidAngle = float(solid);
                     b.axisFlux = float(flux);
                     bins.push_back(b);

@@ -58,7 +58,6 @@ struct OrdinateBin {
     glm::ivec2 lateralStep{1};     // +-1: the second tap's offset along (axis+1)%3 and (axis+2)%3
     std::array<float, 4> taps{};   // landing weights: (0, 0), (step.x, 0), (0, step.y), (step.x, step.y)
     glm::vec3 moment{0.0f};        // integral over the bin of w dw (sr)
-    glm::vec3 direction{0.0f};     // moment, normalized
     float solidAngle = 0.0f;       // sr
     float axisFlux = 0.0f;         // integral over the bin of |w_axis| dw (sr)
 };
