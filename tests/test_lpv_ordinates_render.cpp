@@ -1,8 +1,10 @@
 // lpv.transport=ordinates through the frame renderer: the Cornell box's regions get the path
 // tracer's indirect light (the SH transport's ceiling got 0.04-0.6 of it), a sunlit floor under an
-// open sky gets none of its own light back, the cpu-only refusal, and the .vdb dump.
+// open sky gets none of its own light back, the gl back end's sweeps match the cpu's, and the
+// .vdb dump.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gi/lpv/lpv_desc.h"
@@ -69,16 +71,41 @@ TEST_F(LpvOrdinatesRender, ASunlitFloorUnderAnOpenSkyGetsNoIndirectLight) {
     EXPECT_EQ(indirect, 0.0);
 }
 
-TEST(LpvOrdinatesSettings, TheGlBackEndIsRefusedByName) {
+// The gl back end sweeps on the GPU: the same light as the cpu's, up to float rounding, for one
+// volume and for cascades with their ring and inner light.
+TEST_F(LpvOrdinatesRender, GlSweepsMatchTheCpuSweeps) {
+    for (const std::string method : {"lpv", "clpv"}) {
+        Scene s = test::cornellBox();
+        s.camera.width = s.camera.height = 40;
+        s.gi.set("lpv.transport", "ordinates");
+        s.gi.set("lpv.backend", "cpu");
+        const Image cpu = render(s, method);
+        s.gi.set("lpv.backend", "gl");
+        const Image gl = render(s, method);
+        const ImageLayer* a = cpu.find("indirect");
+        const ImageLayer* b = gl.find("indirect");
+        double largest = 0.0, worst = 0.0;
+        for (std::size_t i = 0; i < a->data.size(); ++i) {
+            largest = std::max(largest, double(a->data[i]));
+            worst = std::max(worst, std::abs(double(a->data[i]) - double(b->data[i])));
+        }
+        EXPECT_GT(largest, 0.0) << method;
+        EXPECT_LE(worst, 1e-4 * largest) << method;
+    }
+}
+
+// A number of sweeps carried across updates runs on the cpu only; its refusal names the key.
+TEST(LpvOrdinatesSettings, CarriedSweepsOnTheGlBackEndAreRefusedByName) {
     GiSettings gi;
     gi.set("lpv.transport", "ordinates");
-    EXPECT_EQ(readLpvDesc(gi, true).transport, LpvTransport::Ordinates);
     gi.set("lpv.backend", "gl");
+    EXPECT_EQ(readLpvDesc(gi, true).transport, LpvTransport::Ordinates);
+    gi.set("lpv.sweeps", "2");
     try {
         readLpvDesc(gi, true);
-        FAIL() << "gl accepted";
+        FAIL() << "gl with carried sweeps accepted";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("gi.lpv.transport"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("gi.lpv.sweeps"), std::string::npos) << e.what();
     }
     GiSettings odd;
     odd.set("lpv.ordinates_per_face", "3");
@@ -87,8 +114,8 @@ TEST(LpvOrdinatesSettings, TheGlBackEndIsRefusedByName) {
 
 TEST(LpvOrdinatesDump, VdbPrintReadsTheIrradianceCubes) {
     const std::string dir = test::makeTempDir("lpv-ordinates-dump");
-    auto r = test::runVoxgi("dump cornell-box --method clpv --width 32 --height 32 --set lpv.transport=ordinates -o " + dir +
-                            "/o.vdb");
+    auto r = test::runVoxgi("dump cornell-box --method clpv --width 32 --height 32 --set lpv.transport=ordinates "
+                            "--set lpv.backend=gl -o " + dir + "/o.vdb");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     auto print = test::runShell(std::string(VDB_PRINT_PROGRAM) + " " + dir + "/o.vdb");
     ASSERT_EQ(print.exitCode, 0) << print.output;

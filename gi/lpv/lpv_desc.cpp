@@ -44,7 +44,7 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
     t.choice("backend", &D::backend, backendChoices(), "cpu (TBB reference) or gl (compute shaders)").main();
     t.flag("sparse", &D::sparse, "cpu: propagate only the bricks holding light");
     t.choice("transport", &D::transport, {{"sh", LpvTransport::Sh}, {"ordinates", LpvTransport::Ordinates}},
-             "sh: seed 000's SH propagation; ordinates: direction bins swept across each cascade, every bounce (cpu)");
+             "sh: seed 000's SH propagation; ordinates: direction bins swept across each cascade, every bounce");
     t.integer("ordinates_per_face", &D::ordinatesPerFace, 2, 8,
               "ordinates: direction bins per cube face along each lateral axis (6 x n^2 bins)", 2);
     t.integerOrFit("sweeps", &D::sweeps, 1, 256,
@@ -70,8 +70,9 @@ LpvDesc lpvDefaults(bool cascaded) {
 
 LpvDesc readLpvDesc(const GiSettings& gi, bool cascaded) {
     LpvDesc d = lpvSettings(cascaded).read(gi, lpvDefaults(cascaded));
-    if (d.transport == LpvTransport::Ordinates && d.backend == Backend::Gl)
-        throw InputError("gi.lpv.transport: ordinates runs on the cpu back end only (set lpv.backend=cpu)");
+    if (d.transport == LpvTransport::Ordinates && d.backend == Backend::Gl && d.sweeps != kFittedInteger)
+        throw InputError("gi.lpv.sweeps: a number of sweeps (carried across updates) runs on the cpu back end only "
+                         "(set lpv.backend=cpu or lpv.sweeps=fit)");
     return d;
 }
 

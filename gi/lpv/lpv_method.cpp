@@ -68,7 +68,8 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
         p.update.push_back({"lpv.propagate", std::to_string(bins) + " bins swept across " + volumes +
                                                  (d.bounces ? ", one sweep per bounce until under 1e-3 of the light is left"
                                                             : ", one sweep (lpv.bounces=false)") +
-                                                 " (cpu), irradiance cubes to 3D textures"});
+                                                 (gl ? " on gl, into the irradiance cubes' textures"
+                                                     : " on cpu, irradiance cubes to 3D textures")});
     } else {
         p.update.push_back({"lpv.inject", sourcesName + " surfels as virtual point lights into " + volumes});
         std::vector<std::string> sources;
@@ -147,7 +148,16 @@ MethodInfo lpvFamily(bool cascaded) {
             // reflections (5 x 72 + 40); surface cells were 18 % of the cells on the Cornell box
             // and Sponza at 32^3, a quarter is assumed.
             const double bins = 6.0 * double(d.ordinatesPerFace) * double(d.ordinatesPerFace);
-            return double(d.cascades) * cells * (868.0 + 0.25 * (36.0 * bins + 400.0)) + rsm;
+            double perCascade = cells * (868.0 + 0.25 * (36.0 * bins + 400.0));
+            if (d.backend == Backend::Gl) {
+                // The GPU's buffers (gi/lpv/gl_ordinates.cpp), allocated at twice the request:
+                // irradiance by axis group (288 bytes a cell), reflections (288 a surface cell),
+                // sources and plane shares (16 a bin and surface cell), two padded slabs of every
+                // bin's four taps (64 bytes a lateral cell and bin).
+                const double side = double(d.resolution + 2);
+                perCascade += 2.0 * (cells * 288.0 + 0.25 * cells * (288.0 + 16.0 * bins) + 2.0 * bins * side * side * 64.0);
+            }
+            return double(d.cascades) * perCascade + rsm;
         }
         const double corners = double(d.resolution + 1) * double(d.resolution + 1) * double(d.resolution + 1);
         return 500.0 * cells * double(d.cascades) + 192.0 * cells * double(d.cascades - 1) +

@@ -267,6 +267,40 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
     }
 }
 
+std::array<std::vector<float>, kOrdinateFaces> OrdinatesTransport::faceReflectionShares() const {
+    std::array<std::vector<float>, kOrdinateFaces> shares;
+    for (int f = 0; f < kOrdinateFaces; ++f) {
+        glm::vec3 n(0.0f);
+        n[f / 2] = f % 2 == 0 ? 1.0f : -1.0f;
+        emissionShares(bins_, n, shares[std::size_t(f)]);
+    }
+    return shares;
+}
+
+// A cell whose surfaces share one orientation (|m| near the coverage) reflects along its mean
+// normal: a slanted wall or a vault sends its light where it faces, not into axis hemispheres.
+std::vector<float> OrdinatesTransport::planeReflectionShares() const {
+    const std::size_t nb = bins_.size();
+    std::vector<float> shares(coverage_.size() * nb, -1.0f);
+    for (std::size_t s = 0; s < coverage_.size(); ++s) {
+        const glm::vec3 m = vectorCoverage_[s];
+        const float lm = glm::length(m);
+        if (lm > 0.0f && lm >= 0.9f * coverage_[s]) emissionShares(bins_, m / lm, shares.data() + s * nb);
+    }
+    return shares;
+}
+
+// The sweeps read the sources bin by bin: bin-major ([bin][surface][rgb]), where surface-major
+// lookups were a cache miss per surface cell.
+std::vector<float> OrdinatesTransport::binMajor(const Sources& sources) const {
+    const std::size_t surfaces = coverage_.size(), nb = bins_.size();
+    std::vector<float> out(surfaces * nb * 3, 0.0f);
+    for (std::size_t s = 0; s < surfaces && (s + 1) * nb * 3 <= sources.power.size(); ++s)
+        for (std::size_t k = 0; k < nb; ++k)
+            for (std::size_t c = 0; c < 3; ++c) out[(k * surfaces + s) * 3 + c] = sources.power[(s * nb + k) * 3 + c];
+    return out;
+}
+
 std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(const Sources& sources, bool occlusion,
                                                                              int maxBounces, std::vector<glm::vec3>* carry) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -276,22 +310,8 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
     using Cube = std::array<std::vector<glm::vec4>, kOrdinateFaces>;
     Cube irradiance;
     for (auto& f : irradiance) f.assign(cells, glm::vec4(0.0f));
-    // The hemisphere shares of the six axis faces, for the reflections.
-    std::array<std::vector<float>, kOrdinateFaces> faceShares;
-    for (int f = 0; f < kOrdinateFaces; ++f) {
-        glm::vec3 nrm(0.0f);
-        nrm[f / 2] = f % 2 == 0 ? 1.0f : -1.0f;
-        emissionShares(bins_, nrm, faceShares[std::size_t(f)]);
-    }
-    // Sources of the next sweep from reflections per surface and axis face (W, rgb).
-    // A cell whose surfaces share one orientation (|m| near the coverage) reflects along its mean
-    // normal: a slanted wall or a vault sends its light where it faces, not into axis hemispheres.
-    std::vector<float> planeShares(surfaces * nb, -1.0f);
-    for (std::size_t s = 0; s < surfaces; ++s) {
-        const glm::vec3 m = vectorCoverage_[s];
-        const float lm = glm::length(m);
-        if (lm > 0.0f && lm >= 0.9f * coverage_[s]) emissionShares(bins_, m / lm, planeShares.data() + s * nb);
-    }
+    const std::array<std::vector<float>, kOrdinateFaces> faceShares = faceReflectionShares();
+    const std::vector<float> planeShares = planeReflectionShares();
     auto reflectionSources = [&](const std::vector<glm::vec3>& reflected, std::vector<float>& out) {
         double watts = 0.0;
         for (std::size_t s = 0; s < surfaces; ++s) {
@@ -320,12 +340,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         }
         return watts;
     };
-    // The sweeps read the sources bin by bin: bin-major here ([bin][surface][rgb]), where
-    // surface-major lookups were a cache miss per surface cell (a sixth of the sweep's time).
-    std::vector<float> source(surfaces * nb * 3, 0.0f);
-    for (std::size_t s = 0; s < surfaces && (s + 1) * nb * 3 <= sources.power.size(); ++s)
-        for (std::size_t k = 0; k < nb; ++k)
-            for (int c = 0; c < 3; ++c) source[(k * surfaces + s) * 3 + std::size_t(c)] = sources.power[(s * nb + k) * 3 + std::size_t(c)];
+    std::vector<float> source = binMajor(sources);
     double carried = sources.watts;
     // The reflections an earlier solve left to carry start this one's bounces.
     if (carry && carry->size() == kOrdinateFaces * surfaces) carried += reflectionSources(*carry, source);

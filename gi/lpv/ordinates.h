@@ -132,6 +132,20 @@ public:
     // Where a blocker-free volume's source power goes: the cell index of a surface (for tests).
     int surfaceIndex(glm::ivec3 cell) const;
 
+    // The layout the GL back end uploads (gi/lpv/gl_ordinates.h): per cell its surface index or
+    // -1; per surface its coverage, vector coverage and albedo; per surface the shares of its
+    // one-plane reflection over the bins (empty where its normals differ), and per axis face the
+    // shares of its hemisphere.
+    const std::vector<int>& surfaceOfCells() const { return surfaceOf_; }
+    const std::vector<float>& coverage() const { return coverage_; }
+    const std::vector<glm::vec3>& vectorCoverage() const { return vectorCoverage_; }
+    const std::vector<glm::vec3>& albedo() const { return albedo_; }
+    // Per surface, nb shares (the first negative when the surface reflects by axis faces).
+    std::vector<float> planeReflectionShares() const;
+    std::array<std::vector<float>, kOrdinateFaces> faceReflectionShares() const;
+    // Sources bin-major ([bin][surface][rgb]), as the sweeps read them.
+    std::vector<float> binMajor(const Sources& sources) const;
+
 private:
     int surfaceFor(glm::ivec3 cell);
     void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion,

@@ -13,7 +13,9 @@
 namespace voxgi {
 
 OrdinatesLight::OrdinatesLight(const LpvDesc& desc)
-    : desc_(desc), program_(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag")) {}
+    : desc_(desc), program_(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag")) {
+    if (desc_.backend == Backend::Gl) gl_ = std::make_unique<GlOrdinates>();
+}
 
 bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, const SparseGeometryVolume* voxels) {
     const std::size_t count = placements.size();
@@ -101,6 +103,13 @@ void OrdinatesLight::solve() {
         for (int set = 0; set < 2; ++set) {
             const OrdinatesTransport::Sources& sources = set == 0 ? ring_[c] : inner_[c];
             auto& cube = cubes_[2 * c + std::size_t(set)];
+            const GLuint id = textures_[2 * c + std::size_t(set)].id();
+            if (gl_) {
+                // The sweeps write the texture; the CPU keeps no copy (irradiance() reads it back).
+                const int sweeps = gl_->solve(*transports_[c], sources, desc_.occlusion, maxBounces, id);
+                stats_.sweeps = std::max(stats_.sweeps, sweeps);
+                continue;
+            }
             if (set == 1 && sources.watts <= 0.0) {
                 for (auto& f : cube) f.assign(transports_[c]->grid().cellCount(), glm::vec4(0.0f));
             } else {
@@ -113,7 +122,6 @@ void OrdinatesLight::solve() {
                     if (st.leftWatts >= 1e-3 * st.emittedWatts) stats_.converged = false;
                 }
             }
-            const GLuint id = textures_[2 * c + std::size_t(set)].id();
             for (int f = 0; f < kOrdinateFaces; ++f)
                 glTextureSubImage3D(id, 0, 0, 0, f * n, n, n, n, GL_RGBA, GL_FLOAT, cube[std::size_t(f)].data());
         }
@@ -125,8 +133,11 @@ void OrdinatesLight::solve() {
 }
 
 std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesLight::irradiance(std::size_t c) const {
-    std::array<std::vector<glm::vec4>, kOrdinateFaces> sum = cubes_.at(2 * c);
-    const auto& inner = cubes_.at(2 * c + 1);
+    std::array<std::vector<glm::vec4>, kOrdinateFaces> sum = cubes_.at(2 * c), inner = cubes_.at(2 * c + 1);
+    if (gl_) {
+        sum = readCube(textures_.at(2 * c).id(), desc_.resolution);
+        inner = readCube(textures_.at(2 * c + 1).id(), desc_.resolution);
+    }
     for (int f = 0; f < kOrdinateFaces; ++f)
         for (std::size_t i = 0; i < sum[std::size_t(f)].size() && i < inner[std::size_t(f)].size(); ++i)
             sum[std::size_t(f)][i] += inner[std::size_t(f)][i];

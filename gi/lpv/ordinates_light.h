@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gi/lpv/cascades.h"
+#include "gi/lpv/gl_ordinates.h"
 #include "gi/lpv/lpv_desc.h"
 #include "gi/lpv/ordinates.h"
 #include "gi/technique.h"
@@ -49,6 +50,7 @@ private:
     LpvDesc desc_;
     std::vector<CascadePlacement> placements_;
     std::vector<std::unique_ptr<OrdinatesTransport>> transports_;
+    std::unique_ptr<GlOrdinates> gl_;  // lpv.backend=gl: the sweeps on the GPU
     std::vector<OrdinatesTransport::Sources> ring_, inner_;
     // Per cascade, ring then inner: the reflections the last solve left (lpv.sweeps=N).
     std::vector<std::vector<glm::vec3>> carry_;

@@ -1,0 +1,140 @@
+#include "gi/lpv/gl_ordinates.h"
+
+#include <algorithm>
+
+#include "gl/program.h"
+
+namespace voxgi {
+
+namespace {
+
+// Must match OrdinatesTransport::solve's kConverged.
+constexpr double kConverged = 1e-3;
+
+template <typename T>
+void upload(gl::Handle& buffer, std::size_t& capacity, const std::vector<T>& data) {
+    gl::ensureBuffer(buffer, capacity, data.size() * sizeof(T));
+    if (!data.empty()) glNamedBufferSubData(buffer.id(), 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
+}
+
+void zero(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes) {
+    gl::ensureBuffer(buffer, capacity, bytes);
+    glClearNamedBufferData(buffer.id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
+}
+
+}  // namespace
+
+struct GlOrdinates::Impl {
+    gl::Program sweep = gl::Program::compute("lpv/ordinates_sweep.comp");
+    gl::Program reflect = gl::Program::compute("lpv/ordinates_reflect.comp");
+    gl::Program resolve = gl::Program::compute("lpv/ordinates_resolve.comp");
+    // Buffers and their capacities (bytes), by binding.
+    gl::Handle taps, surfaceOf, surfaces, sources, parts[2], irradiance, reflected, planeShares, faceShares, power;
+    std::size_t tapsCap = 0, surfaceOfCap = 0, surfacesCap = 0, sourcesCap = 0, partsCap[2] = {0, 0}, irradianceCap = 0,
+                reflectedCap = 0, planeCap = 0, faceCap = 0, powerCap = 0;
+};
+
+GlOrdinates::GlOrdinates() : impl_(new Impl) {}
+GlOrdinates::~GlOrdinates() { delete impl_; }
+
+int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::Sources& sources, bool occlusion,
+                       int maxBounces, GLuint cube) {
+    Impl& m = *impl_;
+    const CascadeGrid& grid = t.grid();
+    const int n = grid.resolution;
+    const std::vector<OrdinateBin>& bins = t.bins();
+    const std::size_t nb = bins.size(), surfaces = t.coverage().size(), cells = grid.cellCount();
+    const std::size_t row = std::size_t(n) + 2, plane = row * row;
+
+    std::vector<glm::vec4> taps;
+    for (const OrdinateBin& b : bins) {
+        taps.push_back(glm::vec4(b.taps[0], b.taps[1], b.taps[2], b.taps[3]));
+        taps.push_back(glm::vec4(float(b.lateralStep.x), float(b.lateralStep.y), 0.0f, 0.0f));
+    }
+    upload(m.taps, m.tapsCap, taps);
+    upload(m.surfaceOf, m.surfaceOfCap, t.surfaceOfCells());
+    std::vector<glm::vec4> surf(std::max<std::size_t>(2 * surfaces, 2));
+    for (std::size_t s = 0; s < surfaces; ++s) {
+        surf[2 * s] = glm::vec4(t.vectorCoverage()[s], t.coverage()[s]);
+        surf[2 * s + 1] = glm::vec4(t.albedo()[s], 0.0f);
+    }
+    upload(m.surfaces, m.surfacesCap, surf);
+    std::vector<float> plane0 = t.planeReflectionShares();
+    plane0.resize(std::max<std::size_t>(plane0.size(), nb), -1.0f);
+    upload(m.planeShares, m.planeCap, plane0);
+    std::vector<float> faces;
+    for (const std::vector<float>& f : t.faceReflectionShares()) faces.insert(faces.end(), f.begin(), f.end());
+    upload(m.faceShares, m.faceCap, faces);
+    std::vector<float> source = t.binMajor(sources);
+    source.resize(std::max<std::size_t>(source.size(), 3), 0.0f);
+    upload(m.sources, m.sourcesCap, source);
+    zero(m.irradiance, m.irradianceCap, 3 * kOrdinateFaces * cells * sizeof(glm::vec4));
+    zero(m.reflected, m.reflectedCap, std::max<std::size_t>(3 * surfaces * kOrdinateFaces, 1) * sizeof(glm::vec4));
+    const std::size_t groups = (std::max<std::size_t>(surfaces, 1) + 63) / 64;
+    zero(m.power, m.powerCap, groups * sizeof(float));
+
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.taps.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, m.surfaceOf.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.surfaces.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.sources.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, m.irradiance.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, m.reflected.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, m.planeShares.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, m.faceShares.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, m.power.id());
+    m.sweep.set("uN", n);
+    m.sweep.set("uBinsPerPyramid", int(nb / 6));
+    m.sweep.set("uSurfaces", int(surfaces));
+    m.sweep.set("uOcclusion", occlusion ? 1 : 0);
+    m.sweep.set("uPerArea", 1.0f / (grid.cellSize * grid.cellSize));
+    m.reflect.set("uSurfaces", int(surfaces));
+    m.reflect.set("uBins", int(nb));
+    m.reflect.set("uClear", 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+
+    double carried = sources.watts;
+    int sweeps = 0;
+    const GLuint lateral = GLuint((n + 7) / 8);
+    for (int bounce = 0; bounce < maxBounces && carried > 0.0; ++bounce) {
+        // Each sweep starts from zero power in every slab (and the border stays zero).
+        for (int i = 0; i < 2; ++i) zero(m.parts[i], m.partsCap[i], nb * plane * 4 * sizeof(glm::vec4));
+        m.sweep.use();
+        for (int step = 0; step < n; ++step) {
+            m.sweep.set("uStep", step);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.parts[step % 2].id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m.parts[(step + 1) % 2].id());
+            glDispatchCompute(lateral, lateral, 6);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+        ++sweeps;
+        m.reflect.use();
+        glDispatchCompute(GLuint(groups), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::vector<float> partial(groups);
+        glGetNamedBufferSubData(m.power.id(), 0, GLsizeiptr(groups * sizeof(float)), partial.data());
+        carried = 0.0;
+        for (float p : partial) carried += double(p);
+        if (carried < kConverged * sources.watts) break;
+    }
+    m.resolve.use();
+    m.resolve.set("uN", n);
+    glBindImageTexture(0, cube, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    const GLuint g4 = GLuint((n + 3) / 4);
+    glDispatchCompute(g4, g4, g4);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    return sweeps;
+}
+
+std::array<std::vector<glm::vec4>, kOrdinateFaces> readCube(GLuint cube, int resolution) {
+    const std::size_t cells = std::size_t(resolution) * std::size_t(resolution) * std::size_t(resolution);
+    std::vector<glm::vec4> all(cells * kOrdinateFaces);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glGetTextureImage(cube, 0, GL_RGBA, GL_FLOAT, GLsizei(all.size() * sizeof(glm::vec4)), all.data());
+    std::array<std::vector<glm::vec4>, kOrdinateFaces> out;
+    for (int f = 0; f < kOrdinateFaces; ++f)
+        out[std::size_t(f)].assign(all.begin() + std::ptrdiff_t(std::size_t(f) * cells),
+                                   all.begin() + std::ptrdiff_t(std::size_t(f + 1) * cells));
+    return out;
+}
+
+}  // namespace voxgi

@@ -1,0 +1,118 @@
+#version 450 core
+// One slab step of every bin's sweep (gi/lpv/ordinates.cpp, OrdinatesTransport::sweep; the same
+// math in the same order per bin): invocation (x, y) is a lateral cell, z a pyramid of bins
+// (axis and sign), whose bins run one after the other. Pyramids of one axis write their own
+// group of the irradiance and reflection buffers: the +axis and -axis pyramids step through
+// different planes, so no two invocations of a dispatch add to the same value.
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+
+layout(std430, binding = 0) readonly buffer BinTaps { vec4 binTaps[]; };      // per bin
+layout(std430, binding = 1) readonly buffer SurfaceOf { int surfaceOf[]; };   // per cell, -1: none
+layout(std430, binding = 2) readonly buffer Surfaces { vec4 surfaces[]; };    // [2s] (m, S), [2s+1] (albedo, 0)
+layout(std430, binding = 3) readonly buffer Sources { float sources[]; };     // [bin][surface][rgb]
+layout(std430, binding = 4) readonly buffer PrevParts { vec4 prevParts[]; };  // [bin][padded cell][tap]
+layout(std430, binding = 5) writeonly buffer CurParts { vec4 curParts[]; };
+layout(std430, binding = 6) buffer Irradiance { vec4 irradiance[]; };          // [axis][face][cell]
+layout(std430, binding = 7) buffer Reflected { vec4 reflected[]; };            // [axis][surface][face]
+
+uniform int uN;
+uniform int uStep;
+uniform int uBinsPerPyramid;
+uniform int uSurfaces;
+uniform int uOcclusion;
+uniform float uPerArea;  // 1 / h^2
+
+int gAxis, gU, gV, gCells;
+ivec3 gMove[4];
+
+vec3 crossedBy(int j, vec3 perAxis) {
+    return vec3(perAxis[gAxis], (j & 1) != 0 ? perAxis[gU] : 0.0, (j & 2) != 0 ? perAxis[gV] : 0.0);
+}
+
+void reflectAt(int s, int j, vec3 hit, vec3 parts, int cell, bool countIrradiance) {
+    float total = parts.x + parts.y + parts.z;
+    vec3 r = surfaces[2 * s + 1].rgb * hit;
+    int axes[3] = int[3](gAxis, gU, gV);
+    for (int c = 0; c < 3; ++c) {
+        float share = total > 0.0 ? parts[c] / total : (c == 0 ? 1.0 : 0.0);
+        if (share <= 0.0) continue;
+        int ax = axes[c];
+        int face = 2 * ax + (gMove[j][ax] > 0 ? 1 : 0);
+        reflected[(gAxis * uSurfaces + s) * 6 + face] += vec4(r * share, 0.0);
+        if (countIrradiance) irradiance[(gAxis * 6 + face) * gCells + cell] += vec4(hit * (share * uPerArea), 0.0);
+    }
+}
+
+void main() {
+    int n = uN;
+    int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y), pyramid = int(gl_GlobalInvocationID.z);
+    if (x >= n || y >= n || pyramid >= 6) return;
+    gAxis = pyramid / 2;
+    gU = (gAxis + 1) % 3;
+    gV = (gAxis + 2) % 3;
+    gCells = n * n * n;
+    int sign = pyramid % 2 == 0 ? 1 : -1;
+    int a = sign > 0 ? uStep : n - 1 - uStep;
+    int stride[3] = int[3](1, n, n * n);
+    int cell = a * stride[gAxis] + x * stride[gU] + y * stride[gV];
+    int row = n + 2, plane = row * row;
+    int here = (y + 1) * row + x + 1;
+    int s = surfaceOf[cell];
+    for (int q = 0; q < uBinsPerPyramid; ++q) {
+        int k = pyramid * uBinsPerPyramid + q;
+        vec4 taps = binTaps[2 * k];
+        ivec2 step = ivec2(binTaps[2 * k + 1].xy);
+        int su = step.x, sv = step.y;
+        for (int j = 0; j < 4; ++j) {
+            gMove[j] = ivec3(0);
+            gMove[j][gAxis] = sign;
+            if ((j & 1) != 0) gMove[j][gU] = su;
+            if ((j & 2) != 0) gMove[j][gV] = sv;
+        }
+        int from[4] = int[4](0, -su, -sv * row, -su - sv * row);
+        vec3 part[4];
+        for (int j = 0; j < 4; ++j) part[j] = prevParts[(k * plane + here + from[j]) * 4 + j].rgb;
+        vec3 inLight = part[0] + part[1] + part[2] + part[3];
+        vec3 outLight = inLight;
+        bool lit = inLight != vec3(0.0);
+        if (lit) {
+            int slabFace = 2 * gAxis + (sign > 0 ? 1 : 0), uFace = 2 * gU + (su > 0 ? 1 : 0), vFace = 2 * gV + (sv > 0 ? 1 : 0);
+            irradiance[(gAxis * 6 + slabFace) * gCells + cell] += vec4(inLight * uPerArea, 0.0);
+            irradiance[(gAxis * 6 + uFace) * gCells + cell] += vec4((part[1] + part[3]) * uPerArea, 0.0);
+            irradiance[(gAxis * 6 + vFace) * gCells + cell] += vec4((part[2] + part[3]) * uPerArea, 0.0);
+        }
+        int out0 = (k * plane + here) * 4;
+        if (s < 0) {
+            for (int j = 0; j < 4; ++j) curParts[out0 + j] = vec4(taps[j] * outLight, 0.0);
+            continue;
+        }
+        vec4 mc = surfaces[2 * s];
+        vec3 m = mc.xyz;
+        if (uOcclusion != 0 && lit) {
+            float clutter = 0.25 * max(mc.w - length(m), 0.0);
+            for (int j = 0; j < 4; ++j) {
+                if (part[j] == vec3(0.0)) continue;
+                vec3 crossed = crossedBy(j, abs(m));
+                float stopped = min(crossed.x + crossed.y + crossed.z + clutter, 1.0);
+                if (stopped <= 0.0) continue;
+                vec3 hit = part[j] * stopped;
+                outLight -= hit;
+                reflectAt(s, j, hit, crossed, cell, false);
+            }
+        }
+        int src = (k * uSurfaces + s) * 3;
+        outLight += vec3(sources[src], sources[src + 1], sources[src + 2]);
+        for (int j = 0; j < 4; ++j) {
+            vec3 go = taps[j] * outLight;
+            if (uOcclusion != 0 && go != vec3(0.0)) {
+                vec3 facing = crossedBy(j, max(-m * vec3(gMove[j]), vec3(0.0)));
+                float stopped = min(facing.x + facing.y + facing.z, 1.0);
+                if (stopped > 0.0) {
+                    reflectAt(s, j, go * stopped, facing, cell, true);
+                    go *= 1.0 - stopped;
+                }
+            }
+            curParts[out0 + j] = vec4(go, 0.0);
+        }
+    }
+}
