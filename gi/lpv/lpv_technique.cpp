@@ -293,9 +293,17 @@ public:
             input.timers.addCpu("lpv.sky_bounce", millisecondsSince(t0));
         }
         input.timers.addCpu("lpv.inject", injectMs);
-        t0 = std::chrono::steady_clock::now();
-        ordinatesLight->solve();
-        input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
+        if (desc.backend == Backend::Gl) {
+            // The sweeps' dispatches: GPU time as well as the CPU's (which waits for each sweep's
+            // power read-back).
+            input.timers.begin("lpv.propagate");
+            ordinatesLight->solve();
+            input.timers.end();
+        } else {
+            t0 = std::chrono::steady_clock::now();
+            ordinatesLight->solve();
+            input.timers.addCpu("lpv.propagate", millisecondsSince(t0));
+        }
         // With lpv.sweeps=N the light is complete only once the carried bounces have died out:
         // until then every frame updates, even in a still scene.
         complete = ordinatesLight->stats().converged;
