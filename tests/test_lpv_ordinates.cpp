@@ -195,3 +195,27 @@ TEST(LpvOrdinates, OneSweepPerUpdateConvergesToEveryBounceOverUpdates) {
     // up to 1e-3 x a / (1 - a) of the light: the carried updates end slightly above it.
     EXPECT_NEAR(last / full, 1.0, 3e-3);
 }
+
+// The sky's bounce off every surface (lpv.sky_bounce with ordinates): a floor cell lit with 2 W/m^2
+// reflects albedo x irradiance x area, into the bins that travel up; a thin plate whose two sides
+// cancel in one voxel reflects nothing (its sides are unknown).
+TEST(LpvOrdinates, SurfacesReflectTheIrradianceTheyAreGivenIntoTheirHemisphere) {
+    OrdinatesTransport t(gridOf(8, 0.5f), 2);
+    t.addSurface({{2, 1, 2}, 1.0f, {0.0f, 1.0f, 0.0f}, glm::vec3(0.5f)});
+    t.addSurface({{5, 5, 5}, 2.0f, {0.0f, 0.0f, 0.0f}, glm::vec3(0.5f)});
+    OrdinatesTransport::Sources s = t.emptySources();
+    glm::vec3 seenNormal(0.0f);
+    t.addReflectedIrradiance(
+        [&](glm::vec3, glm::vec3 n) {
+            seenNormal = n;
+            return glm::vec3(2.0f);
+        },
+        [](glm::vec3) { return 1.0f; }, s);
+    EXPECT_NEAR(s.watts, 3.0 * 0.5 * 2.0 * 0.25, 1e-6);  // three colours, 0.25 m^2
+    EXPECT_EQ(seenNormal, glm::vec3(0.0f, 1.0f, 0.0f));
+    const std::size_t nb = t.bins().size(), floor = std::size_t(t.surfaceIndex({2, 1, 2}));
+    for (std::size_t k = 0; k < nb; ++k) {
+        if (t.bins()[k].moment.y >= 0.0f) continue;
+        EXPECT_EQ(s.power[(floor * nb + k) * 3], 0.0f) << "bin " << k;
+    }
+}

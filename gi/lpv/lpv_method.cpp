@@ -48,8 +48,10 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
                    count(scene.lights.size(), "light"),
                "no lights");
     p.updateIf(noSkyBounce.empty(), "lpv.sky_bounce",
-               "the G-buffer on a " + std::to_string(d.skyBounceSize) +
-                   "^2 grid, lit by the sky volume, as VPLs (surfaces on screen only)",
+               d.transport == LpvTransport::Ordinates
+                   ? std::string("every voxelized surface lit by the sky volume reflects into the bins")
+                   : "the G-buffer on a " + std::to_string(d.skyBounceSize) +
+                         "^2 grid, lit by the sky volume, as VPLs (surfaces on screen only)",
                noSkyBounce);
     const bool ordinates = d.transport == LpvTransport::Ordinates;
     const bool surfelBlockers = d.surfelBlockers && !ordinates;

@@ -19,6 +19,7 @@
 #include "gi/lpv/rsm.h"
 #include "gi/lpv/sky_bounce.h"
 #include "gi/lpv/static_blockers.h"
+#include "gi/sky/sky_volume_texture.h"
 #include "gl/program.h"
 #include "gl/resources.h"
 #include "gl/scene_gpu.h"
@@ -153,7 +154,8 @@ public:
         // sub-pixel jitter of accumulating frames is not).
         const bool bounceSky = input.plan.runs("lpv.sky_bounce") && input.sky;
         const glm::vec3 forward = viewForward(g.viewProjection);
-        const bool viewChanged = bounceSky && (g.eye != skyBounceEye || forward != skyBounceForward);
+        // (The ordinates bounce the sky off every voxelized surface, whatever the view.)
+        const bool viewChanged = bounceSky && !ordinatesLight && (g.eye != skyBounceEye || forward != skyBounceForward);
         // Static scene, lights and placement: the propagated light is still valid.
         if (desc.reuse && valid && complete && !placementChanged() && !viewChanged) return;
         skyBounceEye = g.eye;
@@ -161,7 +163,7 @@ public:
         lastOrigins.clear();
         for (const auto& p : placements) lastOrigins.push_back(p.grid.origin);
         if (ordinatesLight) {
-            updateOrdinates(input, g, bounceSky);
+            updateOrdinates(input, bounceSky);
             return;
         }
         if (glInjector) {
@@ -277,7 +279,7 @@ public:
     }
 
     // lpv.transport=ordinates: the surfaces once per placement, the surfels' light each update.
-    void updateOrdinates(const FrameInput& input, const GBufferView& g, bool bounceSky) {
+    void updateOrdinates(const FrameInput& input, bool bounceSky) {
         auto t0 = std::chrono::steady_clock::now();
         if (ordinatesLight->place(placements, voxels.get())) input.timers.addCpu("lpv.static_blockers", millisecondsSince(t0));
         ordinatesLight->clearSources();
@@ -289,7 +291,7 @@ public:
         });
         if (bounceSky) {
             t0 = std::chrono::steady_clock::now();
-            ordinatesLight->addSurfels(readSurfels(skyBounceFace().render(g, scene.camera, *input.sky)));
+            ordinatesLight->addSkyBounce(input.sky->volume());
             input.timers.addCpu("lpv.sky_bounce", millisecondsSince(t0));
         }
         input.timers.addCpu("lpv.inject", injectMs);

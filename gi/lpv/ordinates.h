@@ -41,6 +41,7 @@
 // into either).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -117,6 +118,12 @@ public:
                  Sources& sources);
     // Every surfel of `source` (zero-flux ones skipped) with its own shares.
     void addSurfels(const SurfelSource& source, float normalOffsetCells, Sources& sources);
+    // Every surface cell reflecting the irradiance `irradiance(point, normal)` (W/m^2) gives it
+    // (the sky's, through the sky-lighting volume), times `weight(point)`, from its cell: a cell
+    // of one orientation along its mean normal, others by each axis face's part. Normals that
+    // cancel in a voxel (both sides of a thin plate) reflect nothing: their sides are unknown.
+    template <typename Irradiance, typename Weight>
+    void addReflectedIrradiance(Irradiance irradiance, Weight weight, Sources& sources);
 
     // Transports the sources and up to maxBounces - 1 reflections (stopping once a sweep would
     // carry less than 1e-3 of the sources' power); occlusion = false lets light pass every surface.
@@ -159,5 +166,34 @@ private:
     std::vector<glm::vec3> vectorCoverage_, albedo_;
     OrdinatesStats stats_;
 };
+
+template <typename Irradiance, typename Weight>
+void OrdinatesTransport::addReflectedIrradiance(Irradiance irradiance, Weight weight, Sources& sources) {
+    const float faceArea = grid_.cellSize * grid_.cellSize;
+    std::vector<float> shares;
+    for (std::size_t s = 0; s < coverage_.size(); ++s) {
+        if (coverage_[s] <= 0.0f || albedo_[s] == glm::vec3(0.0f)) continue;
+        const glm::vec3 p = grid_.cellCenter(cells_[s]);
+        const float w = weight(p);
+        if (w <= 0.0f) continue;
+        const glm::vec3 m = vectorCoverage_[s];
+        const float lm = glm::length(m);
+        if (lm <= 0.0f) continue;
+        if (lm >= 0.9f * coverage_[s]) {
+            const glm::vec3 n = m / lm;
+            emissionShares(bins_, n, shares);
+            addFlux(p, n, albedo_[s] * irradiance(p, n) * (lm * faceArea * w), shares.data(), 0.0f, sources);
+            continue;
+        }
+        for (int f = 0; f < kOrdinateFaces; ++f) {
+            glm::vec3 n(0.0f);
+            n[f / 2] = f % 2 == 0 ? 1.0f : -1.0f;
+            const float part = std::max(m[f / 2] * n[f / 2], 0.0f);
+            if (part <= 0.0f) continue;
+            emissionShares(bins_, n, shares);
+            addFlux(p, n, albedo_[s] * irradiance(p, n) * (part * faceArea * w), shares.data(), 0.0f, sources);
+        }
+    }
+}
 
 }  // namespace voxgi

@@ -8,6 +8,7 @@
 
 #include "gi/lpv/gl_cascade_uniforms.h"
 #include "shaders/lpv/limits.h"
+#include "gi/sky/sky_volume.h"
 #include "volumes/voxel_surfaces.h"
 
 namespace voxgi {
@@ -90,6 +91,17 @@ void OrdinatesLight::addSurfels(const SurfelSource& surfels) {
             }
         });
     }
+}
+
+void OrdinatesLight::addSkyBounce(const SkyVolume& sky) {
+    tbb::parallel_for(std::size_t(0), transports_.size(), [&](std::size_t c) {
+        auto irradiance = [&](glm::vec3 p, glm::vec3 n) { return sky.sampleIrradiance(p, n); };
+        transports_[c]->addReflectedIrradiance(
+            irradiance, [&](glm::vec3 x) { return sourceShares(placements_, c, x).ring; }, ring_[c]);
+        if (c > 0)
+            transports_[c]->addReflectedIrradiance(
+                irradiance, [&](glm::vec3 x) { return sourceShares(placements_, c, x).inner; }, inner_[c]);
+    });
 }
 
 void OrdinatesLight::solve() {

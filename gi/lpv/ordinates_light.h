@@ -17,6 +17,7 @@
 
 namespace voxgi {
 
+class SkyVolume;
 class SparseGeometryVolume;
 
 class OrdinatesLight {
@@ -29,6 +30,9 @@ public:
     // Starts an update's sources; surfels are added from every RSM face and the sky bounce.
     void clearSources();
     void addSurfels(const SurfelSource& surfels);
+    // The sky's bounce from every voxelized surface: the sky-lighting volume's irradiance on it,
+    // reflected with its albedo (the SH transport's sky bounce has only the surfaces on screen).
+    void addSkyBounce(const SkyVolume& sky);
     // Transports every cascade's sources and uploads the irradiance cubes.
     void solve();
     void apply(const FrameInput& input, const GBufferView& g) const;
