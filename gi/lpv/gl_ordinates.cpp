@@ -1,15 +1,13 @@
 #include "gi/lpv/gl_ordinates.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "gl/program.h"
 
 namespace voxgi {
 
 namespace {
-
-// Must match OrdinatesTransport::solve's kConverged.
-constexpr double kConverged = 1e-3;
 
 template <typename T>
 void upload(gl::Handle& buffer, std::size_t& capacity, const std::vector<T>& data) {
@@ -32,6 +30,7 @@ struct GlOrdinates::Impl {
     gl::Handle taps, surfaceOf, surfaces, sources, parts[2], irradiance, reflected, planeShares, faceShares, power;
     std::size_t tapsCap = 0, surfaceOfCap = 0, surfacesCap = 0, sourcesCap = 0, partsCap[2] = {0, 0}, irradianceCap = 0,
                 reflectedCap = 0, planeCap = 0, faceCap = 0, powerCap = 0;
+    std::uint64_t uploadedRevision = 0;  // the transport geometry the buffers hold (0: none)
 };
 
 GlOrdinates::GlOrdinates() : impl_(new Impl) {}
@@ -46,25 +45,30 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
     const std::size_t nb = bins.size(), surfaces = t.coverage().size(), cells = grid.cellCount();
     const std::size_t row = std::size_t(n) + 2, plane = row * row;
 
-    std::vector<glm::vec4> taps;
-    for (const OrdinateBin& b : bins) {
-        taps.push_back(glm::vec4(b.taps[0], b.taps[1], b.taps[2], b.taps[3]));
-        taps.push_back(glm::vec4(float(b.lateralStep.x), float(b.lateralStep.y), 0.0f, 0.0f));
+    // The bins and surfaces go up when they differ from the last solve's (a cascade's ring and
+    // inner light are solved one after the other through the same transport).
+    if (t.geometryRevision() != m.uploadedRevision) {
+        std::vector<glm::vec4> taps;
+        for (const OrdinateBin& b : bins) {
+            taps.push_back(glm::vec4(b.taps[0], b.taps[1], b.taps[2], b.taps[3]));
+            taps.push_back(glm::vec4(float(b.lateralStep.x), float(b.lateralStep.y), 0.0f, 0.0f));
+        }
+        upload(m.taps, m.tapsCap, taps);
+        upload(m.surfaceOf, m.surfaceOfCap, t.surfaceOfCells());
+        std::vector<glm::vec4> surf(std::max<std::size_t>(2 * surfaces, 2));
+        for (std::size_t s = 0; s < surfaces; ++s) {
+            surf[2 * s] = glm::vec4(t.vectorCoverage()[s], t.coverage()[s]);
+            surf[2 * s + 1] = glm::vec4(t.albedo()[s], 0.0f);
+        }
+        upload(m.surfaces, m.surfacesCap, surf);
+        std::vector<float> planeShares = t.planeReflectionShares();
+        planeShares.resize(std::max<std::size_t>(planeShares.size(), nb), -1.0f);
+        upload(m.planeShares, m.planeCap, planeShares);
+        std::vector<float> faces;
+        for (const std::vector<float>& f : t.faceReflectionShares()) faces.insert(faces.end(), f.begin(), f.end());
+        upload(m.faceShares, m.faceCap, faces);
+        m.uploadedRevision = t.geometryRevision();
     }
-    upload(m.taps, m.tapsCap, taps);
-    upload(m.surfaceOf, m.surfaceOfCap, t.surfaceOfCells());
-    std::vector<glm::vec4> surf(std::max<std::size_t>(2 * surfaces, 2));
-    for (std::size_t s = 0; s < surfaces; ++s) {
-        surf[2 * s] = glm::vec4(t.vectorCoverage()[s], t.coverage()[s]);
-        surf[2 * s + 1] = glm::vec4(t.albedo()[s], 0.0f);
-    }
-    upload(m.surfaces, m.surfacesCap, surf);
-    std::vector<float> plane0 = t.planeReflectionShares();
-    plane0.resize(std::max<std::size_t>(plane0.size(), nb), -1.0f);
-    upload(m.planeShares, m.planeCap, plane0);
-    std::vector<float> faces;
-    for (const std::vector<float>& f : t.faceReflectionShares()) faces.insert(faces.end(), f.begin(), f.end());
-    upload(m.faceShares, m.faceCap, faces);
     std::vector<float> source = t.binMajor(sources);
     source.resize(std::max<std::size_t>(source.size(), 3), 0.0f);
     upload(m.sources, m.sourcesCap, source);
@@ -114,7 +118,7 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
         glGetNamedBufferSubData(m.power.id(), 0, GLsizeiptr(groups * sizeof(float)), partial.data());
         carried = 0.0;
         for (float p : partial) carried += double(p);
-        if (carried < kConverged * sources.watts) break;
+        if (carried < kOrdinatesConverged * sources.watts) break;
     }
     m.resolve.use();
     m.resolve.set("uN", n);

@@ -1,7 +1,7 @@
 // The ordinates' sweeps on the GPU (shaders/lpv/ordinates_sweep.comp, ordinates_reflect.comp,
 // ordinates_resolve.comp): the transport of OrdinatesTransport::solve (gi/lpv/ordinates.h), with
-// one dispatch per slab step for all bins, the surfaces and bins uploaded when they change and
-// the sources (injected on the CPU) per solve. The irradiance cube is written straight into the
+// one dispatch per slab step for all bins, the surfaces and bins uploaded when they change
+// (OrdinatesTransport::geometryRevision) and the sources (injected on the CPU) per solve. The irradiance cube is written straight into the
 // texture the apply pass reads.
 #pragma once
 

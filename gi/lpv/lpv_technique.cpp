@@ -427,7 +427,7 @@ public:
         if (!input.plan.runs("lpv.apply") || placements.empty()) return;
         input.timers.begin("lpv.apply");
         if (ordinatesLight) {
-            ordinatesLight->apply(input, g);
+            ordinatesLight->apply(g);
             input.timers.end();
             return;
         }

@@ -1,7 +1,7 @@
 #include "gi/lpv/ordinates.h"
 
 #include <algorithm>
-#include <chrono>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -13,9 +13,6 @@
 namespace voxgi {
 
 namespace {
-// Sweeps stop once the reflected light to carry is below this share of the sources' power: with
-// albedo a the light left out is at most kConverged x a / (1 - a) of it (under 1 % up to a = 0.9).
-constexpr double kConverged = 1e-3;
 // Bins are swept in this many groups, each summing into its own irradiance and reflections.
 constexpr std::size_t kBinGroups = 4;
 }  // namespace
@@ -85,8 +82,19 @@ void emissionShares(const std::vector<OrdinateBin>& bins, glm::vec3 n, std::vect
     emissionShares(bins, n, shares.data());
 }
 
+namespace {
+// Revisions are unique across transports: a new transport never looks like an uploaded one.
+std::atomic<std::uint64_t> nextRevision{1};
+}  // namespace
+
 OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace)
-    : grid_(grid), bins_(makeOrdinateBins(perFace)), surfaceOf_(grid.cellCount(), -1) {}
+    : grid_(grid), bins_(makeOrdinateBins(perFace)), surfaceOf_(grid.cellCount(), -1), revision_(nextRevision++) {}
+
+glm::vec3 OrdinatesTransport::planeNormal(std::size_t s) const {
+    const glm::vec3 m = vectorCoverage_[s];
+    const float lm = glm::length(m);
+    return lm > 0.0f && lm >= 0.9f * coverage_[s] ? m / lm : glm::vec3(0.0f);
+}
 
 int OrdinatesTransport::surfaceIndex(glm::ivec3 cell) const {
     return grid_.contains(cell) ? surfaceOf_[grid_.index(cell)] : -1;
@@ -96,6 +104,7 @@ int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
     int& s = surfaceOf_[grid_.index(cell)];
     if (s < 0) {
         s = int(cells_.size());
+        revision_ = nextRevision++;
         cells_.push_back(cell);
         coverage_.push_back(0.0f);
         vectorCoverage_.push_back(glm::vec3(0.0f));
@@ -112,6 +121,7 @@ void OrdinatesTransport::addSurface(const OrdinateSurface& surface) {
         (albedo_[std::size_t(s)] * coverage_[std::size_t(s)] + surface.albedo * surface.coverage) / total;
     coverage_[std::size_t(s)] = total;
     vectorCoverage_[std::size_t(s)] += surface.vectorCoverage;
+    revision_ = nextRevision++;
 }
 
 OrdinatesTransport::Sources OrdinatesTransport::emptySources() const {
@@ -277,16 +287,13 @@ std::array<std::vector<float>, kOrdinateFaces> OrdinatesTransport::faceReflectio
     return shares;
 }
 
-// A cell whose surfaces share one orientation (|m| near the coverage) reflects along its mean
-// normal: a slanted wall or a vault sends its light where it faces, not into axis hemispheres.
+// A cell whose surfaces share one orientation reflects along its mean normal: a slanted wall or a
+// vault sends its light where it faces, not into axis hemispheres.
 std::vector<float> OrdinatesTransport::planeReflectionShares() const {
     const std::size_t nb = bins_.size();
     std::vector<float> shares(coverage_.size() * nb, -1.0f);
-    for (std::size_t s = 0; s < coverage_.size(); ++s) {
-        const glm::vec3 m = vectorCoverage_[s];
-        const float lm = glm::length(m);
-        if (lm > 0.0f && lm >= 0.9f * coverage_[s]) emissionShares(bins_, m / lm, shares.data() + s * nb);
-    }
+    for (std::size_t s = 0; s < coverage_.size(); ++s)
+        if (const glm::vec3 n = planeNormal(s); n != glm::vec3(0.0f)) emissionShares(bins_, n, shares.data() + s * nb);
     return shares;
 }
 
@@ -303,7 +310,6 @@ std::vector<float> OrdinatesTransport::binMajor(const Sources& sources) const {
 
 std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(const Sources& sources, bool occlusion,
                                                                              int maxBounces, std::vector<glm::vec3>* carry) {
-    const auto t0 = std::chrono::steady_clock::now();
     stats_ = {};
     stats_.emittedWatts = sources.watts;
     const std::size_t cells = grid_.cellCount(), surfaces = coverage_.size(), nb = bins_.size();
@@ -370,13 +376,12 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         for (const Local& l : locals)
             for (std::size_t i = 0; i < l.reflected.size(); ++i) reflected[i] += l.reflected[i];
         ++stats_.sweeps;
-        stats_.lastSweepWatts = carried;
         // The next sweep's sources: each face's reflection into its hemisphere's bins.
         std::fill(source.begin(), source.end(), 0.0f);
         carried = reflectionSources(reflected, source);
         stats_.reflectedWatts += carried;
         stats_.leftWatts = carried;
-        if (carried < kConverged * sources.watts) break;
+        if (carried < kOrdinatesConverged * sources.watts) break;
     }
     if (carry) *carry = reflected;
     for (const Local& l : locals) {
@@ -384,7 +389,6 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         for (int f = 0; f < kOrdinateFaces; ++f)
             for (std::size_t c = 0; c < cells; ++c) irradiance[std::size_t(f)][c] += l.irradiance[std::size_t(f)][c];
     }
-    stats_.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return irradiance;
 }
 

@@ -44,6 +44,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -82,13 +83,16 @@ struct OrdinateSurface {
 // Axis faces of the irradiance cube: a receiver facing +x, -x, +y, -y, +z, -z.
 constexpr int kOrdinateFaces = 6;
 
+// Sweeps stop once the reflected light to carry is below this share of the sources' power: with
+// albedo a the light left out is at most kOrdinatesConverged x a / (1 - a) of it (under 1 % up to
+// a = 0.9). The cpu and gl back ends both stop here.
+constexpr double kOrdinatesConverged = 1e-3;
+
 struct OrdinatesStats {
     int sweeps = 0;                 // bounces solved (one sweep of every bin each)
     double emittedWatts = 0.0;      // the sources' power, summed over colours
     double reflectedWatts = 0.0;    // power reflected by the surfaces over all sweeps
-    double lastSweepWatts = 0.0;    // the power the last sweep carried
     double leftWatts = 0.0;         // reflected by the last sweep and not carried (see solve's carry)
-    double ms = 0.0;
 };
 
 // One volume's transport: its grid, the bins and the cells' surfaces (kept while the geometry
@@ -147,6 +151,9 @@ public:
     const std::vector<float>& coverage() const { return coverage_; }
     const std::vector<glm::vec3>& vectorCoverage() const { return vectorCoverage_; }
     const std::vector<glm::vec3>& albedo() const { return albedo_; }
+    // Changes whenever the surfaces do (a surface added or a cell given one), unique across
+    // transports: what the gl back end has uploaded is current while it stays the same.
+    std::uint64_t geometryRevision() const { return revision_; }
     // Per surface, nb shares (the first negative when the surface reflects by axis faces).
     std::vector<float> planeReflectionShares() const;
     std::array<std::vector<float>, kOrdinateFaces> faceReflectionShares() const;
@@ -155,6 +162,9 @@ public:
 
 private:
     int surfaceFor(glm::ivec3 cell);
+    // A surface whose normals share one orientation (|m| at least 0.9 of its coverage) reflects
+    // along its mean normal: that normal, else zero.
+    glm::vec3 planeNormal(std::size_t s) const;
     void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion,
                std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance, std::vector<glm::vec3>& reflected) const;
 
@@ -164,6 +174,7 @@ private:
     std::vector<glm::ivec3> cells_;
     std::vector<float> coverage_;
     std::vector<glm::vec3> vectorCoverage_, albedo_;
+    std::uint64_t revision_ = 0;
     OrdinatesStats stats_;
 };
 
@@ -176,13 +187,11 @@ void OrdinatesTransport::addReflectedIrradiance(Irradiance irradiance, Weight we
         const glm::vec3 p = grid_.cellCenter(cells_[s]);
         const float w = weight(p);
         if (w <= 0.0f) continue;
-        const glm::vec3 m = vectorCoverage_[s];
-        const float lm = glm::length(m);
-        if (lm <= 0.0f) continue;
-        if (lm >= 0.9f * coverage_[s]) {
-            const glm::vec3 n = m / lm;
-            emissionShares(bins_, n, shares);
-            addFlux(p, n, albedo_[s] * irradiance(p, n) * (lm * faceArea * w), shares.data(), 0.0f, sources);
+        const glm::vec3 m = vectorCoverage_[s], plane = planeNormal(s);
+        if (plane != glm::vec3(0.0f)) {
+            emissionShares(bins_, plane, shares);
+            addFlux(p, plane, albedo_[s] * irradiance(p, plane) * (glm::length(m) * faceArea * w), shares.data(), 0.0f,
+                    sources);
             continue;
         }
         for (int f = 0; f < kOrdinateFaces; ++f) {

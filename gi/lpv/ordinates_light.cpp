@@ -131,7 +131,7 @@ void OrdinatesLight::solve() {
                 stats_.sweeps = std::max(stats_.sweeps, st.sweeps);
                 if (incremental) {
                     stats_.leftWatts += st.leftWatts;
-                    if (st.leftWatts >= 1e-3 * st.emittedWatts) stats_.converged = false;
+                    if (st.leftWatts >= kOrdinatesConverged * st.emittedWatts) stats_.converged = false;
                 }
             }
             for (int f = 0; f < kOrdinateFaces; ++f)
@@ -156,8 +156,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesLight::irradiance(st
     return sum;
 }
 
-void OrdinatesLight::apply(const FrameInput& input, const GBufferView& g) const {
-    (void)input;
+void OrdinatesLight::apply(const GBufferView& g) const {
     program_.use();
     bindGBufferTextures(program_, g);
     program_.set("uCascadeCount", int(placements_.size()));

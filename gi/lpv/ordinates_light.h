@@ -35,7 +35,7 @@ public:
     void addSkyBounce(const SkyVolume& sky);
     // Transports every cascade's sources and uploads the irradiance cubes.
     void solve();
-    void apply(const FrameInput& input, const GBufferView& g) const;
+    void apply(const GBufferView& g) const;
 
     struct Stats {
         double solveMs = 0.0;
@@ -44,7 +44,7 @@ public:
         double outsideWatts = 0.0;   // surfels outside every cascade
         std::size_t surfaceCells = 0;
         double leftWatts = 0.0;      // reflections not yet carried (lpv.sweeps=N continues them)
-        bool converged = true;       // every light set's left-over under 1e-3 of its sources
+        bool converged = true;       // every light set's left-over under kOrdinatesConverged of its sources
     };
     const Stats& stats() const { return stats_; }
     // The irradiance cube of cascade c, ring + inner, for dumps and tests.

@@ -4,9 +4,6 @@
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
-#if defined(__SSE__)
-#include <xmmintrin.h>
-#endif
 
 #include "gi/lpv/detail/propagation_soa.h"
 #include "gi/lpv/detail/subnormals_flushed.h"
