@@ -167,6 +167,7 @@ TEST_F(LpvRender, StaticBlockersAloneKeepTheOperatorAcrossUpdates) {
     // operator is rebuilt each frame; the voxelized blockers alone stay while the cascades do.
     Scene s = test::cornellBox();
     s.camera.width = s.camera.height = 32;
+    s.gi.set("lpv.transport", "sh");
     s.gi.set("lpv.resolution", "16");
     s.gi.set("lpv.reuse", "false");
     auto buildsPerFrame = [&](const char* surfelBlockers) {
@@ -193,7 +194,7 @@ TEST_F(LpvRender, StaticBlockersAloneKeepTheOperatorAcrossUpdates) {
 
 TEST(LpvDump, VdbPrintReadsTheDump) {
     std::string dir = test::makeTempDir("lpv-dump");
-    auto r = test::runVoxgi("dump cornell-box --method clpv --width 32 --height 32 --set lpv.steps=4 -o " + dir +
+    auto r = test::runVoxgi("dump cornell-box --method clpv --width 32 --height 32 --set lpv.transport=sh --set lpv.steps=4 -o " + dir +
                             "/lpv.vdb");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::string vdbPrint = VDB_PRINT_PROGRAM;
@@ -212,28 +213,33 @@ TEST(LpvDump, VdbPrintReadsTheDump) {
 }
 
 TEST_F(LpvRender, GlossyMarchAddsReflectionsOnShinyMaterialsOnly) {
-    // The Cornell box with a metallic, fairly smooth floor: the march adds light to the floor.
-    Scene s = test::cornellBox();
-    s.camera.width = s.camera.height = 48;
-    s.gi.set("lpv.resolution", "16");
-    s.gi.set("lpv.steps", "24");
-    for (Material& m : s.materials)
-        if (m.name == "white") {
-            Material shiny = m;
-            shiny.name = "shiny";
-            shiny.metallic = 1.0f;
-            shiny.roughness = 0.2f;
-            s.materials.push_back(shiny);
-        }
-    for (Mesh& mesh : s.meshes)
-        if (mesh.name == "floor")
-            for (auto& id : mesh.materialIds) id = std::uint32_t(s.materials.size() - 1);
-    s.gi.set("lpv.glossy", "false");
-    Image off = render(s, "lpv");
-    s.gi.set("lpv.glossy", "true");
-    Image on = render(s, "lpv");
-    glm::vec3 floorOff = off.rgb("indirect", 24, 44), floorOn = on.rgb("indirect", 24, 44);
-    EXPECT_GT(floorOn.r, floorOff.r * 1.05f + 1e-6f);
-    // The diffuse back wall does not change.
-    EXPECT_NEAR(on.rgb("indirect", 24, 20).g, off.rgb("indirect", 24, 20).g, 1e-6f);
+    // The Cornell box with a metallic, fairly smooth floor: the march adds light to the floor,
+    // with either transport.
+    for (const char* transport : {"sh", "ordinates"}) {
+        SCOPED_TRACE(transport);
+        Scene s = test::cornellBox();
+        s.camera.width = s.camera.height = 48;
+        s.gi.set("lpv.transport", transport);
+        s.gi.set("lpv.resolution", "16");
+        s.gi.set("lpv.steps", "24");
+        for (Material& m : s.materials)
+            if (m.name == "white") {
+                Material shiny = m;
+                shiny.name = "shiny";
+                shiny.metallic = 1.0f;
+                shiny.roughness = 0.2f;
+                s.materials.push_back(shiny);
+            }
+        for (Mesh& mesh : s.meshes)
+            if (mesh.name == "floor")
+                for (auto& id : mesh.materialIds) id = std::uint32_t(s.materials.size() - 1);
+        s.gi.set("lpv.glossy", "false");
+        Image off = render(s, "lpv");
+        s.gi.set("lpv.glossy", "true");
+        Image on = render(s, "lpv");
+        glm::vec3 floorOff = off.rgb("indirect", 24, 44), floorOn = on.rgb("indirect", 24, 44);
+        EXPECT_GT(floorOn.r, floorOff.r * 1.05f + 1e-6f);
+        // The diffuse back wall does not change.
+        EXPECT_NEAR(on.rgb("indirect", 24, 20).g, off.rgb("indirect", 24, 20).g, 1e-6f);
+    }
 }

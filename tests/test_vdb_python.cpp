@@ -41,8 +41,12 @@ TEST(VdbPython, EveryDumpReadsWholeWithPyopenvdb) {
     };
     const std::vector<Case> cases = {
         {"voxelize cornell-box --voxel-size 0.05 --levels 2", "geometry.vdb", {"occupancy", "blocker_sh0", "occupancy_L1"}},
-        {"dump cornell-box --method lpv --set lpv.resolution=8", "lpv.vdb", {"lpv_r_L0_sh0", "blocker_L0_sh0", "albedo_L0"}},
-        {"dump cornell-box --method clpv --set lpv.resolution=8", "clpv.vdb", {"lpv_r_L2_sh3", "albedo_L2"}},
+        {"dump cornell-box --method lpv --set lpv.resolution=8", "lpv.vdb", {"irradiance_px_L0", "irradiance_nz_L0"}},
+        {"dump cornell-box --method clpv --set lpv.resolution=8", "clpv.vdb", {"irradiance_py_L2"}},
+        {"dump cornell-box --method lpv --set lpv.resolution=8 --set lpv.transport=sh", "lpv-sh.vdb",
+         {"lpv_r_L0_sh0", "blocker_L0_sh0", "albedo_L0"}},
+        {"dump cornell-box --method clpv --set lpv.resolution=8 --set lpv.transport=sh", "clpv-sh.vdb",
+         {"lpv_r_L2_sh3", "albedo_L2"}},
         {"dump cornell-box --method ddgi --set ddgi.rays=16", "ddgi.vdb",
          {"probe_position", "probe_offset", "probe_state", "probe_irradiance"}},
         {"dump cornell-box --method ddgi --set ddgi.rays=16 --set ddgi.trace=volume --set ddgi.trace_voxels=4",

@@ -23,7 +23,8 @@ std::vector<DebugViewInfo> lpvDebugViews() {
             // Refreshed every 8 frames: each drawing reads the whole volume back from the GPU.
             {kLpvCellsView, "LPV cells", 'H',
              "one sphere per stride-th cell of a cascade that holds light, painted with the cell's 2-band SH toward "
-             "each point's normal, the brightest cell's mean scaled to 1 before the exposure",
+             "each point's normal (ordinates: the irradiance a surface facing that way receives), the brightest "
+             "cell's mean scaled to 1 before the exposure",
              lpvCellsOptions().info(), 8}};
 }
 
@@ -35,10 +36,14 @@ DebugDrawing cascadeBounds(const std::vector<CascadePlacement>& cascades) {
     return d;
 }
 
-DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposureStops) {
+namespace {
+
+// A sphere at every stride-th cell of the grid that holds light; cellSh(i, r, g, b) fills cell
+// i's SH per colour. The SH scale maps the brightest cell's mean to 1, times 2^exposureStops.
+template <class CellSh>
+DebugDrawing cellSpheres(const CascadeGrid& g, int stride, float exposureStops, CellSh cellSh) {
     DebugDrawing d;
     d.shSpheres = true;
-    const CascadeGrid& g = light.grid;
     auto onStride = [&](int v) { return ((v % stride) + stride) % stride == 0; };
     float brightest = 0.0f;
     for (int z = 0; z < g.resolution; ++z)
@@ -46,16 +51,40 @@ DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposure
             for (int x = 0; x < g.resolution; ++x) {
                 const glm::ivec3 local(x, y, z), cell = g.origin + local;
                 if (!onStride(cell.x) || !onStride(cell.y) || !onStride(cell.z)) continue;
-                const std::size_t i = g.index(local);
-                if (i >= light.r.size() || (light.r[i].x == 0.0f && light.g[i].x == 0.0f && light.b[i].x == 0.0f))
-                    continue;
-                d.spheres.push_back({glm::vec4(g.cellCenter(local), 0.3f * g.cellSize * float(stride)), light.r[i],
-                                     light.g[i], light.b[i]});
-                brightest = std::max({brightest, light.r[i].x, light.g[i].x, light.b[i].x});
+                glm::vec4 r(0.0f), gr(0.0f), b(0.0f);
+                if (!cellSh(g.index(local), r, gr, b) || (r.x == 0.0f && gr.x == 0.0f && b.x == 0.0f)) continue;
+                d.spheres.push_back({glm::vec4(g.cellCenter(local), 0.3f * g.cellSize * float(stride)), r, gr, b});
+                brightest = std::max({brightest, r.x, gr.x, b.x});
             }
-    // The mean intensity over directions is c0 * Y00.
+    // The mean over directions is c0 * Y00.
     d.shScale = brightest > 0.0f ? std::exp2(exposureStops) / (sh::kY00 * brightest) : 1.0f;
     return d;
+}
+
+}  // namespace
+
+DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposureStops) {
+    return cellSpheres(light.grid, stride, exposureStops, [&](std::size_t i, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
+        if (i >= light.r.size()) return false;
+        r = light.r[i], g = light.g[i], b = light.b[i];
+        return true;
+    });
+}
+
+DebugDrawing lpvCellSpheres(const CascadeGrid& grid, const std::array<std::vector<glm::vec4>, 6>& cube, int stride,
+                            float exposureStops) {
+    return cellSpheres(grid, stride, exposureStops, [&](std::size_t i, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
+        for (const auto& face : cube)
+            if (i >= face.size()) return false;
+        // E(n) ~ mean + n . half, in the basis (Y00, -Y1 n.y, Y1 n.z, -Y1 n.x) of gi/sh/sh.h.
+        const glm::vec3 mean = glm::vec3(cube[0][i] + cube[1][i] + cube[2][i] + cube[3][i] + cube[4][i] + cube[5][i]) / 6.0f;
+        const glm::vec3 hx = glm::vec3(cube[0][i] - cube[1][i]) * 0.5f, hy = glm::vec3(cube[2][i] - cube[3][i]) * 0.5f,
+                        hz = glm::vec3(cube[4][i] - cube[5][i]) * 0.5f;
+        glm::vec4* out[3] = {&r, &g, &b};
+        for (int k = 0; k < 3; ++k)
+            *out[k] = glm::vec4(mean[k] / sh::kY00, -hy[k] / sh::kY1, hz[k] / sh::kY1, -hx[k] / sh::kY1);
+        return true;
+    });
 }
 
 }  // namespace voxgi

@@ -1,7 +1,9 @@
 // The LPV's debug views: the cascades' bounds, and one cascade's light volume as spheres painted
-// with each cell's 2-band SH (what flows out of it, bright where light leaves).
+// with each cell's 2-band SH (what flows out of it, bright where light leaves) or, with the
+// ordinates, with the irradiance a surface facing each point of the sphere would receive.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "gi/debug_view.h"
@@ -24,5 +26,11 @@ DebugDrawing cascadeBounds(const std::vector<CascadePlacement>& cascades);
 // A sphere at every `stride`-th cell (per axis, in world cell indices) holding light; the SH
 // scale maps the brightest cell's mean intensity to 1, times 2^exposureStops.
 DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposureStops);
+// The same for `lpv.transport=ordinates`: the cell's six axis irradiances (px, nx, py, ny, pz,
+// nz; rgb, W/m^2) as the 2-band SH of their mean plus the half-differences of opposite faces,
+// so each sphere point shows what a surface facing that way receives; the brightest cell's mean
+// maps to 1.
+DebugDrawing lpvCellSpheres(const CascadeGrid& grid, const std::array<std::vector<glm::vec4>, 6>& cube, int stride,
+                            float exposureStops);
 
 }  // namespace voxgi

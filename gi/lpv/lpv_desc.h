@@ -44,7 +44,7 @@ struct LpvDesc {
     // (the surfels' blockers follow the G-buffer's jitter and every light move). See docs/lpv.md,
     // "Surfel blockers", for what each choice does to the light.
     bool surfelBlockers = true;
-    LpvTransport transport = LpvTransport::Sh;
+    LpvTransport transport = LpvTransport::Ordinates;
     // ordinates: bins per cube face along each lateral axis (6 x n^2 bins: 24 at 2, 96 at 4).
     int ordinatesPerFace = 2;
     // ordinates: sweeps (bounces) per update; fit: until converged. A number carries the last

@@ -483,9 +483,12 @@ public:
             const Camera& c = context.camera;
             return cascadeBounds(placeCascades(desc, scene.bounds(), c.eye, c.target - c.eye));
         }
-        if (view == kLpvCellsView && valid && !ordinatesLight) {
+        if (view == kLpvCellsView && valid) {
             const LpvCellsOptions o = lpvCellsOptions().read(context.options);
             if (o.cascade >= int(placements.size())) return {};
+            if (ordinatesLight)
+                return lpvCellSpheres(placements[std::size_t(o.cascade)].grid,
+                                      ordinatesLight->irradiance(std::size_t(o.cascade)), o.stride, context.exposureStops);
             return lpvCellSpheres(lightVolume(std::size_t(o.cascade)), o.stride, context.exposureStops);
         }
         return {};

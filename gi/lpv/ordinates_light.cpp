@@ -162,6 +162,8 @@ void OrdinatesLight::apply(const GBufferView& g) const {
     program_.set("uCascadeCount", int(placements_.size()));
     program_.set("uApplyNormalOffset", desc_.applyNormalOffset);
     program_.set("uResolution", desc_.resolution);
+    program_.set("uEye", g.eye);
+    program_.set("uGlossy", desc_.glossy ? 1 : 0);
     setCascadeUniforms(program_, placements_);
     for (std::size_t c = 0; c < std::size_t(kLpvMaxCascades); ++c) {
         const std::string idx = "[" + std::to_string(c) + "]";

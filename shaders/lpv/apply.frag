@@ -18,11 +18,8 @@ uniform sampler3D uInnerG[kLpvMaxCascades - 1];
 uniform sampler3D uInnerB[kLpvMaxCascades - 1];
 uniform float uCellSize[kLpvMaxCascades];
 uniform int uCascadeCount;
-uniform float uTracedRoughness;
-uniform vec3 uEye;
 uniform float uApplyNormalOffset;
 uniform float uDampening;
-uniform int uGlossy;
 
 layout(location = 0) out vec4 outColor;
 
@@ -62,24 +59,12 @@ vec3 irradiance(int c, vec3 p, vec3 n, float ringWeight, float innerWeight) {
     return e;
 }
 
-// Glossy: march the finest cascade along the reflected ray, one cell per step, averaging the
-// radiance arriving back along it with 1/d^2 weights (seed 000 section 3.10.4).
-vec3 glossyRadiance(vec3 p, vec3 r, float roughness) {
-    int steps = int(mix(12.0, 4.0, clamp(roughness, 0.0, 1.0)));
-    vec3 sum = vec3(0.0);
-    float weights = 0.0;
-    for (int i = 1; i <= steps; ++i) {
-        float d = float(i) * uCellSize[0];
-        vec3 q = p + r * d;
-        if (cascadeInlier(0, q) <= 0.0) break;
-        vec3 uvw = uvwOf(0, q);
-        vec3 L = vec3(shEvaluate(texture(uLpvR[0], uvw), -r), shEvaluate(texture(uLpvG[0], uvw), -r),
-                      shEvaluate(texture(uLpvB[0], uvw), -r));
-        float w = 1.0 / (float(i) * float(i));
-        sum += max(L, vec3(0.0)) * w;
-        weights += w;
-    }
-    return weights > 0.0 ? sum / (weights * uCellSize[0] * uCellSize[0]) : vec3(0.0);
+#include "lpv/glossy_march.glsl"
+
+// The SH intensity travelling along -r over the cell's face area.
+vec3 glossyCellRadiance(vec3 uvw, vec3 r) {
+    return vec3(shEvaluate(texture(uLpvR[0], uvw), -r), shEvaluate(texture(uLpvG[0], uvw), -r),
+                shEvaluate(texture(uLpvB[0], uvw), -r)) / (uCellSize[0] * uCellSize[0]);
 }
 
 void main() {
@@ -100,14 +85,6 @@ void main() {
         outside -= w;
     }
     vec3 color = surfaceDiffuseAlbedo(s) * kInvPi * e;
-    vec3 f0 = mix(vec3(s.specular), s.albedo, s.metallic);
-    // Lobes the hybrid method's rays trace (uTracedRoughness) get their glossy light from them.
-    const bool traced = tracedLobe(s.roughness, s.metallic, s.specular, s.transmission, uTracedRoughness);
-    if (uGlossy != 0 && !traced && max(f0.r, max(f0.g, f0.b)) > 0.0 && s.roughness < 0.6) {
-        vec3 v = normalize(uEye - s.position);
-        vec3 r = reflect(-v, n);
-        vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - max(dot(n, v), 0.0), 5.0);
-        color += (1.0 - s.transmission) * fresnel * glossyRadiance(s.position + n * (0.5 * uCellSize[0]), r, s.roughness);
-    }
+    color += glossyReflection(s);
     outColor = vec4(color, 1.0);
 }

@@ -2,7 +2,8 @@
 // Deferred apply of `lpv.transport=ordinates` (gi/lpv/ordinates.h): per pixel, the irradiance a
 // receiver facing n gets, blended from the cell's six axis-facing irradiances by n^2 (trilinear
 // between cells), times the diffuse albedo / pi. Cascades are read as apply.frag reads the SH
-// light: cascade c gives S_c x ring_c + (S_c - S_{c-1}) x inner_c (gi/lpv/cascades.h).
+// light: cascade c gives S_c x ring_c + (S_c - S_{c-1}) x inner_c (gi/lpv/cascades.h). Glossy
+// surfaces add the finest cascade's march (lpv/glossy_march.glsl).
 #include "lpv/cascade_weights.glsl"
 #include "shared/constants.h"
 #include "common/gbuffer_textures.glsl"
@@ -31,6 +32,11 @@ vec3 cubeIrradiance(sampler3D cube, vec3 uvw, vec3 n) {
            w.z * faceIrradiance(cube, n.z >= 0.0 ? 4 : 5, uvw);
 }
 
+#include "lpv/glossy_march.glsl"
+
+// A surface facing r collects the radiance around r: its irradiance over pi.
+vec3 glossyCellRadiance(vec3 uvw, vec3 r) { return cubeIrradiance(uRing[0], uvw, r) * kInvPi; }
+
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     GBufferTexels t = fetchGBuffer(pixel);
@@ -50,5 +56,5 @@ void main() {
         }
         outside -= w;
     }
-    outColor = vec4(surfaceDiffuseAlbedo(s) * kInvPi * max(e, vec3(0.0)), 1.0);
+    outColor = vec4(surfaceDiffuseAlbedo(s) * kInvPi * max(e, vec3(0.0)) + glossyReflection(s), 1.0);
 }
