@@ -102,9 +102,15 @@ TEST(LpvOrdinates, APatchLightsAParallelReceiverAsTheViewFactorSays) {
     const int n = 64, lo = 16, hi = 48;
     OrdinatesTransport t(gridOf(n), 4);
     addFloor(t, 0, lo, hi, 0.0f);
+    // Sweeps visit the surfaces' bounds only (sweepBox): a black speck away from the centre line
+    // takes them up to the heights read, stopping a millionth of what crosses its cell.
+    t.addSurface({{lo, 40, lo}, 1e-6f, {0.0f, -1e-6f, 0.0f}, glm::vec3(0.0f)});
+    EXPECT_EQ(t.sweepBox().max.y, 40 + kSweepMargin);
     OrdinatesTransport::Sources s = t.emptySources();
     t.addSurfels(floorSurfels(0, lo, hi, 1.0f), 0.0f, s);
     const auto e = t.solve(s, true, 1);
+    // Above the box nothing is swept.
+    EXPECT_EQ(e[3][t.grid().index({32, 50, 32})].r, 0.0f);
     for (int height : {4, 8, 16, 32}) {
         // Four cells around the patch's centre line.
         double sum = 0.0;
@@ -218,4 +224,40 @@ TEST(LpvOrdinates, SurfacesReflectTheIrradianceTheyAreGivenIntoTheirHemisphere) 
         if (t.bins()[k].moment.y >= 0.0f) continue;
         EXPECT_EQ(s.power[(floor * nb + k) * 3], 0.0f) << "bin " << k;
     }
+}
+
+// Sweeps visit only the surfaces' bounds plus a margin (sweepBox): light leaving them never comes
+// back, so a volume three times wider gives its surfaces the same light, bit for bit, over every
+// bounce, and nothing outside the box.
+TEST(LpvOrdinates, TheSweepBoxGivesTheSameLightAsAVolumeFittedToTheSurfaces) {
+    const int fit = 12, wide = 36;
+    auto build = [&](int n) {
+        OrdinatesTransport t(gridOf(n), 2);
+        addFloor(t, 0, 0, fit, 0.6f);
+        for (int z = 0; z < fit; ++z)
+            for (int y = 1; y < fit; ++y) t.addSurface({{fit - 1, y, z}, 1.0f, {-1.0f, 0.0f, 0.0f}, glm::vec3(0.5f)});
+        return t;
+    };
+    OrdinatesTransport tight = build(fit), big = build(wide);
+    EXPECT_EQ(big.sweepBox().min, glm::ivec3(0));
+    EXPECT_EQ(big.sweepBox().max, glm::ivec3(fit - 1 + kSweepMargin));
+    EXPECT_EQ(tight.sweepBox().max, glm::ivec3(fit - 1));  // clipped to the grid
+    OrdinatesTransport::Sources a = tight.emptySources(), b = big.emptySources();
+    tight.addSurfels(floorSurfels(0, 2, 6, 1.0f), 0.0f, a);
+    big.addSurfels(floorSurfels(0, 2, 6, 1.0f), 0.0f, b);
+    const auto ea = tight.solve(a, true, 8), eb = big.solve(b, true, 8);
+    EXPECT_EQ(tight.stats().sweeps, big.stats().sweeps);
+    double lit = 0.0;
+    for (int f = 0; f < kOrdinateFaces; ++f)
+        for (int z = 0; z < fit; ++z)
+            for (int y = 0; y < fit; ++y)
+                for (int x = 0; x < fit; ++x)
+                    if (tight.surfaceIndex({x, y, z}) >= 0) {
+                        const glm::vec4 va = ea[std::size_t(f)][tight.grid().index({x, y, z})];
+                        const glm::vec4 vb = eb[std::size_t(f)][big.grid().index({x, y, z})];
+                        ASSERT_EQ(va, vb) << "face " << f << " cell " << x << " " << y << " " << z;
+                        lit += va.r;
+                    }
+    EXPECT_GT(lit, 0.0);
+    EXPECT_EQ(eb[0][big.grid().index({wide - 1, wide - 1, wide - 1})], glm::vec4(0.0f));
 }

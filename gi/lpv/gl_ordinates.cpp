@@ -96,14 +96,21 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
     m.reflect.set("uClear", 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 
+    // Only the sweep box (OrdinatesTransport::sweepBox): each pyramid steps through its axis's
+    // slabs of it, each invocation one lateral cell of it.
+    const IndexBox box = t.sweepBox();
+    const glm::ivec3 extent = box.max - box.min + 1;
+    m.sweep.set("uBoxMin", box.min);
+    m.sweep.set("uBoxMax", box.max);
     double carried = sources.watts;
     int sweeps = 0;
-    const GLuint lateral = GLuint((n + 7) / 8);
-    for (int bounce = 0; bounce < maxBounces && carried > 0.0; ++bounce) {
+    const int longest = std::max({extent.x, extent.y, extent.z});  // slabs and lateral cells
+    const GLuint lateral = GLuint((longest + 7) / 8);
+    for (int bounce = 0; bounce < maxBounces && carried > 0.0 && !box.empty(); ++bounce) {
         // Each sweep starts from zero power in every slab (and the border stays zero).
         for (int i = 0; i < 2; ++i) zero(m.parts[i], m.partsCap[i], nb * plane * 4 * sizeof(glm::vec4));
         m.sweep.use();
-        for (int step = 0; step < n; ++step) {
+        for (int step = 0; step < longest; ++step) {
             m.sweep.set("uStep", step);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.parts[step % 2].id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m.parts[(step + 1) % 2].id());

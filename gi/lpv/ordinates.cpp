@@ -158,9 +158,10 @@ void OrdinatesTransport::addSurfels(const SurfelSource& source, float normalOffs
     }
 }
 
-// One bin over the whole volume: slab by slab along its axis, each slab's incoming power from
-// the previous slab's outgoing power through the four landing taps.
-void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, bool occlusion,
+// One bin over `box` (the cells that can hold light a receiver reads: sweepBox): slab by slab
+// along its axis, each slab's incoming power from the previous slab's outgoing power through the
+// four landing taps.
+void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, bool occlusion, const IndexBox& box,
                                std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance,
                                std::vector<glm::vec3>& reflected) const {
     const OrdinateBin& b = bins_[k];
@@ -211,16 +212,18 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
             if (cell != SIZE_MAX) irradiance[face][cell] += glm::vec4(hit * (share * perArea), 0.0f);
         }
     };
-    for (int t = 0; t < n; ++t) {
-        const int a = b.sign > 0 ? t : n - 1 - t;
+    const int first = box.min[axis], last = box.max[axis];
+    for (int t = 0; t <= last - first; ++t) {
+        const int a = b.sign > 0 ? first + t : last - t;
         const std::size_t base = std::size_t(a) * stride[axis];
         // Slab offsets of the taps' upstream cells.
         const std::ptrdiff_t du = su, dv = std::ptrdiff_t(sv) * std::ptrdiff_t(row);
         const std::ptrdiff_t from[4] = {0, -du, -dv, -du - dv};
         // The inner loop runs along whichever lateral axis is contiguous in the volumes.
         const bool uInner = stride[u] < stride[v];
-        for (int outer = 0; outer < n; ++outer)
-            for (int inner = 0; inner < n; ++inner) {
+        const int innerAxis = uInner ? u : v, outerAxis = uInner ? v : u;
+        for (int outer = box.min[outerAxis]; outer <= box.max[outerAxis]; ++outer)
+            for (int inner = box.min[innerAxis]; inner <= box.max[innerAxis]; ++inner) {
                 const int x = uInner ? inner : outer, y = uInner ? outer : inner;
                 const std::size_t here = (std::size_t(y) + 1) * row + std::size_t(x) + 1;
                 glm::vec3 part[4];
@@ -275,6 +278,23 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
             }
         std::swap(prev, cur);
     }
+}
+
+// Light starts at surface cells (sources sit in them) and only surfaces stop it, so light leaving
+// the bounding box of the surface cells never returns, and outside it no receiver reads it but
+// within the apply pass's reach (its normal offset and trilinear taps: kSweepMargin cells).
+IndexBox OrdinatesTransport::sweepBox() const {
+    IndexBox box;
+    box.min = glm::ivec3(grid_.resolution);
+    box.max = glm::ivec3(-1);
+    for (const glm::ivec3& c : cells_) {
+        box.min = glm::min(box.min, c);
+        box.max = glm::max(box.max, c);
+    }
+    if (box.empty()) return box;
+    box.min = glm::max(box.min - kSweepMargin, glm::ivec3(0));
+    box.max = glm::min(box.max + kSweepMargin, glm::ivec3(grid_.resolution - 1));
+    return box;
 }
 
 std::array<std::vector<float>, kOrdinateFaces> OrdinatesTransport::faceReflectionShares() const {
@@ -346,6 +366,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         }
         return watts;
     };
+    const IndexBox box = sweepBox();
     std::vector<float> source = binMajor(sources);
     double carried = sources.watts;
     // The reflections an earlier solve left to carry start this one's bounces.
@@ -359,7 +380,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
     const std::size_t groups = std::min<std::size_t>(nb, kBinGroups);
     std::vector<Local> locals(groups);
     std::vector<glm::vec3> reflected(kOrdinateFaces * surfaces, glm::vec3(0.0f));
-    for (int bounce = 0; bounce < maxBounces && carried > 0.0; ++bounce) {
+    for (int bounce = 0; bounce < maxBounces && carried > 0.0 && !box.empty(); ++bounce) {
         // Each group's irradiance sums over every sweep; its reflections start anew each sweep.
         tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
             Local& l = locals[g];
@@ -370,7 +391,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
                 std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
             }
             const detail::SubnormalsFlushed flushed;
-            for (std::size_t k = g; k < nb; k += groups) sweep(k, source, occlusion, l.irradiance, l.reflected);
+            for (std::size_t k = g; k < nb; k += groups) sweep(k, source, occlusion, box, l.irradiance, l.reflected);
         });
         std::fill(reflected.begin(), reflected.end(), glm::vec3(0.0f));
         for (const Local& l : locals)

@@ -51,6 +51,7 @@
 
 #include "gi/lpv/light_volume.h"
 #include "gi/lpv/surfels.h"
+#include "volumes/geometry_volume.h"
 
 namespace voxgi {
 
@@ -87,6 +88,10 @@ constexpr int kOrdinateFaces = 6;
 // albedo a the light left out is at most kOrdinatesConverged x a / (1 - a) of it (under 1 % up to
 // a = 0.9). The cpu and gl back ends both stop here.
 constexpr double kOrdinatesConverged = 1e-3;
+
+// Cells swept beyond the surface cells' bounds: the apply pass reads a receiver's light half a
+// cell along its normal, trilinearly (one cell further); the glossy march reads past it.
+constexpr int kSweepMargin = 2;
 
 struct OrdinatesStats {
     int sweeps = 0;                 // bounces solved (one sweep of every bin each)
@@ -154,6 +159,9 @@ public:
     // Changes whenever the surfaces do (a surface added or a cell given one), unique across
     // transports: what the gl back end has uploaded is current while it stays the same.
     std::uint64_t geometryRevision() const { return revision_; }
+    // The cells a sweep visits (both back ends): the surface cells' bounds, kSweepMargin cells
+    // wider, within the grid; empty without surfaces.
+    IndexBox sweepBox() const;
     // Per surface, nb shares (the first negative when the surface reflects by axis faces).
     std::vector<float> planeReflectionShares() const;
     std::array<std::vector<float>, kOrdinateFaces> faceReflectionShares() const;
@@ -165,7 +173,7 @@ private:
     // A surface whose normals share one orientation (|m| at least 0.9 of its coverage) reflects
     // along its mean normal: that normal, else zero.
     glm::vec3 planeNormal(std::size_t s) const;
-    void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion,
+    void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion, const IndexBox& box,
                std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance, std::vector<glm::vec3>& reflected) const;
 
     CascadeGrid grid_;

@@ -1,7 +1,7 @@
 #version 450 core
 // One slab step of every bin's sweep (gi/lpv/ordinates.cpp, OrdinatesTransport::sweep; the same
-// math in the same order per bin): invocation (x, y) is a lateral cell, z a pyramid of bins
-// (axis and sign), whose bins run one after the other. Pyramids of one axis write their own
+// math in the same order per bin): invocation (x, y) is a lateral cell of the sweep box, z a
+// pyramid of bins (axis and sign), whose bins run one after the other. Pyramids of one axis write their own
 // group of the irradiance and reflection buffers: the +axis and -axis pyramids step through
 // different planes, so no two invocations of a dispatch add to the same value.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -16,7 +16,9 @@ layout(std430, binding = 6) buffer Irradiance { vec4 irradiance[]; };          /
 layout(std430, binding = 7) buffer Reflected { vec4 reflected[]; };            // [axis][surface][face]
 
 uniform int uN;
-uniform int uStep;
+uniform int uStep;      // slabs into the sweep box along the pyramid's axis
+uniform ivec3 uBoxMin;  // the sweep box (OrdinatesTransport::sweepBox), inclusive
+uniform ivec3 uBoxMax;
 uniform int uBinsPerPyramid;
 uniform int uSurfaces;
 uniform int uOcclusion;
@@ -45,14 +47,16 @@ void reflectAt(int s, int j, vec3 hit, vec3 parts, int cell, bool countIrradianc
 
 void main() {
     int n = uN;
-    int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y), pyramid = int(gl_GlobalInvocationID.z);
-    if (x >= n || y >= n || pyramid >= 6) return;
+    int pyramid = int(gl_GlobalInvocationID.z);
+    if (pyramid >= 6) return;
     gAxis = pyramid / 2;
     gU = (gAxis + 1) % 3;
     gV = (gAxis + 2) % 3;
+    int x = uBoxMin[gU] + int(gl_GlobalInvocationID.x), y = uBoxMin[gV] + int(gl_GlobalInvocationID.y);
+    if (x > uBoxMax[gU] || y > uBoxMax[gV] || uStep > uBoxMax[gAxis] - uBoxMin[gAxis]) return;
     gCells = n * n * n;
     int sign = pyramid % 2 == 0 ? 1 : -1;
-    int a = sign > 0 ? uStep : n - 1 - uStep;
+    int a = sign > 0 ? uBoxMin[gAxis] + uStep : uBoxMax[gAxis] - uStep;
     int stride[3] = int[3](1, n, n * n);
     int cell = a * stride[gAxis] + x * stride[gU] + y * stride[gV];
     int row = n + 2, plane = row * row;
