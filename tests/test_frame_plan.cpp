@@ -150,21 +150,32 @@ TEST_F(FramePlanTest, EveryMethodRunsItsPlan) {
 // Static work persists: the voxelized-scene blockers of a cascade are made once while it stays
 // put, though every update (lpv.reuse off) redoes the dynamic blockers, on both back ends.
 TEST_F(FramePlanTest, StaticBlockersAreMadeOncePerPlacement) {
-    for (const char* backend : {"cpu", "gl"}) {
-        Scene lit = box({pointLight()}, false, false);
-        lit.gi.set("lpv.reuse", "false");
-        lit.gi.set("lpv.backend", backend);
-        lit.gi.set("lpv.transport", "sh");  // the ordinates have no blockers (their surfaces: test_lpv_ordinates_render)
-        FramePlan plan = planFrame(lit, "clpv", 1);
-        ASSERT_TRUE(plan.runs("lpv.static_blockers")) << backend;
-        FrameRenderer renderer(lit, FrameOptions{}, plan);
-        for (int frame = 0; frame < 3; ++frame) renderer.renderFrame();
-        const auto& samples = renderer.timers().samples();
-        ASSERT_TRUE(samples.count("lpv.static_blockers")) << backend;
-        EXPECT_EQ(samples.at("lpv.static_blockers").cpuMs.size(), 1u) << backend;
-        const auto& blockers = samples.at("lpv.blockers");
-        EXPECT_EQ(std::max(blockers.cpuMs.size(), blockers.gpuMs.size()), 3u) << backend;
-    }
+    // SH: the voxelized blockers once, the surfels' blockers every update. Ordinates: the
+    // voxelized surfaces once, and no blockers pass.
+    for (const char* transport : {"sh", "ordinates"})
+        for (const char* backend : {"cpu", "gl"}) {
+            SCOPED_TRACE(std::string(transport) + " " + backend);
+            Scene lit = box({pointLight()}, false, false);
+            lit.gi.set("lpv.reuse", "false");
+            lit.gi.set("lpv.backend", backend);
+            lit.gi.set("lpv.transport", transport);
+            FramePlan plan = planFrame(lit, "clpv", 1);
+            ASSERT_TRUE(plan.runs("lpv.static_blockers"));
+            FrameRenderer renderer(lit, FrameOptions{}, plan);
+            for (int frame = 0; frame < 3; ++frame) renderer.renderFrame();
+            const auto& samples = renderer.timers().samples();
+            ASSERT_TRUE(samples.count("lpv.static_blockers"));
+            EXPECT_EQ(samples.at("lpv.static_blockers").cpuMs.size(), 1u);
+            ASSERT_TRUE(samples.count("lpv.propagate"));
+            const auto& propagate = samples.at("lpv.propagate");
+            EXPECT_EQ(std::max(propagate.cpuMs.size(), propagate.gpuMs.size()), 3u);
+            if (std::string(transport) == "ordinates") {
+                EXPECT_FALSE(plan.runs("lpv.blockers"));
+                continue;
+            }
+            const auto& blockers = samples.at("lpv.blockers");
+            EXPECT_EQ(std::max(blockers.cpuMs.size(), blockers.gpuMs.size()), 3u);
+        }
 }
 
 }  // namespace

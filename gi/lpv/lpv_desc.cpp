@@ -19,30 +19,32 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
              cascaded ? "finest cell (m); 0 = fit: the coarsest cascade reaches the farthest scene corner from the camera"
                       : "cell (m); 0 = fit: the scene plus one cell of margin");
     t.integerOrFit("steps", &D::steps, 0, 100000,
-                   "most propagation iterations per cascade (cpu stops once converged); fit: the resolution, "
-                   "so light crosses a cascade",
+                   "sh: most propagation iterations per cascade (cpu stops once converged); fit: the resolution, "
+                   "so light crosses a cascade (ordinates: see sweeps)",
                    "fit")
         .main();
-    t.flag("occlusion", &D::occlusion, "attenuate by the blockers at the shared face");
-    t.flag("bounces", &D::bounces, "extra bounces off blockers with their albedo");
-    t.flag("static_blockers", &D::staticBlockers, "blockers from the voxelized scene (cached .vdb), made once per cascade placement");
+    t.flag("occlusion", &D::occlusion, "surfaces stop light (sh: attenuate by the blockers at the shared face)");
+    t.flag("bounces", &D::bounces, "light reflected again off surfaces (sh: blockers) with their albedo");
+    t.flag("static_blockers", &D::staticBlockers, "surfaces (sh: blockers) from the voxelized scene (cached .vdb), made once per cascade placement");
     t.flag("surfel_blockers", &D::surfelBlockers,
-           "blockers from each update's RSM and G-buffer surfels too; false: the voxelized ones alone, kept with the cascades");
+           "sh: blockers from each update's RSM and G-buffer surfels too; false: the voxelized ones alone, kept with the "
+           "cascades");
     t.integer("rsm_size", &D::rsmSize, 8, 4096, "reflective shadow map size per light face");
     t.integer("sky_bounce_size", &D::skyBounceSize, 0, 4096,
-              "sky bounce: surfaces the camera sees, lit by the sky volume, injected as VPLs from a grid this wide (0 = none)");
+              "sky bounce (0 = none); sh: surfaces the camera sees, lit by the sky volume, injected as VPLs from a grid "
+              "this wide; ordinates: every voxelized surface");
     t.integer("gbuffer_blocker_size", &D::gbufferBlockerSize, 0, 4096,
-              "G-buffer blockers sampled on a grid this wide (0 = none)");
+              "sh: G-buffer blockers sampled on a grid this wide (0 = none)");
     t.number("inject_normal_offset", &D::injectNormalOffset, 0.0, 4.0, "VPL shift along the surfel normal, in cells");
-    t.number("inject_light_offset", &D::injectLightOffset, 0.0, 4.0, "VPL shift toward the light, in cells");
+    t.number("inject_light_offset", &D::injectLightOffset, 0.0, 4.0, "sh: VPL shift toward the light, in cells");
     t.number("apply_normal_offset", &D::applyNormalOffset, 0.0, 4.0, "lookup shift along the shading normal, in cells");
-    t.number("dampening", &D::dampening, 0.0, 100.0, "gradient dampening strength (0 = off)");
+    t.number("dampening", &D::dampening, 0.0, 100.0, "sh: gradient dampening strength (0 = off)");
     t.flag("glossy", &D::glossy, "glossy march of the finest cascade for specular or metallic materials with roughness < 0.6");
     t.number("forward_offset", &D::forwardOffset, 0.0, 0.5, "clpv: cascades centred this fraction of their size ahead of the camera");
     // At most 4 cells: a fade wider than half the smallest volume (8 cells) would never reach 1.
     t.number("fade_cells", &D::fadeCells, 0.0, 4.0, "clpv: width of each cascade's border fade, in cells");
     t.choice("backend", &D::backend, backendChoices(), "cpu (TBB reference) or gl (compute shaders)").main();
-    t.flag("sparse", &D::sparse, "cpu: propagate only the bricks holding light");
+    t.flag("sparse", &D::sparse, "sh, cpu: propagate only the bricks holding light");
     t.choice("transport", &D::transport, {{"sh", LpvTransport::Sh}, {"ordinates", LpvTransport::Ordinates}},
              "sh: seed 000's SH propagation; ordinates: direction bins swept across each cascade, every bounce");
     t.integer("ordinates_per_face", &D::ordinatesPerFace, 2, 8,
