@@ -11,12 +11,17 @@ using namespace voxgi;
 
 namespace {
 
-std::vector<CascadePlacement> threeCascades() {
-    LpvDesc desc = lpvDefaults(true);
+Bounds roomBounds() {
     Bounds b;
     b.min = glm::vec3(-3.0f, 0.0f, -2.0f);
     b.max = glm::vec3(4.0f, 2.5f, 3.0f);
-    return placeCascades(desc, b, glm::vec3(0.3f, 1.1f, 2.0f), glm::vec3(0.2f, -0.1f, -1.0f));
+    return b;
+}
+
+std::vector<CascadePlacement> threeCascades(CascadeBounds bounds = CascadeBounds::Camera) {
+    LpvDesc desc = lpvDefaults(true);
+    desc.cascadeBounds = bounds;
+    return placeCascades(desc, roomBounds(), glm::vec3(0.3f, 1.1f, 2.0f), glm::vec3(0.2f, -0.1f, -1.0f));
 }
 
 // S_L(x): the share of x cascades 0..L hold.
@@ -29,7 +34,9 @@ float held(const std::vector<CascadePlacement>& cascades, std::size_t level, glm
 }  // namespace
 
 TEST(LpvCascades, EverySourcePointPairIsCarriedOnce) {
-    const auto cascades = threeCascades();
+  for (CascadeBounds bounds : {CascadeBounds::Camera, CascadeBounds::Scene}) {
+    SCOPED_TRACE(bounds == CascadeBounds::Camera ? "camera" : "scene");
+    const auto cascades = threeCascades(bounds);
     ASSERT_EQ(cascades.size(), 3u);
     const CascadeGrid& outer = cascades.back().grid;
     std::mt19937 rng(5);
@@ -72,6 +79,45 @@ TEST(LpvCascades, EverySourcePointPairIsCarriedOnce) {
         }
     }
     EXPECT_GT(nearPairs, 100);
+  }
+}
+
+// lpv.cascade_bounds=scene: the coarsest cascade is the scene plus a cell and does not fade; the
+// finer ones keep doubling their cells and stay inside the scene's bounds (a cell to spare), so
+// a camera outside the scene still gets its finest cells on the scene's near side.
+TEST(LpvCascades, SceneBoundsKeepEveryCascadeOnTheScene) {
+    const Bounds b = roomBounds();
+    LpvDesc desc = lpvDefaults(true);
+    desc.cascadeBounds = CascadeBounds::Scene;
+    for (glm::vec3 eye : {glm::vec3(0.3f, 1.1f, 2.0f), glm::vec3(0.5f, 1.0f, 30.0f)}) {
+        const auto cascades = placeCascades(desc, b, eye, b.center() - eye);
+        ASSERT_EQ(cascades.size(), 3u);
+        const CascadePlacement& coarsest = cascades.back();
+        EXPECT_TRUE(glm::all(glm::lessThanEqual(coarsest.grid.worldMin(), b.min)));
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(coarsest.grid.worldMax(), b.max)));
+        EXPECT_EQ(coarsest.fadeWidth, 0.0f);
+        EXPECT_NEAR(coarsest.grid.cellSize * float(desc.resolution - 2), 7.0f, 1e-4f);  // the longest side
+        for (std::size_t c = 0; c + 1 < cascades.size(); ++c) {
+            const CascadeGrid& g = cascades[c].grid;
+            EXPECT_NEAR(cascades[c + 1].grid.cellSize, 2.0f * g.cellSize, 1e-6f);
+            EXPECT_GT(cascades[c].fadeWidth, 0.0f);
+            for (int a = 0; a < 3; ++a) {
+                if (float(desc.resolution - 2) * g.cellSize >= b.extent()[a]) {
+                    // Wider than the scene along a: centred on it (within the snap to whole cells).
+                    EXPECT_NEAR(0.5f * (g.worldMin()[a] + g.worldMax()[a]), b.center()[a], 0.5f * g.cellSize) << c;
+                    continue;
+                }
+                // Otherwise within the bounds plus one cell and the snap.
+                EXPECT_GE(g.worldMin()[a], b.min[a] - 1.5f * g.cellSize) << c << " " << a;
+                EXPECT_LE(g.worldMax()[a], b.max[a] + 1.5f * g.cellSize) << c << " " << a;
+            }
+        }
+    }
+    // The camera placement of the same camera far outside: its finest cascade holds none of the scene.
+    desc.cascadeBounds = CascadeBounds::Camera;
+    const glm::vec3 far(0.5f, 1.0f, 30.0f);
+    const CascadeGrid fine = placeCascades(desc, b, far, b.center() - far).front().grid;
+    EXPECT_GT(fine.worldMin().z, b.max.z);
 }
 
 TEST(LpvCascades, OneVolumeTakesEveryVplWhole) {

@@ -8,10 +8,10 @@ namespace voxgi {
 float finestCellSize(const LpvDesc& desc, const Bounds& b, glm::vec3 eye) {
     if (desc.cellSize > 0.0f) return desc.cellSize;
     glm::vec3 e = b.valid() ? b.extent() : glm::vec3(1.0f);
-    if (desc.cascades == 1) {
-        // The scene plus a one-cell margin on each side.
-        return std::max({e.x, e.y, e.z, 1e-30f}) / float(desc.resolution - 2);
-    }
+    // The scene plus a one-cell margin on each side.
+    const float sceneFit = std::max({e.x, e.y, e.z, 1e-30f}) / float(desc.resolution - 2);
+    if (desc.cascades == 1) return sceneFit;
+    if (desc.cascadeBounds == CascadeBounds::Scene) return sceneFit / float(1 << (desc.cascades - 1));
     // Cascades: the coarsest level reaches the farthest corner of the scene from the camera.
     float farthest = 1e-30f;
     for (int i = 0; i < 8; ++i) {
@@ -38,12 +38,22 @@ std::vector<CascadePlacement> placeCascades(const LpvDesc& desc, const Bounds& b
             glm::vec3 dir = glm::length(viewDirection) > 0.0f ? glm::normalize(viewDirection) : glm::vec3(0.0f);
             center = eye + dir * (desc.forwardOffset * float(n) * h);
         }
+        const bool inScene = desc.cascades > 1 && desc.cascadeBounds == CascadeBounds::Scene && b.valid();
+        if (inScene)
+            for (int a = 0; a < 3; ++a) {
+                // Inside the bounds with a cell to spare; a cascade wider than them sits at their centre.
+                const float lo = b.min[a] + 0.5f * float(n - 2) * h, hi = b.max[a] - 0.5f * float(n - 2) * h;
+                center[a] = lo > hi ? 0.5f * (b.min[a] + b.max[a]) : std::clamp(center[a], lo, hi);
+            }
         glm::vec3 half(0.5f * float(n) * h);
         p.grid.origin = glm::ivec3(glm::floor((center - half) / h + 0.5f));
-        // A single fitted volume does not fade: it covers the whole scene.
-        p.fadeMin = desc.cascades == 1 ? glm::vec3(-1e30f) : center - half;
-        p.fadeMax = desc.cascades == 1 ? glm::vec3(1e30f) : center + half;
-        p.fadeWidth = desc.fadeCells * h;
+        // A volume holding the whole scene does not fade: nothing outside sends or receives light
+        // (one fitted volume; in scene bounds, every cascade as wide as the scene).
+        const bool wholeScene = desc.cascades == 1 || (inScene && glm::all(glm::lessThanEqual(p.grid.worldMin(), b.min)) &&
+                                                       glm::all(glm::greaterThanEqual(p.grid.worldMax(), b.max)));
+        p.fadeMin = wholeScene ? glm::vec3(-1e30f) : center - half;
+        p.fadeMax = wholeScene ? glm::vec3(1e30f) : center + half;
+        p.fadeWidth = wholeScene ? 0.0f : desc.fadeCells * h;
         out.push_back(p);
     }
     return out;

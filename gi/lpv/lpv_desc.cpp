@@ -43,6 +43,10 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
     t.number("forward_offset", &D::forwardOffset, 0.0, 0.5, "clpv: cascades centred this fraction of their size ahead of the camera");
     // At most 4 cells: a fade wider than half the smallest volume (8 cells) would never reach 1.
     t.number("fade_cells", &D::fadeCells, 0.0, 4.0, "clpv: width of each cascade's border fade, in cells");
+    if (cascaded)
+        t.choice("cascade_bounds", &D::cascadeBounds, {{"camera", CascadeBounds::Camera}, {"scene", CascadeBounds::Scene}},
+                 "camera: the coarsest cascade reaches the scene's farthest corner from the camera, all centred ahead of "
+                 "it; scene: the coarsest is the scene's bounds (no fade), finer ones follow the camera inside them");
     t.choice("backend", &D::backend, backendChoices(), "cpu (TBB reference) or gl (compute shaders)").main();
     t.flag("sparse", &D::sparse, "sh, cpu: propagate only the bricks holding light");
     t.choice("transport", &D::transport, {{"sh", LpvTransport::Sh}, {"ordinates", LpvTransport::Ordinates}},

@@ -12,6 +12,12 @@ namespace voxgi {
 // across the volume (gi/lpv/ordinates.h), which keep a surface's light from returning to it.
 enum class LpvTransport { Sh, Ordinates };
 
+// Where clpv's cascades reach (gi/lpv/cascades.h): Camera, the coarsest from the camera to the
+// scene's farthest corner, every cascade centred ahead of the camera; Scene, the coarsest the
+// scene's bounds plus a cell (no border fade: nothing lies outside), finer ones following the
+// camera but kept inside the bounds, so no cell lies where nothing can send or receive light.
+enum class CascadeBounds { Camera, Scene };
+
 struct LpvDesc {
     int resolution = 32;        // cells per side of every cascade (32^3, as CryEngine and seed 000)
     int cascades = 1;           // 1 for lpv, 3 for clpv
@@ -34,6 +40,7 @@ struct LpvDesc {
     bool glossy = true;         // glossy reflections by marching the finest cascade
     float forwardOffset = 0.25f;  // clpv: cascades centred this fraction of their size ahead
     float fadeCells = 2.0f;     // clpv: width of the border fade, in cells
+    CascadeBounds cascadeBounds = CascadeBounds::Camera;  // clpv: see CascadeBounds
     Backend backend = Backend::Cpu;
     bool sparse = true;         // cpu: propagate only bricks holding light (dilated per step)
     bool reuse = true;          // skip the update while lights, geometry and placement are unchanged
