@@ -44,6 +44,7 @@ constexpr float kTolerance = 1e-4f;
 std::vector<CascadePlacement> cornellCascades(const Scene& scene, int resolution) {
     LpvDesc desc = readLpvDesc(scene.gi, true);
     desc.resolution = resolution;
+    desc.cascadeBounds = CascadeBounds::Camera;  // nested around a point inside the box, each holding light
     glm::vec3 inside = scene.bounds().center() + glm::vec3(0.03f, -0.05f, 0.02f);
     return placeCascades(desc, scene.bounds(), inside, scene.camera.target - scene.camera.eye);
 }

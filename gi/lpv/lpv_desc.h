@@ -40,7 +40,7 @@ struct LpvDesc {
     bool glossy = true;         // glossy reflections by marching the finest cascade
     float forwardOffset = 0.25f;  // clpv: cascades centred this fraction of their size ahead
     float fadeCells = 2.0f;     // clpv: width of the border fade, in cells
-    CascadeBounds cascadeBounds = CascadeBounds::Camera;  // clpv: see CascadeBounds
+    CascadeBounds cascadeBounds = CascadeBounds::Scene;  // clpv: see CascadeBounds
     Backend backend = Backend::Cpu;
     bool sparse = true;         // cpu: propagate only bricks holding light (dilated per step)
     bool reuse = true;          // skip the update while lights, geometry and placement are unchanged
