@@ -258,7 +258,8 @@ TEST_F(LpvGlInjection, ClpvRenderMatchesCpuBackend) {
     std::string dir = test::makeTempDir("lpv-gl-injection");
     auto indirect = [&](const std::string& backend) {
         std::string out = dir + "/" + backend + ".exr";
-        auto r = test::runVoxgi("render cornell-box --method clpv --backend " + backend +
+        // The SH transport's gl injection and steps (the ordinates': LpvOrdinatesRender).
+        auto r = test::runVoxgi("render cornell-box --method clpv --set lpv.transport=sh --backend " + backend +
                                 " --width 64 --height 64 --frames 1 -o " + out);
         EXPECT_EQ(r.exitCode, 0) << r.output;
         Image img = readExr(out);
