@@ -31,3 +31,17 @@ TEST(EvalStability, TwoCasesWriteTheTable) {
     EXPECT_GE(vox["largest"].get<double>(), 3.0);        // all three were skipped
     EXPECT_TRUE(vox["passed"].get<bool>());
 }
+
+// The Cornell box scaled to 0.1 mm: its LPV cells are below OpenVDB's smallest voxel, so the LPV
+// voxelizes a copy scaled by a power of two; without it the ordinates had no surfaces and kept
+// 0.905 of the unscaled light.
+TEST(EvalStability, ATenthOfAMillimetreBoxKeepsItsLpvLight) {
+    std::string dir = makeTempDir("eval-stability-small");
+    RunResult r = runVoxgi("eval --stability --cases scale-1e-4-lpv -o " + dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(dir + "/stability.json");
+    nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_EQ(j["cases"].size(), 1u);
+    EXPECT_NEAR(j["cases"][0]["energy_ratio"].get<double>(), 1.0, 0.01);
+    EXPECT_TRUE(j["cases"][0]["passed"].get<bool>());
+}

@@ -134,8 +134,7 @@ std::uint64_t SparseGeometryVolume::memoryBytes() const {
 SparseGeometryVolume voxelizeScene(const Scene& scene, const VoxelizeSettings& settings) {
     if (!(settings.voxelSize > 0.0f) || !std::isfinite(settings.voxelSize))
         throw InputError("--voxel-size: must be a positive finite number");
-    // OpenVDB refuses transforms whose scale determinant is below ~3e-15.
-    if (settings.voxelSize < 2e-5f)
+    if (settings.voxelSize < kSmallestVoxelSize)
         throw InputError("--voxel-size " + std::to_string(settings.voxelSize) +
                          ": below 2e-5, the smallest voxel OpenVDB transforms accept; scale the scene up instead");
     if (settings.levels < 1 || settings.levels > 16) throw InputError("--levels: must be in [1, 16]");

@@ -32,6 +32,10 @@ namespace detail {
 struct GeometryGrids;
 }
 
+// The smallest voxel edge OpenVDB's transforms accept (their scale determinant must stay above
+// ~3e-15): voxelizeScene refuses smaller ones.
+constexpr float kSmallestVoxelSize = 2e-5f;
+
 struct VoxelizeSettings {
     float voxelSize = 0.1f;          // finest level, world units
     int levels = 1;                  // cascade levels, voxel size doubling per level

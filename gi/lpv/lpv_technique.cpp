@@ -108,8 +108,22 @@ public:
             VoxelizeSettings vs;
             vs.voxelSize = desc.cellSize;
             vs.levels = desc.cascades;
+            // The LPV reads voxel indices, areas over the voxel's face area, normals and albedo:
+            // all the same for the scene and its voxel scaled by one power of two (exactly, in
+            // floating point). Cells below OpenVDB's smallest voxel (a box of 0.1 mm) voxelize a
+            // copy scaled up; without it the ordinates would have no surfaces to stop the light.
+            float scale = 1.0f;
+            while (vs.voxelSize * scale < kSmallestVoxelSize && scale < 1e30f) scale *= 2.0f;
+            Scene scaled;
+            if (scale > 1.0f) {
+                scaled = scene;
+                for (Mesh& m : scaled.meshes)
+                    for (glm::vec3& p : m.positions) p *= scale;
+                vs.voxelSize *= scale;
+            }
             try {
-                voxels = std::make_unique<SparseGeometryVolume>(loadOrBuildGeometryVolume(scene, vs, geometryCacheDir()));
+                voxels = std::make_unique<SparseGeometryVolume>(
+                    loadOrBuildGeometryVolume(scale > 1.0f ? scaled : scene, vs, geometryCacheDir()));
             } catch (const InputError& e) {
                 // OpenVDB cannot hold cells this small (or this many): dynamic blockers only.
                 std::fprintf(stderr, "voxgi: lpv: static blockers off (%s)\n", e.what());
