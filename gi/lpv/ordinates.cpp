@@ -106,6 +106,8 @@ int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
         s = int(cells_.size());
         revision_ = nextRevision++;
         cells_.push_back(cell);
+        surfaceBounds_.min = glm::min(surfaceBounds_.min, cell);
+        surfaceBounds_.max = glm::max(surfaceBounds_.max, cell);
         coverage_.push_back(0.0f);
         vectorCoverage_.push_back(glm::vec3(0.0f));
         albedo_.push_back(glm::vec3(0.0f));
@@ -284,13 +286,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
 // the bounding box of the surface cells never returns, and outside it no receiver reads it but
 // within the apply pass's reach (its normal offset and trilinear taps: kSweepMargin cells).
 IndexBox OrdinatesTransport::sweepBox() const {
-    IndexBox box;
-    box.min = glm::ivec3(grid_.resolution);
-    box.max = glm::ivec3(-1);
-    for (const glm::ivec3& c : cells_) {
-        box.min = glm::min(box.min, c);
-        box.max = glm::max(box.max, c);
-    }
+    IndexBox box = surfaceBounds_;
     if (box.empty()) return box;
     box.min = glm::max(box.min - kSweepMargin, glm::ivec3(0));
     box.max = glm::min(box.max + kSweepMargin, glm::ivec3(grid_.resolution - 1));

@@ -180,6 +180,7 @@ private:
     std::vector<OrdinateBin> bins_;
     std::vector<int> surfaceOf_;  // per cell: index into the surface arrays, -1 for none
     std::vector<glm::ivec3> cells_;
+    IndexBox surfaceBounds_{glm::ivec3(1 << 30), glm::ivec3(-1)};  // of cells_; empty while there are none
     std::vector<float> coverage_;
     std::vector<glm::vec3> vectorCoverage_, albedo_;
     std::uint64_t revision_ = 0;
