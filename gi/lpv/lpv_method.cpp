@@ -192,7 +192,8 @@ MethodInfo lpvFamily(bool cascaded) {
     if (!cascaded) m.stressCases = lpvStressCases();
     // cpu-sparse, cpu-dense and gl-sh name seed 000's SH transport (their names predate the
     // ordinates becoming the default and keep their meaning in the docs' commands).
-    const SettingList sh{{"lpv.transport", "sh"}, {"lpv.reuse", "false"}};
+    const SettingList sh{{"lpv.transport", "sh"}, {"lpv.reuse", "false"}},
+        ordinates{{"lpv.transport", "ordinates"}, {"lpv.reuse", "false"}};
     auto variant = [](const char* name, SettingList settings, const SettingList& more) {
         settings.insert(settings.end(), more.begin(), more.end());
         return Preset{name, settings};
@@ -200,8 +201,8 @@ MethodInfo lpvFamily(bool cascaded) {
     m.benchVariants = {variant("cpu-sparse", {{"lpv.backend", "cpu"}, {"lpv.sparse", "true"}}, sh),
                        variant("cpu-dense", {{"lpv.backend", "cpu"}, {"lpv.sparse", "false"}}, sh),
                        variant("gl-sh", {{"lpv.backend", "gl"}}, sh),
-                       {"gl", {{"lpv.backend", "gl"}, {"lpv.transport", "ordinates"}, {"lpv.reuse", "false"}}},
-                       {"cpu-ordinates", {{"lpv.backend", "cpu"}, {"lpv.transport", "ordinates"}, {"lpv.reuse", "false"}}}};
+                       variant("gl", {{"lpv.backend", "gl"}}, ordinates),
+                       variant("cpu-ordinates", {{"lpv.backend", "cpu"}}, ordinates)};
     return m;
 }
 
