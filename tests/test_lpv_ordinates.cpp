@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "gi/lpv/ordinates.h"
+#include "shaders/shared/light_bricks.h"
 #include "shaders/shared/constants.h"
 
 using namespace voxgi;
@@ -90,8 +92,8 @@ TEST(LpvOrdinates, ALitFloorAloneReceivesNoneOfItsOwnLight) {
     for (int z = 0; z < 16; ++z)
         for (int x = 0; x < 16; ++x)
             for (int y = 2; y < 5; ++y) {
-                up += e[2][t.grid().index({x, y, z})].r;         // receivers facing +y: the floor's
-                downAbove += e[3][t.grid().index({x, y, z})].r;  // facing -y: a ceiling above it would get
+                up += t.irradianceAt(e, {x, y, z}, 2).r;         // receivers facing +y: the floor's
+                downAbove += t.irradianceAt(e, {x, y, z}, 3).r;  // facing -y: a ceiling above it would get
             }
     EXPECT_EQ(up, 0.0);
     EXPECT_GT(downAbove, 0.0);
@@ -101,6 +103,7 @@ TEST(LpvOrdinates, ALitFloorAloneReceivesNoneOfItsOwnLight) {
 TEST(LpvOrdinates, APatchLightsAParallelReceiverAsTheViewFactorSays) {
     const int n = 64, lo = 16, hi = 48;
     OrdinatesTransport t(gridOf(n), 4);
+    t.allocateAllBricks();  // free space is read here, not only around surfaces
     addFloor(t, 0, lo, hi, 0.0f);
     // Sweeps visit the surfaces' bounds only (sweepBox): a black speck away from the centre line
     // takes them up to the heights read, stopping a millionth of what crosses its cell.
@@ -110,12 +113,12 @@ TEST(LpvOrdinates, APatchLightsAParallelReceiverAsTheViewFactorSays) {
     t.addSurfels(floorSurfels(0, lo, hi, 1.0f), 0.0f, s);
     const auto e = t.solve(s, true, 1);
     // Above the box nothing is swept.
-    EXPECT_EQ(e[3][t.grid().index({32, 50, 32})].r, 0.0f);
+    EXPECT_EQ(t.irradianceAt(e, {32, 50, 32}, 3).r, 0.0f);
     for (int height : {4, 8, 16, 32}) {
         // Four cells around the patch's centre line.
         double sum = 0.0;
         for (int dz = 31; dz <= 32; ++dz)
-            for (int dx = 31; dx <= 32; ++dx) sum += e[3][t.grid().index({dx, height, dz})].r;
+            for (int dx = 31; dx <= 32; ++dx) sum += t.irradianceAt(e, {dx, height, dz}, 3).r;
         const double measured = sum / 4.0, expected = squareViewFactor(16.0, double(height));
         EXPECT_NEAR(measured / expected, 1.0, 0.1) << "height " << height << ": " << measured << " vs " << expected;
     }
@@ -125,6 +128,7 @@ TEST(LpvOrdinates, APatchLightsAParallelReceiverAsTheViewFactorSays) {
 TEST(LpvOrdinates, AWallStopsTheLightBehindIt) {
     const int n = 32;
     OrdinatesTransport t(gridOf(n), 2);
+    t.allocateAllBricks();  // free space is read here, not only around surfaces
     addFloor(t, 0, 0, n, 0.0f);
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y) t.addSurface({{16, y, z}, 1.0f, {-1.0f, 0.0f, 0.0f}, glm::vec3(0.0f)});
@@ -136,8 +140,8 @@ TEST(LpvOrdinates, AWallStopsTheLightBehindIt) {
     double front = 0.0, behind = 0.0;
     for (int z = 0; z < n; ++z)
         for (int y = 4; y < 12; ++y) {
-            front += e[3][t.grid().index({8, y, z})].r;
-            behind += e[3][t.grid().index({24, y, z})].r;
+            front += t.irradianceAt(e, {8, y, z}, 3).r;
+            behind += t.irradianceAt(e, {24, y, z}, 3).r;
         }
     EXPECT_GT(front, 0.0);
     EXPECT_LT(behind, 1e-6 * front) << "rounding only";
@@ -167,8 +171,7 @@ TEST(LpvOrdinates, BouncesInAClosedBoxSumToTheGeometricSeries) {
             << "albedo " << albedo << ", " << st.sweeps << " sweeps";
         // The same bits again, whichever threads swept which bins.
         const auto again = t.solve(s, true, 1000);
-        for (int f = 0; f < kOrdinateFaces; ++f)
-            EXPECT_TRUE(first[std::size_t(f)] == again[std::size_t(f)]) << "face " << f;
+        EXPECT_TRUE(first == again);
     }
 }
 
@@ -185,10 +188,10 @@ TEST(LpvOrdinates, OneSweepPerUpdateConvergesToEveryBounceOverUpdates) {
         }
     OrdinatesTransport::Sources s = t.emptySources();
     t.addSurfels(floorSurfels(0, 2, n - 2, 1.0f), 0.0f, s);
-    auto floorLight = [&](const std::array<std::vector<glm::vec4>, kOrdinateFaces>& e) {
+    auto floorLight = [&](const IrradianceBricks& e) {
         double sum = 0.0;
         for (int z = 1; z < n - 1; ++z)
-            for (int x = 1; x < n - 1; ++x) sum += e[2][t.grid().index({x, 0, z})].r;
+            for (int x = 1; x < n - 1; ++x) sum += t.irradianceAt(e, {x, 0, z}, 2).r;
         return sum;
     };
     const double full = floorLight(t.solve(s, true, 1000));
@@ -253,11 +256,83 @@ TEST(LpvOrdinates, TheSweepBoxGivesTheSameLightAsAVolumeFittedToTheSurfaces) {
             for (int y = 0; y < fit; ++y)
                 for (int x = 0; x < fit; ++x)
                     if (tight.surfaceIndex({x, y, z}) >= 0) {
-                        const glm::vec4 va = ea[std::size_t(f)][tight.grid().index({x, y, z})];
-                        const glm::vec4 vb = eb[std::size_t(f)][big.grid().index({x, y, z})];
+                        const glm::vec4 va = tight.irradianceAt(ea, {x, y, z}, f);
+                        const glm::vec4 vb = big.irradianceAt(eb, {x, y, z}, f);
                         ASSERT_EQ(va, vb) << "face " << f << " cell " << x << " " << y << " " << z;
                         lit += va.r;
                     }
     EXPECT_GT(lit, 0.0);
-    EXPECT_EQ(eb[0][big.grid().index({wide - 1, wide - 1, wide - 1})], glm::vec4(0.0f));
+    EXPECT_EQ(big.irradianceAt(eb, {wide - 1, wide - 1, wide - 1}, 0), glm::vec4(0.0f));
+}
+
+// Sparse light volumes (gi/lpv/brick_map.h): bricks are stored only within the receivers' reach of
+// a surface, and hold there exactly what storing every brick holds.
+TEST(LpvOrdinates, BricksAroundTheSurfacesHoldWhatEveryBrickHolds) {
+    const int n = 40;  // not a multiple of 8: the last bricks are partial
+    auto build = [&](OrdinatesTransport& t) {
+        std::vector<OrdinateSurface> surfaces;
+        for (int z = 4; z < 20; ++z)
+            for (int x = 4; x < 20; ++x) surfaces.push_back({{x, 3, z}, 1.0f, {0.0f, 1.0f, 0.0f}, glm::vec3(0.7f)});
+        for (int z = 4; z < 20; ++z)
+            for (int y = 3; y < 20; ++y) surfaces.push_back({{20, y, z}, 1.0f, {-1.0f, 0.0f, 0.0f}, glm::vec3(0.5f)});
+        t.addSurfaces(surfaces);
+    };
+    OrdinatesTransport sparse(gridOf(n), 2), dense(gridOf(n), 2);
+    dense.allocateAllBricks();
+    build(sparse);
+    build(dense);
+    EXPECT_EQ(dense.bricks().slots(), 125u);
+    EXPECT_LT(sparse.bricks().slots(), dense.bricks().slots() / 2) << "bricks far from the surfaces are stored";
+    EXPECT_GT(sparse.bricks().slots(), 0u);
+    OrdinatesTransport::Sources a = sparse.emptySources(), b = dense.emptySources();
+    sparse.addSurfels(floorSurfels(3, 4, 20, 1.0f), 0.0f, a);
+    dense.addSurfels(floorSurfels(3, 4, 20, 1.0f), 0.0f, b);
+    const IrradianceBricks ea = sparse.solve(a, true, 100), eb = dense.solve(b, true, 100);
+    EXPECT_EQ(sparse.stats().sweeps, dense.stats().sweeps);
+    EXPECT_EQ(ea.size(), sparse.bricks().slots() * 6 * 512);
+    std::size_t stored = 0, near = 0;
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::ivec3 c(x, y, z);
+                // Within the reach of a surface (the floor's and the wall's boxes, kSweepMargin wider).
+                const bool nearFloor = x >= 4 - kSweepMargin && x < 20 + kSweepMargin && z >= 4 - kSweepMargin &&
+                                       z < 20 + kSweepMargin && std::abs(y - 3) <= kSweepMargin;
+                const bool nearWall = std::abs(x - 20) <= kSweepMargin && y >= 3 - kSweepMargin && y < 20 + kSweepMargin &&
+                                      z >= 4 - kSweepMargin && z < 20 + kSweepMargin;
+                if (nearFloor || nearWall) {
+                    ++near;
+                    ASSERT_GE(sparse.bricks().slotOf(c), 0) << "a receiver's cell is not stored: " << x << " " << y << " " << z;
+                }
+                if (sparse.bricks().slotOf(c) < 0) continue;
+                ++stored;
+                for (int f = 0; f < kOrdinateFaces; ++f)
+                    ASSERT_EQ(sparse.irradianceAt(ea, c, f), dense.irradianceAt(eb, c, f))
+                        << "face " << f << " cell " << x << " " << y << " " << z;
+            }
+    EXPECT_GT(near, 0u);
+    std::size_t inGrid = 0;  // the stored bricks' cells inside the grid
+    for (const glm::ivec3& o : sparse.bricks().slotOrigins()) {
+        const glm::ivec3 e = glm::min(o + 8, glm::ivec3(n)) - o;
+        inGrid += std::size_t(e.x) * std::size_t(e.y) * std::size_t(e.z);
+    }
+    EXPECT_EQ(stored, inGrid);
+}
+
+// The bricks' layout: 8^3 cells from the grid's first cell, x fastest.
+TEST(LpvOrdinates, ABricksCellsRunXFastest) {
+    EXPECT_EQ(shading::brickCellOffset(glm::ivec3(1, 0, 0)), 1);
+    EXPECT_EQ(shading::brickCellOffset(glm::ivec3(0, 1, 0)), 8);
+    EXPECT_EQ(shading::brickCellOffset(glm::ivec3(0, 0, 1)), 64);
+    EXPECT_EQ(shading::brickCellOffset(glm::ivec3(15, 9, 23)), 7 + 1 * 8 + 7 * 64);
+    EXPECT_EQ(shading::bricksPerSide(40), 5);
+    BrickMap map(40);
+    map.allocateAround(std::vector<glm::ivec3>{{39, 0, 0}, {0, 0, 0}}, 0);
+    // Slots in the table's order (x fastest), whichever cell asked first.
+    ASSERT_EQ(map.slots(), 2u);
+    EXPECT_EQ(map.slotOrigins()[0], glm::ivec3(0));
+    EXPECT_EQ(map.slotOrigins()[1], glm::ivec3(32, 0, 0));
+    EXPECT_EQ(map.slotOf({33, 7, 7}), 1);
+    EXPECT_EQ(map.slotOf({33, 8, 7}), -1);
+    EXPECT_EQ(map.slotOf({40, 0, 0}), -1);
 }

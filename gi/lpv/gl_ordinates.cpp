@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "gl/program.h"
+#include "shaders/shared/light_bricks.h"
 
 namespace voxgi {
 
@@ -37,12 +38,14 @@ GlOrdinates::GlOrdinates() : impl_(new Impl) {}
 GlOrdinates::~GlOrdinates() { delete impl_; }
 
 int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::Sources& sources, bool occlusion,
-                       int maxBounces, GLuint cube) {
+                       int maxBounces, GLuint pool, std::size_t firstSlot) {
     Impl& m = *impl_;
     const CascadeGrid& grid = t.grid();
     const int n = grid.resolution;
     const std::vector<OrdinateBin>& bins = t.bins();
-    const std::size_t nb = bins.size(), surfaces = t.coverage().size(), cells = grid.cellCount();
+    const BrickMap& bricks = t.bricks();
+    const std::size_t nb = bins.size(), surfaces = t.coverage().size(), slots = bricks.slots(),
+                      values = slots * kOrdinateFaces * std::size_t(shading::kBrickCells);
     const std::size_t row = std::size_t(n) + 2, plane = row * row;
 
     // The bins and surfaces go up when they differ from the last solve's (a cascade's ring and
@@ -54,7 +57,11 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
             taps.push_back(glm::vec4(float(b.lateralStep.x), float(b.lateralStep.y), 0.0f, 0.0f));
         }
         upload(m.taps, m.tapsCap, taps);
-        upload(m.surfaceOf, m.surfaceOfCap, t.surfaceOfCells());
+        // The brick table, then each slot's cells' surface indices: one buffer, so the sweep binds
+        // eight (GL's least guaranteed number of storage blocks in a compute shader).
+        std::vector<int> surfaceOf = bricks.table();
+        surfaceOf.insert(surfaceOf.end(), t.surfaceOfBrickCells().begin(), t.surfaceOfBrickCells().end());
+        upload(m.surfaceOf, m.surfaceOfCap, surfaceOf);
         std::vector<glm::vec4> surf(std::max<std::size_t>(2 * surfaces, 2));
         for (std::size_t s = 0; s < surfaces; ++s) {
             surf[2 * s] = glm::vec4(t.vectorCoverage()[s], t.coverage()[s]);
@@ -72,7 +79,7 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
     std::vector<float> source = t.binMajor(sources);
     source.resize(std::max<std::size_t>(source.size(), 3), 0.0f);
     upload(m.sources, m.sourcesCap, source);
-    zero(m.irradiance, m.irradianceCap, 3 * kOrdinateFaces * cells * sizeof(glm::vec4));
+    zero(m.irradiance, m.irradianceCap, std::max<std::size_t>(3 * values, 1) * sizeof(glm::vec4));
     zero(m.reflected, m.reflectedCap, std::max<std::size_t>(3 * surfaces * kOrdinateFaces, 1) * sizeof(glm::vec4));
     const std::size_t groups = (std::max<std::size_t>(surfaces, 1) + 63) / 64;
     zero(m.power, m.powerCap, groups * sizeof(float));
@@ -87,6 +94,9 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, m.faceShares.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, m.power.id());
     m.sweep.set("uN", n);
+    m.sweep.set("uTableSide", bricks.tableSide());
+    m.sweep.set("uBrickCellsStart", int(bricks.tableSize()));
+    m.sweep.set("uSlots", int(slots));
     m.sweep.set("uBinsPerPyramid", int(nb / 6));
     m.sweep.set("uSurfaces", int(surfaces));
     m.sweep.set("uOcclusion", occlusion ? 1 : 0);
@@ -127,24 +137,24 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
         for (float p : partial) carried += double(p);
         if (carried < kOrdinatesConverged * sources.watts) break;
     }
-    m.resolve.use();
-    m.resolve.set("uN", n);
-    glBindImageTexture(0, cube, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    const GLuint g4 = GLuint((n + 3) / 4);
-    glDispatchCompute(g4, g4, g4);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    if (slots > 0) {
+        m.resolve.use();
+        m.resolve.set("uSlots", int(slots));
+        m.resolve.set("uFirstSlot", int(firstSlot));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, pool);
+        glDispatchCompute(GLuint(kOrdinateFaces), GLuint(slots), 1);
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     return sweeps;
 }
 
-std::array<std::vector<glm::vec4>, kOrdinateFaces> readCube(GLuint cube, int resolution) {
-    const std::size_t cells = std::size_t(resolution) * std::size_t(resolution) * std::size_t(resolution);
-    std::vector<glm::vec4> all(cells * kOrdinateFaces);
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    glGetTextureImage(cube, 0, GL_RGBA, GL_FLOAT, GLsizei(all.size() * sizeof(glm::vec4)), all.data());
-    std::array<std::vector<glm::vec4>, kOrdinateFaces> out;
-    for (int f = 0; f < kOrdinateFaces; ++f)
-        out[std::size_t(f)].assign(all.begin() + std::ptrdiff_t(std::size_t(f) * cells),
-                                   all.begin() + std::ptrdiff_t(std::size_t(f + 1) * cells));
+IrradianceBricks readBricks(GLuint pool, std::size_t firstSlot, std::size_t slots) {
+    constexpr std::size_t perSlot = kOrdinateFaces * std::size_t(shading::kBrickCells);
+    IrradianceBricks out(slots * perSlot);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (!out.empty())
+        glGetNamedBufferSubData(pool, GLintptr(firstSlot * perSlot * sizeof(glm::vec4)),
+                                GLsizeiptr(out.size() * sizeof(glm::vec4)), out.data());
     return out;
 }
 

@@ -38,8 +38,8 @@ DebugDrawing cascadeBounds(const std::vector<CascadePlacement>& cascades) {
 
 namespace {
 
-// A sphere at every stride-th cell of the grid that holds light; cellSh(i, r, g, b) fills cell
-// i's SH per colour. The SH scale maps the brightest cell's mean to 1, times 2^exposureStops.
+// A sphere at every stride-th cell of the grid that holds light; cellSh(local, r, g, b) fills the
+// cell's SH per colour. The SH scale maps the brightest cell's mean to 1, times 2^exposureStops.
 template <class CellSh>
 DebugDrawing cellSpheres(const CascadeGrid& g, int stride, float exposureStops, CellSh cellSh) {
     DebugDrawing d;
@@ -52,7 +52,7 @@ DebugDrawing cellSpheres(const CascadeGrid& g, int stride, float exposureStops, 
                 const glm::ivec3 local(x, y, z), cell = g.origin + local;
                 if (!onStride(cell.x) || !onStride(cell.y) || !onStride(cell.z)) continue;
                 glm::vec4 r(0.0f), gr(0.0f), b(0.0f);
-                if (!cellSh(g.index(local), r, gr, b) || (r.x == 0.0f && gr.x == 0.0f && b.x == 0.0f)) continue;
+                if (!cellSh(local, r, gr, b) || (r.x == 0.0f && gr.x == 0.0f && b.x == 0.0f)) continue;
                 d.spheres.push_back({glm::vec4(g.cellCenter(local), 0.3f * g.cellSize * float(stride)), r, gr, b});
                 brightest = std::max({brightest, r.x, gr.x, b.x});
             }
@@ -64,22 +64,23 @@ DebugDrawing cellSpheres(const CascadeGrid& g, int stride, float exposureStops, 
 }  // namespace
 
 DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposureStops) {
-    return cellSpheres(light.grid, stride, exposureStops, [&](std::size_t i, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
+    return cellSpheres(light.grid, stride, exposureStops, [&](glm::ivec3 local, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
+        const std::size_t i = light.grid.index(local);
         if (i >= light.r.size()) return false;
         r = light.r[i], g = light.g[i], b = light.b[i];
         return true;
     });
 }
 
-DebugDrawing lpvCellSpheres(const CascadeGrid& grid, const std::array<std::vector<glm::vec4>, 6>& cube, int stride,
+DebugDrawing lpvCellSpheres(const OrdinatesTransport& transport, const IrradianceBricks& cube, int stride,
                             float exposureStops) {
-    return cellSpheres(grid, stride, exposureStops, [&](std::size_t i, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
-        for (const auto& face : cube)
-            if (i >= face.size()) return false;
+    return cellSpheres(transport.grid(), stride, exposureStops, [&](glm::ivec3 local, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
+        if (transport.bricks().slotOf(local) < 0) return false;
+        glm::vec3 e[kOrdinateFaces];
+        for (int f = 0; f < kOrdinateFaces; ++f) e[f] = glm::vec3(transport.irradianceAt(cube, local, f));
         // E(n) ~ mean + n . half, in the basis (Y00, -Y1 n.y, Y1 n.z, -Y1 n.x) of gi/sh/sh.h.
-        const glm::vec3 mean = glm::vec3(cube[0][i] + cube[1][i] + cube[2][i] + cube[3][i] + cube[4][i] + cube[5][i]) / 6.0f;
-        const glm::vec3 hx = glm::vec3(cube[0][i] - cube[1][i]) * 0.5f, hy = glm::vec3(cube[2][i] - cube[3][i]) * 0.5f,
-                        hz = glm::vec3(cube[4][i] - cube[5][i]) * 0.5f;
+        const glm::vec3 mean = (e[0] + e[1] + e[2] + e[3] + e[4] + e[5]) / 6.0f;
+        const glm::vec3 hx = (e[0] - e[1]) * 0.5f, hy = (e[2] - e[3]) * 0.5f, hz = (e[4] - e[5]) * 0.5f;
         glm::vec4* out[3] = {&r, &g, &b};
         for (int k = 0; k < 3; ++k)
             *out[k] = glm::vec4(mean[k] / sh::kY00, -hy[k] / sh::kY1, hz[k] / sh::kY1, -hx[k] / sh::kY1);

@@ -8,6 +8,7 @@
 
 #include "gi/debug_view.h"
 #include "gi/lpv/cascades.h"
+#include "gi/lpv/ordinates.h"
 
 namespace voxgi {
 
@@ -29,8 +30,8 @@ DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposure
 // The same for `lpv.transport=ordinates`: the cell's six axis irradiances (px, nx, py, ny, pz,
 // nz; rgb, W/m^2) as the 2-band SH of their mean plus the half-differences of opposite faces,
 // so each sphere point shows what a surface facing that way receives; the brightest cell's mean
-// maps to 1.
-DebugDrawing lpvCellSpheres(const CascadeGrid& grid, const std::array<std::vector<glm::vec4>, 6>& cube, int stride,
+// maps to 1; cells of bricks not stored show nothing.
+DebugDrawing lpvCellSpheres(const OrdinatesTransport& transport, const IrradianceBricks& cube, int stride,
                             float exposureStops);
 
 }  // namespace voxgi

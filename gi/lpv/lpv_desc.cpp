@@ -48,7 +48,9 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
                  "camera: the coarsest cascade reaches the scene's farthest corner from the camera, all centred ahead of "
                  "it; scene: the coarsest is the scene's bounds (no fade), finer ones follow the camera inside them");
     t.choice("backend", &D::backend, backendChoices(), "cpu (TBB reference) or gl (compute shaders)").main();
-    t.flag("sparse", &D::sparse, "sh, cpu: propagate only the bricks holding light");
+    t.flag("sparse", &D::sparse,
+           "sh, cpu: propagate only the bricks holding light; ordinates: store the 8^3 bricks within a receiver's reach "
+           "of the voxelized surfaces (false: every brick)");
     t.choice("transport", &D::transport, {{"sh", LpvTransport::Sh}, {"ordinates", LpvTransport::Ordinates}},
              "sh: seed 000's SH propagation; ordinates: direction bins swept across each cascade, every bounce");
     t.integer("ordinates_per_face", &D::ordinatesPerFace, 2, 8,

@@ -42,7 +42,7 @@ struct LpvDesc {
     float fadeCells = 2.0f;     // clpv: width of the border fade, in cells
     CascadeBounds cascadeBounds = CascadeBounds::Scene;  // clpv: see CascadeBounds
     Backend backend = Backend::Cpu;
-    bool sparse = true;         // cpu: propagate only bricks holding light (dilated per step)
+    bool sparse = true;         // sh, cpu: propagate only bricks holding light; ordinates: bricks near surfaces only
     bool reuse = true;          // skip the update while lights, geometry and placement are unchanged
     bool staticBlockers = true; // blockers from the voxelized scene, made once per cascade placement
     // Blockers from each update's RSM and G-buffer surfels, merged with the static ones (seed

@@ -1,7 +1,10 @@
 #include "gi/lpv/lpv_dump.h"
 
+#include <memory>
+
 #include <openvdb/openvdb.h>
 
+#include "shaders/shared/light_bricks.h"
 #include "volumes/openvdb_file.h"
 #include "volumes/openvdb_setup.h"
 
@@ -87,28 +90,41 @@ void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
     writeVdbFile(path, grids);
 }
 
-void writeOrdinatesVdb(const std::string& path, const std::vector<CascadeGrid>& cascades,
-                       const std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>>& irradiance) {
+void writeOrdinatesVdb(const std::string& path, const std::vector<OrdinatesDump>& cascades) {
     initializeOpenVdb();
+    using Leaf = openvdb::Vec3SGrid::TreeType::LeafNodeType;
+    static_assert(Leaf::DIM == shading::kBrickSide, "a brick is an OpenVDB leaf node");
     openvdb::GridPtrVec grids;
     const char* faces[kOrdinateFaces] = {"px", "nx", "py", "ny", "pz", "nz"};
-    for (std::size_t c = 0; c < cascades.size() && c < irradiance.size(); ++c) {
-        const CascadeGrid& g = cascades[c];
+    for (std::size_t c = 0; c < cascades.size(); ++c) {
+        const OrdinatesTransport& t = *cascades[c].transport;
+        const CascadeGrid& g = t.grid();
+        const BrickMap& bricks = t.bricks();
+        const IrradianceBricks& e = cascades[c].irradiance;
         for (int f = 0; f < kOrdinateFaces; ++f) {
             auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-            grid->setTransform(transformFor(g.cellSize, true));
+            // Index space from the cascade's first cell, so bricks are leaves (light_bricks.h).
+            auto xform = transformFor(g.cellSize, true);
+            xform->postTranslate(openvdb::Vec3d(g.origin.x, g.origin.y, g.origin.z) * double(g.cellSize));
+            grid->setTransform(xform);
             tag(*grid, "irradiance_" + std::string(faces[f]) + "_L" + std::to_string(c), int(c), g.cellSize);
             grid->insertMeta("units", openvdb::StringMetadata("W/m^2"));
-            auto acc = grid->getAccessor();
-            const std::vector<glm::vec4>& e = irradiance[c][std::size_t(f)];
-            for (int z = 0; z < g.resolution; ++z)
-                for (int y = 0; y < g.resolution; ++y)
-                    for (int x = 0; x < g.resolution; ++x) {
-                        const glm::vec4 v = e[g.index({x, y, z})];
-                        if (v.x != 0.0f || v.y != 0.0f || v.z != 0.0f)
-                            acc.setValue(openvdb::Coord(g.origin.x + x, g.origin.y + y, g.origin.z + z),
-                                         openvdb::Vec3s(v.x, v.y, v.z));
-                    }
+            for (std::size_t slot = 0; slot < bricks.slots() && (slot + 1) * kOrdinateFaces * std::size_t(shading::kBrickCells) <= e.size(); ++slot) {
+                const glm::ivec3 o = bricks.slotOrigins()[slot];
+                const glm::vec4* values = e.data() + std::size_t(f) * bricks.faceStride() + slot * std::size_t(shading::kBrickCells);
+                auto leaf = std::make_unique<Leaf>(openvdb::Coord(o.x, o.y, o.z), openvdb::Vec3s(0.0f), false);
+                bool any = false;
+                for (int i = 0; i < shading::kBrickCells; ++i) {
+                    const glm::vec4 v = values[i];
+                    // A brick's cells past the grid's edge hold nothing (no sweep reaches them).
+                    if (v.x == 0.0f && v.y == 0.0f && v.z == 0.0f) continue;
+                    // The brick runs x fastest, the leaf z fastest (light_bricks.h).
+                    const openvdb::Coord at(i & 7, (i >> 3) & 7, i >> 6);
+                    leaf->setValueOn(Leaf::coordToOffset(at), openvdb::Vec3s(v.x, v.y, v.z));
+                    any = true;
+                }
+                if (any) grid->tree().addLeaf(leaf.release());
+            }
             grids.push_back(grid);
         }
     }

@@ -18,8 +18,12 @@ void writeLpvVdb(const std::string& path, const std::vector<LightVolume>& light,
 
 // lpv.transport=ordinates: per cascade L, the Vec3 grids `irradiance_<face>_L<L>` (face px, nx, py,
 // ny, pz, nz: a receiver facing +x, -x, ...; W/m^2, cell-centred), the irradiance cube the apply
-// pass reads (ring and inner light summed).
-void writeOrdinatesVdb(const std::string& path, const std::vector<CascadeGrid>& grids,
-                       const std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>>& irradiance);
+// pass reads (ring and inner light summed). Each stored brick becomes one leaf node, its values
+// copied in the leaf's order (shaders/shared/light_bricks.h); cells without light are inactive.
+struct OrdinatesDump {
+    const OrdinatesTransport* transport = nullptr;  // its grid and bricks
+    IrradianceBricks irradiance;
+};
+void writeOrdinatesVdb(const std::string& path, const std::vector<OrdinatesDump>& cascades);
 
 }  // namespace voxgi

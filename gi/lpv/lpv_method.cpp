@@ -1,6 +1,7 @@
 // The `lpv` and `clpv` methods as the tools see them: settings, plan, presets, views, stiff
 // cases and benchmark variants.
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "gi/lpv/lpv_debug_views.h"
@@ -151,21 +152,24 @@ MethodInfo lpvFamily(bool cascaded) {
         const double cells = double(d.resolution) * double(d.resolution) * double(d.resolution);
         const double rsm = std::max(256.0 * 1024.0 * 1024.0, 68.0 * texels) + 132.0 * texels;
         if (d.transport == LpvTransport::Ordinates) {
-            // Per cell of each cascade: the ring and inner irradiance cubes on the CPU and as
-            // textures (4 x 96 bytes), one cube per group of bins while solving (4 x 96), the
+            // Per cell of each cascade's stored bricks: the ring and inner irradiance cubes in the
+            // GL brick pool (2 x 96 bytes), one cube per group of bins while solving (4 x 96), the
             // returned cube (96) and the surface index (4). Per surface cell: the ring and inner
             // sources and the sweeps' copy (3 x 12 bytes per bin) and its area, normal, albedo and
             // reflections (5 x 72 + 40); surface cells were 18 % of the cells on the Cornell box
-            // and Sponza at 32^3, a quarter is assumed.
+            // and Sponza at 32^3, a quarter is assumed. Before the scene is voxelized the bricks
+            // are not known: every brick is assumed stored (lpv.sparse=false's worst case; Sponza
+            // stores 50-100 %, docs/lpv.md "Sparse light volumes").
             const double bins = 6.0 * double(d.ordinatesPerFace) * double(d.ordinatesPerFace);
-            double perCascade = cells * (868.0 + 0.25 * (36.0 * bins + 400.0));
+            const double bricked = std::pow(std::ceil(double(d.resolution) / 8.0) * 8.0, 3.0);
+            double perCascade = bricked * 676.0 + cells * 0.25 * (36.0 * bins + 400.0);
             if (d.backend == Backend::Gl) {
                 // The GPU's buffers (gi/lpv/gl_ordinates.cpp), allocated at twice the request:
-                // irradiance by axis group (288 bytes a cell), reflections (288 a surface cell),
+                // irradiance by axis group (288 bytes a stored cell), reflections (288 a surface cell),
                 // sources and plane shares (16 a bin and surface cell), two padded slabs of every
                 // bin's four taps (64 bytes a lateral cell and bin).
                 const double side = double(d.resolution + 2);
-                perCascade += 2.0 * (cells * 288.0 + 0.25 * cells * (288.0 + 16.0 * bins) + 2.0 * bins * side * side * 64.0);
+                perCascade += 2.0 * (bricked * 288.0 + 0.25 * cells * (288.0 + 16.0 * bins) + 2.0 * bins * side * side * 64.0);
             }
             return double(d.cascades) * perCascade + rsm;
         }

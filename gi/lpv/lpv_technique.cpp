@@ -480,13 +480,10 @@ public:
     void dumpVdb(const std::string& path) const override {
         if (!valid) throw NotImplementedError("lpv: nothing to dump before the first frame");
         if (ordinatesLight) {
-            std::vector<CascadeGrid> grids;
-            std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>> cubes;
-            for (std::size_t c = 0; c < placements.size(); ++c) {
-                grids.push_back(placements[c].grid);
-                cubes.push_back(ordinatesLight->irradiance(c));
-            }
-            writeOrdinatesVdb(path, grids, cubes);
+            std::vector<OrdinatesDump> cascades;
+            for (std::size_t c = 0; c < placements.size(); ++c)
+                cascades.push_back({&ordinatesLight->transport(c), ordinatesLight->irradiance(c)});
+            writeOrdinatesVdb(path, cascades);
             return;
         }
         writeLpvVdb(path, lightVolumes(), geometryVolumes());
@@ -501,7 +498,7 @@ public:
             const LpvCellsOptions o = lpvCellsOptions().read(context.options);
             if (o.cascade >= int(placements.size())) return {};
             if (ordinatesLight)
-                return lpvCellSpheres(placements[std::size_t(o.cascade)].grid,
+                return lpvCellSpheres(ordinatesLight->transport(std::size_t(o.cascade)),
                                       ordinatesLight->irradiance(std::size_t(o.cascade)), o.stride, context.exposureStops);
             return lpvCellSpheres(lightVolume(std::size_t(o.cascade)), o.stride, context.exposureStops);
         }
@@ -517,6 +514,9 @@ public:
                     {"surface_cells", double(o.surfaceCells), "cells"},
                     {"emitted", o.emittedWatts, "W"},
                     {"emitted_outside", o.outsideWatts, "W"},
+                    {"light_bricks", double(o.bricks), "bricks"},
+                    {"grid_bricks", double(o.gridBricks), "bricks"},
+                    {"light_pool", double(o.poolBytes) / (1024.0 * 1024.0), "MiB"},
                     {"reflections_left", o.leftWatts, "W"}};
         }
         if (desc.backend != Backend::Cpu) return {};

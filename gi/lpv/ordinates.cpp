@@ -87,8 +87,35 @@ namespace {
 std::atomic<std::uint64_t> nextRevision{1};
 }  // namespace
 
-OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace)
-    : grid_(grid), bins_(makeOrdinateBins(perFace)), surfaceOf_(grid.cellCount(), -1), revision_(nextRevision++) {}
+int ordinatesReach(float applyNormalOffsetCells) {
+    return std::max(kSweepMargin, int(std::ceil(std::max(applyNormalOffsetCells, 0.0f))) + 1);
+}
+
+OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace, int reach)
+    : grid_(grid), bins_(makeOrdinateBins(perFace)), reach_(reach), bricks_(grid.resolution), revision_(nextRevision++) {}
+
+void OrdinatesTransport::allocateBricks(glm::ivec3 cell, int reach) {
+    const std::size_t before = bricks_.slots();
+    bricks_.allocateAround(cell, reach);
+    if (bricks_.slots() == before) return;
+    surfaceOf_.resize(bricks_.slots() * std::size_t(shading::kBrickCells), -1);
+    revision_ = nextRevision++;
+}
+
+void OrdinatesTransport::allocateAllBricks() {
+    const std::size_t before = bricks_.slots();
+    bricks_.allocateAll();
+    if (bricks_.slots() == before) return;
+    surfaceOf_.resize(bricks_.slots() * std::size_t(shading::kBrickCells), -1);
+    revision_ = nextRevision++;
+}
+
+glm::vec4 OrdinatesTransport::irradianceAt(const IrradianceBricks& e, glm::ivec3 cell, int face) const {
+    const int slot = bricks_.slotOf(cell);
+    if (slot < 0) return glm::vec4(0.0f);
+    const std::size_t i = std::size_t(face) * bricks_.faceStride() + BrickMap::brickCell(slot, cell);
+    return i < e.size() ? e[i] : glm::vec4(0.0f);
+}
 
 glm::vec3 OrdinatesTransport::planeNormal(std::size_t s) const {
     const glm::vec3 m = vectorCoverage_[s];
@@ -97,12 +124,16 @@ glm::vec3 OrdinatesTransport::planeNormal(std::size_t s) const {
 }
 
 int OrdinatesTransport::surfaceIndex(glm::ivec3 cell) const {
-    return grid_.contains(cell) ? surfaceOf_[grid_.index(cell)] : -1;
+    const int slot = bricks_.slotOf(cell);
+    return slot < 0 ? -1 : surfaceOf_[BrickMap::brickCell(slot, cell)];
 }
 
 int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
-    int& s = surfaceOf_[grid_.index(cell)];
-    if (s < 0) {
+    if (const int known = surfaceIndex(cell); known >= 0) return known;
+    // A surface cell stores light `reach_` cells around it: its receivers read there.
+    allocateBricks(cell, reach_);
+    int& s = surfaceOf_[BrickMap::brickCell(bricks_.slotOf(cell), cell)];
+    {
         s = int(cells_.size());
         revision_ = nextRevision++;
         cells_.push_back(cell);
@@ -124,6 +155,20 @@ void OrdinatesTransport::addSurface(const OrdinateSurface& surface) {
     coverage_[std::size_t(s)] = total;
     vectorCoverage_[std::size_t(s)] += surface.vectorCoverage;
     revision_ = nextRevision++;
+}
+
+void OrdinatesTransport::addSurfaces(const std::vector<OrdinateSurface>& surfaces) {
+    std::vector<glm::ivec3> cells;
+    cells.reserve(surfaces.size());
+    for (const OrdinateSurface& s : surfaces)
+        if (grid_.contains(s.cell) && s.coverage > 0.0f) cells.push_back(s.cell);
+    const std::size_t before = bricks_.slots();
+    bricks_.allocateAround(cells, reach_);
+    if (bricks_.slots() != before) {
+        surfaceOf_.resize(bricks_.slots() * std::size_t(shading::kBrickCells), -1);
+        revision_ = nextRevision++;
+    }
+    for (const OrdinateSurface& s : surfaces) addSurface(s);
 }
 
 OrdinatesTransport::Sources OrdinatesTransport::emptySources() const {
@@ -164,12 +209,10 @@ void OrdinatesTransport::addSurfels(const SurfelSource& source, float normalOffs
 // along its axis, each slab's incoming power from the previous slab's outgoing power through the
 // four landing taps.
 void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, bool occlusion, const IndexBox& box,
-                               std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance,
-                               std::vector<glm::vec3>& reflected) const {
+                               IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const {
     const OrdinateBin& b = bins_[k];
     const int n = grid_.resolution;
     const int axis = b.axis, u = (axis + 1) % 3, v = (axis + 2) % 3;
-    const std::size_t stride[3] = {1, std::size_t(n), std::size_t(n) * std::size_t(n)};
     const int su = b.lateralStep.x, sv = b.lateralStep.y;
     // Receivers: the power entering a cell through its faces of axis a, over h^2, is the
     // irradiance on a surface facing against the move (moving along +e_a, light arrives on faces
@@ -177,8 +220,10 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
     // cell whose surfaces stop the light it counts only what crosses into it, as a surface there
     // receives it.
     const float perArea = 1.0f / (grid_.cellSize * grid_.cellSize);
-    const std::size_t slabFace = std::size_t(2 * axis + (b.sign > 0 ? 1 : 0)),
-                      uFace = std::size_t(2 * u + (su > 0 ? 1 : 0)), vFace = std::size_t(2 * v + (sv > 0 ? 1 : 0));
+    const std::size_t faceStride = bricks_.faceStride();
+    const std::size_t slabFace = std::size_t(2 * axis + (b.sign > 0 ? 1 : 0)) * faceStride,
+                      uFace = std::size_t(2 * u + (su > 0 ? 1 : 0)) * faceStride,
+                      vFace = std::size_t(2 * v + (sv > 0 ? 1 : 0)) * faceStride;
     // Per lateral cell of the previous slab, the power leaving along each tap.
     // A border of zeros around each slab: taps that reach past the edge read nothing.
     using Parts = std::array<glm::vec3, 4>;
@@ -201,7 +246,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
     // With `cell`, the stopped light is also irradiance on those faces there: light that moved
     // inside the cell (along a floor's layer, or from another surface of the cell) before meeting
     // a surface, which no crossing into the cell counted.
-    auto reflect = [&](int s, int j, glm::vec3 hit, const glm::vec3& parts, std::size_t cell = SIZE_MAX) {
+    auto reflect = [&](int s, int j, glm::vec3 hit, const glm::vec3& parts, std::size_t cell = SIZE_MAX) {  // cell: brickCell
         const float total = parts.x + parts.y + parts.z;
         const glm::vec3 r = albedo_[std::size_t(s)] * hit;
         for (int c = 0; c < 3; ++c) {
@@ -211,36 +256,53 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
             // Moving along +a, light meets the face facing -a (face 2a + 1).
             const std::size_t face = std::size_t(2 * ax + (move[j][ax] > 0.0f ? 1 : 0));
             reflected[kOrdinateFaces * std::size_t(s) + face] += r * share;
-            if (cell != SIZE_MAX) irradiance[face][cell] += glm::vec4(hit * (share * perArea), 0.0f);
+            if (cell != SIZE_MAX) irradiance[cell + face * faceStride] += glm::vec4(hit * (share * perArea), 0.0f);
         }
     };
+    // The inner loop runs along x where it is lateral (contiguous in a brick, and a row of bricks
+    // is a run of slots: BrickMap::allocateAround), else along y.
+    const int innerAxis = u == 0 || v == 0 ? 0 : 1;
+    const bool uInner = innerAxis == u;
+    const int outerAxis = uInner ? v : u;
     const int first = box.min[axis], last = box.max[axis];
     for (int t = 0; t <= last - first; ++t) {
         const int a = b.sign > 0 ? first + t : last - t;
-        const std::size_t base = std::size_t(a) * stride[axis];
         // Slab offsets of the taps' upstream cells.
-        const std::ptrdiff_t du = su, dv = std::ptrdiff_t(sv) * std::ptrdiff_t(row);
+        // The slab buffers run along the inner axis, like the bricks.
+        const std::ptrdiff_t du = uInner ? su : std::ptrdiff_t(su) * std::ptrdiff_t(row),
+                             dv = uInner ? std::ptrdiff_t(sv) * std::ptrdiff_t(row) : sv;
         const std::ptrdiff_t from[4] = {0, -du, -dv, -du - dv};
-        // The inner loop runs along whichever lateral axis is contiguous in the volumes.
-        const bool uInner = stride[u] < stride[v];
-        const int innerAxis = uInner ? u : v, outerAxis = uInner ? v : u;
-        for (int outer = box.min[outerAxis]; outer <= box.max[outerAxis]; ++outer)
+
+        // A cell's offset in its brick and its brick's table index, axis by axis (light_bricks.h:
+        // bits 0, 3 and 6 of the offset for x, y and z; the table's x fastest too).
+        const int side = bricks_.tableSide();
+        const int shift[3] = {0, 3, 6}, tableStride[3] = {1, side, side * side};
+        const int slabOffset = (a & 7) << shift[axis], slabTable = (a >> 3) * tableStride[axis];
+        for (int outer = box.min[outerAxis]; outer <= box.max[outerAxis]; ++outer) {
+            const int rowOffset = slabOffset | ((outer & 7) << shift[outerAxis]),
+                      rowTable = slabTable + (outer >> 3) * tableStride[outerAxis];
+            int slot = -1;  // the brick of the row's cells, looked up where a brick starts
             for (int inner = box.min[innerAxis]; inner <= box.max[innerAxis]; ++inner) {
-                const int x = uInner ? inner : outer, y = uInner ? outer : inner;
-                const std::size_t here = (std::size_t(y) + 1) * row + std::size_t(x) + 1;
+                const std::size_t here = (std::size_t(outer) + 1) * row + std::size_t(inner) + 1;
                 glm::vec3 part[4];
                 for (int j = 0; j < 4; ++j) part[j] = prev[std::size_t(std::ptrdiff_t(here) + from[j])][std::size_t(j)];
                 const glm::vec3 in = part[0] + part[1] + part[2] + part[3];
-                const std::size_t cell = base + std::size_t(x) * stride[u] + std::size_t(y) * stride[v];
+                // Outside the bricks no receiver reads and no surface is: the light only moves on.
+                if (inner == box.min[innerAxis] || (inner & 7) == 0)
+                    slot = bricks_.table()[std::size_t(rowTable + (inner >> 3) * tableStride[innerAxis])];
+                const std::size_t brickCell =
+                    slot < 0 ? 0 : std::size_t(slot) * std::size_t(shading::kBrickCells) +
+                                       std::size_t(rowOffset | ((inner & 7) << shift[innerAxis]));
+                const std::size_t cell = slot < 0 ? SIZE_MAX : brickCell;
                 glm::vec3 out = in;
                 const bool lit = in != glm::vec3(0.0f);
-                if (lit) {
-                    irradiance[slabFace][cell] += glm::vec4(in * perArea, 0.0f);
-                    irradiance[uFace][cell] += glm::vec4((part[1] + part[3]) * perArea, 0.0f);
-                    irradiance[vFace][cell] += glm::vec4((part[2] + part[3]) * perArea, 0.0f);
+                if (lit && slot >= 0) {
+                    irradiance[cell + slabFace] += glm::vec4(in * perArea, 0.0f);
+                    irradiance[cell + uFace] += glm::vec4((part[1] + part[3]) * perArea, 0.0f);
+                    irradiance[cell + vFace] += glm::vec4((part[2] + part[3]) * perArea, 0.0f);
                 }
                 Parts& leaving = cur[here];
-                const int s = surfaceOf_[cell];
+                const int s = slot < 0 ? -1 : surfaceOf_[brickCell];
                 if (s < 0) {
                     for (int j = 0; j < 4; ++j) leaving[std::size_t(j)] = b.taps[std::size_t(j)] * out;
                     continue;
@@ -278,6 +340,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                     leaving[std::size_t(j)] = go;
                 }
             }
+        }
         std::swap(prev, cur);
     }
 }
@@ -288,8 +351,8 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
 IndexBox OrdinatesTransport::sweepBox() const {
     IndexBox box = surfaceBounds_;
     if (box.empty()) return box;
-    box.min = glm::max(box.min - kSweepMargin, glm::ivec3(0));
-    box.max = glm::min(box.max + kSweepMargin, glm::ivec3(grid_.resolution - 1));
+    box.min = glm::max(box.min - reach_, glm::ivec3(0));
+    box.max = glm::min(box.max + reach_, glm::ivec3(grid_.resolution - 1));
     return box;
 }
 
@@ -324,14 +387,13 @@ std::vector<float> OrdinatesTransport::binMajor(const Sources& sources) const {
     return out;
 }
 
-std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(const Sources& sources, bool occlusion,
-                                                                             int maxBounces, std::vector<glm::vec3>* carry) {
+IrradianceBricks OrdinatesTransport::solve(const Sources& sources, bool occlusion, int maxBounces,
+                                           std::vector<glm::vec3>* carry) {
     stats_ = {};
     stats_.emittedWatts = sources.watts;
-    const std::size_t cells = grid_.cellCount(), surfaces = coverage_.size(), nb = bins_.size();
-    using Cube = std::array<std::vector<glm::vec4>, kOrdinateFaces>;
-    Cube irradiance;
-    for (auto& f : irradiance) f.assign(cells, glm::vec4(0.0f));
+    const std::size_t values = bricks_.slots() * kOrdinateFaces * std::size_t(shading::kBrickCells),
+                      surfaces = coverage_.size(), nb = bins_.size();
+    IrradianceBricks irradiance(values, glm::vec4(0.0f));
     const std::array<std::vector<float>, kOrdinateFaces> faceShares = faceReflectionShares();
     const std::vector<float> planeShares = planeReflectionShares();
     auto reflectionSources = [&](const std::vector<glm::vec3>& reflected, std::vector<float>& out) {
@@ -370,7 +432,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
     // Bins in a fixed number of groups, each summing into its own buffers, added in group order:
     // the same image whichever thread sweeps which bin.
     struct Local {
-        Cube irradiance;
+        IrradianceBricks irradiance;
         std::vector<glm::vec3> reflected;
     };
     const std::size_t groups = std::min<std::size_t>(nb, kBinGroups);
@@ -381,7 +443,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
         tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
             Local& l = locals[g];
             if (l.reflected.empty()) {
-                for (auto& f : l.irradiance) f.assign(cells, glm::vec4(0.0f));
+                l.irradiance.assign(values, glm::vec4(0.0f));
                 l.reflected.assign(kOrdinateFaces * surfaces, glm::vec3(0.0f));
             } else {
                 std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
@@ -403,8 +465,7 @@ std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesTransport::solve(con
     if (carry) *carry = reflected;
     for (const Local& l : locals) {
         if (l.reflected.empty()) continue;
-        for (int f = 0; f < kOrdinateFaces; ++f)
-            for (std::size_t c = 0; c < cells; ++c) irradiance[std::size_t(f)][c] += l.irradiance[std::size_t(f)][c];
+        for (std::size_t i = 0; i < values; ++i) irradiance[i] += l.irradiance[i];
     }
     return irradiance;
 }

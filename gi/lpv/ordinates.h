@@ -49,6 +49,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gi/lpv/brick_map.h"
 #include "gi/lpv/light_volume.h"
 #include "gi/lpv/surfels.h"
 #include "volumes/geometry_volume.h"
@@ -89,9 +90,20 @@ constexpr int kOrdinateFaces = 6;
 // a = 0.9). The cpu and gl back ends both stop here.
 constexpr double kOrdinatesConverged = 1e-3;
 
-// Cells swept beyond the surface cells' bounds: the apply pass reads a receiver's light half a
-// cell along its normal, trilinearly (one cell further); the glossy march reads past it.
+// Cells a receiver reads around the surface cells at the default lookup offset: the apply pass
+// reads a receiver's light half a cell along its normal, trilinearly (one cell further). The
+// sweeps cover the surface cells' bounds this much wider and the bricks are allocated this far
+// around every surface cell (ordinatesReach: more for a larger apply_normal_offset).
 constexpr int kSweepMargin = 2;
+
+// The cells stored around each surface cell for a lookup `applyNormalOffsetCells` along the
+// normal: the offset rounded up, plus one for the trilinear taps, at least kSweepMargin.
+int ordinatesReach(float applyNormalOffsetCells);
+
+// The irradiance cube of one volume, in its transport's bricks (gi/lpv/brick_map.h): face f of
+// a cell at f x faceStride + brickCell (W/m^2, rgb, a = 0). Cells of bricks not
+// allocated hold none: no receiver reads there.
+using IrradianceBricks = std::vector<glm::vec4>;
 
 struct OrdinatesStats {
     int sweeps = 0;                 // bounces solved (one sweep of every bin each)
@@ -104,13 +116,22 @@ struct OrdinatesStats {
 // stays); sources are power per cell and bin, set per update.
 class OrdinatesTransport {
 public:
-    OrdinatesTransport(const CascadeGrid& grid, int perFace);
+    // `reach`: the cells stored around each surface cell (ordinatesReach).
+    OrdinatesTransport(const CascadeGrid& grid, int perFace, int reach = kSweepMargin);
 
     const CascadeGrid& grid() const { return grid_; }
     const std::vector<OrdinateBin>& bins() const { return bins_; }
+    // The bricks that store light: every surface cell's, `reach` cells around it.
+    const BrickMap& bricks() const { return bricks_; }
+    // Stores every brick (lpv.sparse=false, or no voxelized scene to say where receivers are).
+    void allocateAllBricks();
+    // A cell's face of a solve's result (zero where no brick is allocated).
+    glm::vec4 irradianceAt(const IrradianceBricks& e, glm::ivec3 cell, int face) const;
 
     // Adds a cell's surfaces (summed with any already there; albedo weighted by coverage).
     void addSurface(const OrdinateSurface& surface);
+    // Adds many (the voxelized scene's), their bricks first, in the table's order.
+    void addSurfaces(const std::vector<OrdinateSurface>& surfaces);
     std::size_t surfaceCells() const { return coverage_.size(); }
 
     // Sources: power (W, rgb) per surface cell and bin, indexed by surfaceIndex.
@@ -136,31 +157,30 @@ public:
 
     // Transports the sources and up to maxBounces - 1 reflections (stopping once a sweep would
     // carry less than 1e-3 of the sources' power); occlusion = false lets light pass every surface.
-    // Returns the irradiance cube: kOrdinateFaces arrays over the cells (rgb, a = 0), W/m^2.
+    // Returns the irradiance cube in the bricks.
     // `carry` (per surface and axis face, W): on entry, reflections an earlier solve left, carried
     // along with the sources (ignored when its size does not match); on return, the reflections of
     // the last sweep. Solving k sweeps per update with the carry converges to the full solution
     // over updates (a fixed point of sources + reflections), one bounce of lag per k sweeps.
-    std::array<std::vector<glm::vec4>, kOrdinateFaces> solve(const Sources& sources, bool occlusion, int maxBounces,
-                                                             std::vector<glm::vec3>* carry = nullptr);
+    IrradianceBricks solve(const Sources& sources, bool occlusion, int maxBounces, std::vector<glm::vec3>* carry = nullptr);
     const OrdinatesStats& stats() const { return stats_; }
 
     // Where a blocker-free volume's source power goes: the cell index of a surface (for tests).
     int surfaceIndex(glm::ivec3 cell) const;
 
-    // The layout the GL back end uploads (gi/lpv/gl_ordinates.h): per cell its surface index or
-    // -1; per surface its coverage, vector coverage and albedo; per surface the shares of its
+    // The layout the GL back end uploads (gi/lpv/gl_ordinates.h): per brick slot and cell its
+    // surface index or -1 ([slot][kBrickCells]); per surface its coverage, vector coverage and albedo; per surface the shares of its
     // one-plane reflection over the bins (empty where its normals differ), and per axis face the
     // shares of its hemisphere.
-    const std::vector<int>& surfaceOfCells() const { return surfaceOf_; }
+    const std::vector<int>& surfaceOfBrickCells() const { return surfaceOf_; }
     const std::vector<float>& coverage() const { return coverage_; }
     const std::vector<glm::vec3>& vectorCoverage() const { return vectorCoverage_; }
     const std::vector<glm::vec3>& albedo() const { return albedo_; }
     // Changes whenever the surfaces do (a surface added or a cell given one), unique across
     // transports: what the gl back end has uploaded is current while it stays the same.
     std::uint64_t geometryRevision() const { return revision_; }
-    // The cells a sweep visits (both back ends): the surface cells' bounds, kSweepMargin cells
-    // wider, within the grid; empty without surfaces.
+    // The cells a sweep visits (both back ends): the surface cells' bounds, `reach` cells wider,
+    // within the grid; empty without surfaces.
     IndexBox sweepBox() const;
     // Per surface, nb shares (the first negative when the surface reflects by axis faces).
     std::vector<float> planeReflectionShares() const;
@@ -174,11 +194,14 @@ private:
     // along its mean normal: that normal, else zero.
     glm::vec3 planeNormal(std::size_t s) const;
     void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion, const IndexBox& box,
-               std::array<std::vector<glm::vec4>, kOrdinateFaces>& irradiance, std::vector<glm::vec3>& reflected) const;
+               IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const;
+    void allocateBricks(glm::ivec3 cell, int reach);
 
     CascadeGrid grid_;
     std::vector<OrdinateBin> bins_;
-    std::vector<int> surfaceOf_;  // per cell: index into the surface arrays, -1 for none
+    int reach_ = kSweepMargin;
+    BrickMap bricks_;
+    std::vector<int> surfaceOf_;  // per brick slot and cell: index into the surface arrays, -1 for none
     std::vector<glm::ivec3> cells_;
     IndexBox surfaceBounds_{glm::ivec3(1 << 30), glm::ivec3(-1)};  // of cells_; empty while there are none
     std::vector<float> coverage_;

@@ -9,6 +9,7 @@
 #include "gi/lpv/gl_cascade_uniforms.h"
 #include "shaders/lpv/limits.h"
 #include "gi/sky/sky_volume.h"
+#include "shaders/shared/light_bricks.h"
 #include "volumes/voxel_surfaces.h"
 
 namespace voxgi {
@@ -23,10 +24,7 @@ bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, cons
     transports_.resize(count);
     ring_.resize(count);
     inner_.resize(count);
-    cubes_.resize(2 * count);
     carry_.resize(2 * count);
-    const int n = desc_.resolution;
-    while (textures_.size() < 2 * count) textures_.push_back(gl::createTexture(GL_TEXTURE_3D, GL_RGBA32F, n, n, kOrdinateFaces * n));
     std::vector<std::size_t> moved;
     for (std::size_t c = 0; c < count; ++c) {
         const CascadeGrid& g = placements[c].grid;
@@ -39,14 +37,18 @@ bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, cons
     tbb::parallel_for(std::size_t(0), moved.size(), [&](std::size_t i) {
         const std::size_t c = moved[i];
         const CascadeGrid& g = placements[c].grid;
-        auto t = std::make_unique<OrdinatesTransport>(g, desc_.ordinatesPerFace);
+        auto t = std::make_unique<OrdinatesTransport>(g, desc_.ordinatesPerFace, ordinatesReach(desc_.applyNormalOffset));
+        // Bricks where the voxelized surfaces are (the receivers); without them, or dense, all.
+        if (!desc_.sparse || !voxels || int(c) >= voxels->levelCount()) t->allocateAllBricks();
         if (voxels && int(c) < voxels->levelCount()) {
             IndexBox box;
             box.min = g.origin;
             box.max = g.origin + glm::ivec3(g.resolution - 1);
+            std::vector<OrdinateSurface> surfaces;
             forEachVoxelSurface(*voxels, int(c), box, [&](const VoxelSurfaceArea& s) {
-                t->addSurface({s.voxel - g.origin, s.coverage, s.vectorCoverage, s.albedo});
+                surfaces.push_back({s.voxel - g.origin, s.coverage, s.vectorCoverage, s.albedo});
             });
+            t->addSurfaces(surfaces);
         }
         transports_[c] = std::move(t);
         carry_[2 * c].clear();
@@ -110,32 +112,37 @@ void OrdinatesLight::solve() {
     // Fitted: every bounce now; a number of sweeps continues from the last update's reflections.
     const bool incremental = desc_.bounces && desc_.sweeps != kFittedInteger;
     const int maxBounces = !desc_.bounces ? 1 : incremental ? desc_.sweeps : 256;
-    const int n = desc_.resolution;
+    layOutPool();
+    constexpr std::size_t kSlotBytes = kOrdinateFaces * std::size_t(shading::kBrickCells) * sizeof(glm::vec4);
     for (std::size_t c = 0; c < transports_.size(); ++c) {
         for (int set = 0; set < 2; ++set) {
             const OrdinatesTransport::Sources& sources = set == 0 ? ring_[c] : inner_[c];
-            auto& cube = cubes_[2 * c + std::size_t(set)];
-            const GLuint id = textures_[2 * c + std::size_t(set)].id();
+            const std::size_t first = firstSlot_[2 * c + std::size_t(set)];
             if (gl_) {
-                // The sweeps write the texture; the CPU keeps no copy (irradiance() reads it back).
-                const int sweeps = gl_->solve(*transports_[c], sources, desc_.occlusion, maxBounces, id);
+                // The sweeps write the pool.
+                const int sweeps = gl_->solve(*transports_[c], sources, desc_.occlusion, maxBounces, pool_.id(), first);
                 stats_.sweeps = std::max(stats_.sweeps, sweeps);
                 continue;
             }
+            const std::size_t slots = transports_[c]->bricks().slots();
             if (set == 1 && sources.watts <= 0.0) {
-                for (auto& f : cube) f.assign(transports_[c]->grid().cellCount(), glm::vec4(0.0f));
-            } else {
-                std::vector<glm::vec3>* carry = incremental ? &carry_[2 * c + std::size_t(set)] : nullptr;
-                cube = transports_[c]->solve(sources, desc_.occlusion, maxBounces, carry);
-                const OrdinatesStats& st = transports_[c]->stats();
-                stats_.sweeps = std::max(stats_.sweeps, st.sweeps);
-                if (incremental) {
-                    stats_.leftWatts += st.leftWatts;
-                    if (st.leftWatts >= kOrdinatesConverged * st.emittedWatts) stats_.converged = false;
-                }
+                if (slots > 0)
+                    glClearNamedBufferSubData(pool_.id(), GL_R32F, GLintptr(first * kSlotBytes), GLsizeiptr(slots * kSlotBytes),
+                                              GL_RED, GL_FLOAT, nullptr);
+                continue;
             }
-            for (int f = 0; f < kOrdinateFaces; ++f)
-                glTextureSubImage3D(id, 0, 0, 0, f * n, n, n, n, GL_RGBA, GL_FLOAT, cube[std::size_t(f)].data());
+            std::vector<glm::vec3>* carry = incremental ? &carry_[2 * c + std::size_t(set)] : nullptr;
+            const IrradianceBricks cube = transports_[c]->solve(sources, desc_.occlusion, maxBounces, carry);
+            const OrdinatesStats& st = transports_[c]->stats();
+            stats_.sweeps = std::max(stats_.sweeps, st.sweeps);
+            if (incremental) {
+                stats_.leftWatts += st.leftWatts;
+                if (st.leftWatts >= kOrdinatesConverged * st.emittedWatts) stats_.converged = false;
+            }
+            // The CPU keeps no copy: irradiance() reads the pool back.
+            if (!cube.empty())
+                glNamedBufferSubData(pool_.id(), GLintptr(first * kSlotBytes), GLsizeiptr(cube.size() * sizeof(glm::vec4)),
+                                     cube.data());
         }
         stats_.emittedWatts += ring_[c].watts;
         stats_.surfaceCells += transports_[c]->surfaceCells();
@@ -144,15 +151,45 @@ void OrdinatesLight::solve() {
     stats_.solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::array<std::vector<glm::vec4>, kOrdinateFaces> OrdinatesLight::irradiance(std::size_t c) const {
-    std::array<std::vector<glm::vec4>, kOrdinateFaces> sum = cubes_.at(2 * c), inner = cubes_.at(2 * c + 1);
-    if (gl_) {
-        sum = readCube(textures_.at(2 * c).id(), desc_.resolution);
-        inner = readCube(textures_.at(2 * c + 1).id(), desc_.resolution);
+void OrdinatesLight::layOutPool() {
+    const std::size_t count = transports_.size();
+    firstSlot_.assign(2 * count, 0);
+    tableStart_.assign(count, 0);
+    std::size_t slots = 0, tables = 0;
+    bool changed = tableRevisions_.size() != count;
+    tableRevisions_.resize(count, 0);
+    stats_.bricks = stats_.gridBricks = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+        const BrickMap& b = transports_[c]->bricks();
+        firstSlot_[2 * c] = slots;
+        firstSlot_[2 * c + 1] = slots + b.slots();
+        slots += 2 * b.slots();
+        tableStart_[c] = int(tables);
+        tables += b.tableSize();
+        if (tableRevisions_[c] != transports_[c]->geometryRevision()) changed = true;
+        stats_.bricks += b.slots();
+        stats_.gridBricks += b.tableSize();
     }
-    for (int f = 0; f < kOrdinateFaces; ++f)
-        for (std::size_t i = 0; i < sum[std::size_t(f)].size() && i < inner[std::size_t(f)].size(); ++i)
-            sum[std::size_t(f)][i] += inner[std::size_t(f)][i];
+    constexpr std::size_t kSlotValues = kOrdinateFaces * std::size_t(shading::kBrickCells);
+    stats_.poolBytes = slots * kSlotValues * sizeof(glm::vec4);
+    gl::ensureBuffer(pool_, poolCap_, stats_.poolBytes);
+    if (!changed && tables_) return;
+    std::vector<int> all;
+    all.reserve(tables);
+    for (std::size_t c = 0; c < count; ++c) {
+        const std::vector<int>& t = transports_[c]->bricks().table();
+        all.insert(all.end(), t.begin(), t.end());
+        tableRevisions_[c] = transports_[c]->geometryRevision();
+    }
+    gl::ensureBuffer(tables_, tablesCap_, all.size() * sizeof(int));
+    if (!all.empty()) glNamedBufferSubData(tables_.id(), 0, GLsizeiptr(all.size() * sizeof(int)), all.data());
+}
+
+IrradianceBricks OrdinatesLight::irradiance(std::size_t c) const {
+    const std::size_t slots = transports_.at(c)->bricks().slots();
+    IrradianceBricks sum = readBricks(pool_.id(), firstSlot_.at(2 * c), slots),
+                     inner = readBricks(pool_.id(), firstSlot_.at(2 * c + 1), slots);
+    for (std::size_t i = 0; i < sum.size() && i < inner.size(); ++i) sum[i] += inner[i];
     return sum;
 }
 
@@ -162,19 +199,22 @@ void OrdinatesLight::apply(const GBufferView& g) const {
     program_.set("uCascadeCount", int(placements_.size()));
     program_.set("uApplyNormalOffset", desc_.applyNormalOffset);
     program_.set("uResolution", desc_.resolution);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, pool_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, tables_.id());
     program_.set("uEye", g.eye);
     program_.set("uGlossy", desc_.glossy ? 1 : 0);
     setCascadeUniforms(program_, placements_);
     for (std::size_t c = 0; c < std::size_t(kLpvMaxCascades); ++c) {
         const std::string idx = "[" + std::to_string(c) + "]";
         const bool used = c < placements_.size();
-        if (used) program_.set(("uCellSize" + idx).c_str(), placements_[c].grid.cellSize);
-        // Units 4..: ring and inner cube of each cascade (unused samplers point at unit 4).
-        for (int set = 0; set < 2; ++set) {
-            const GLuint unit = GLuint(4 + 2 * c + std::size_t(set));
-            if (used) glBindTextureUnit(unit, textures_[2 * c + std::size_t(set)].id());
-            program_.set(((set == 0 ? "uRing" : "uInner") + idx).c_str(), int(used ? unit : 4));
-        }
+        if (!used) continue;
+        const BrickMap& b = transports_[c]->bricks();
+        program_.set(("uCellSize" + idx).c_str(), placements_[c].grid.cellSize);
+        program_.set(("uTableSide" + idx).c_str(), b.tableSide());
+        program_.set(("uTableStart" + idx).c_str(), tableStart_[c]);
+        program_.set(("uRingSlot" + idx).c_str(), int(firstSlot_[2 * c]));
+        program_.set(("uInnerSlot" + idx).c_str(), int(firstSlot_[2 * c + 1]));
+        program_.set(("uSlots" + idx).c_str(), int(b.slots()));
     }
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }

@@ -1,9 +1,11 @@
 // The light volumes of `lpv.transport=ordinates` (gi/lpv/ordinates.h): per cascade, the transport
 // with its surfaces from the voxelized scene (kept while the cascade stays), the ring and inner
 // sources of each update (split by gi/lpv/cascades.h's shares, as the SH light is), their
-// irradiance cubes as 3D textures, and the apply pass that reads them.
+// irradiance cubes in one pool of bricks with the cascades' brick tables (on the GPU: buffers,
+// shaders/shared/light_bricks.h), and the apply pass that reads them.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -45,10 +47,14 @@ public:
         std::size_t surfaceCells = 0;
         double leftWatts = 0.0;      // reflections not yet carried (lpv.sweeps=N continues them)
         bool converged = true;       // every light set's left-over under kOrdinatesConverged of its sources
+        std::size_t bricks = 0;      // allocated bricks, summed over cascades (each holds a ring and an inner slot)
+        std::size_t gridBricks = 0;  // bricks the cascades' grids span (what lpv.sparse=false allocates)
+        std::size_t poolBytes = 0;   // the brick pool: ring and inner irradiance cubes of every brick
     };
     const Stats& stats() const { return stats_; }
-    // The irradiance cube of cascade c, ring + inner, for dumps and tests.
-    std::array<std::vector<glm::vec4>, kOrdinateFaces> irradiance(std::size_t c) const;
+    // The irradiance cube of cascade c, ring + inner, in its transport's bricks (dumps, tests).
+    IrradianceBricks irradiance(std::size_t c) const;
+    const OrdinatesTransport& transport(std::size_t c) const { return *transports_.at(c); }
 
 private:
     LpvDesc desc_;
@@ -58,9 +64,16 @@ private:
     std::vector<OrdinatesTransport::Sources> ring_, inner_;
     // Per cascade, ring then inner: the reflections the last solve left (lpv.sweeps=N).
     std::vector<std::vector<glm::vec3>> carry_;
-    // Per cascade, ring then inner: the six faces' irradiance stacked along z (N x N x 6N, RGBA32F).
-    std::vector<gl::Handle> textures_;
-    std::vector<std::array<std::vector<glm::vec4>, kOrdinateFaces>> cubes_;
+    // Lays the cascades' slots out in the pool (ring then inner, cascade by cascade) and uploads
+    // the brick tables when a transport's bricks changed.
+    void layOutPool();
+    // The GPU's brick pool (vec4, per light set [face][slot][brick cell]) and the cascades' brick tables one
+    // after the other (int per brick: slot within its cascade, -1 none).
+    gl::Handle pool_, tables_;
+    std::size_t poolCap_ = 0, tablesCap_ = 0;
+    std::vector<std::size_t> firstSlot_;         // per cascade, ring then inner
+    std::vector<int> tableStart_;                // per cascade
+    std::vector<std::uint64_t> tableRevisions_;  // per cascade: the transport geometry the tables hold
     gl::Program program_;
     Stats stats_;
 };

@@ -61,10 +61,10 @@ vec3 irradiance(int c, vec3 p, vec3 n, float ringWeight, float innerWeight) {
 
 #include "lpv/glossy_march.glsl"
 
-// The SH intensity travelling along -r over the cell's face area.
-vec3 glossyCellRadiance(vec3 uvw, vec3 r) {
-    return vec3(shEvaluate(texture(uLpvR[0], uvw), -r), shEvaluate(texture(uLpvG[0], uvw), -r),
-                shEvaluate(texture(uLpvB[0], uvw), -r)) / (uCellSize[0] * uCellSize[0]);
+// The SH intensity travelling along -r over the cell's face area (every cell is stored).
+vec4 glossyCellRadiance(vec3 uvw, vec3 r) {
+    return vec4(vec3(shEvaluate(texture(uLpvR[0], uvw), -r), shEvaluate(texture(uLpvG[0], uvw), -r),
+                     shEvaluate(texture(uLpvB[0], uvw), -r)) / (uCellSize[0] * uCellSize[0]), 1.0);
 }
 
 void main() {

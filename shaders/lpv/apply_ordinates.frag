@@ -1,41 +1,76 @@
 #version 450 core
 // Deferred apply of `lpv.transport=ordinates` (gi/lpv/ordinates.h): per pixel, the irradiance a
 // receiver facing n gets, blended from the cell's six axis-facing irradiances by n^2 (trilinear
-// between cells), times the diffuse albedo / pi. Cascades are read as apply.frag reads the SH
+// between cells, read from the brick pool: shaders/shared/light_bricks.h), times the diffuse
+// albedo / pi. Cascades are read as apply.frag reads the SH
 // light: cascade c gives S_c x ring_c + (S_c - S_{c-1}) x inner_c (gi/lpv/cascades.h). Glossy
 // surfaces add the finest cascade's march (lpv/glossy_march.glsl).
 #include "lpv/cascade_weights.glsl"
 #include "shared/constants.h"
+#include "shared/light_bricks.h"
 #include "common/gbuffer_textures.glsl"
 
-// Per cascade, the six faces' irradiance stacked along z: face f holds texels [f N, (f + 1) N).
-uniform sampler3D uRing[kLpvMaxCascades];
-uniform sampler3D uInner[kLpvMaxCascades];
+layout(std430, binding = 12) readonly buffer LightBricks { vec4 lightBricks[]; };     // per light set: [face][slot][brick cell]
+layout(std430, binding = 13) readonly buffer BrickTables { int brickTables[]; };      // per cascade and brick: slot
+
 uniform float uCellSize[kLpvMaxCascades];
+uniform int uTableSide[kLpvMaxCascades];     // bricks per side of each cascade's table
+uniform int uTableStart[kLpvMaxCascades];    // where its table starts in brickTables
+uniform int uRingSlot[kLpvMaxCascades];      // where its ring and inner light's slots start in the pool
+uniform int uInnerSlot[kLpvMaxCascades];
+uniform int uSlots[kLpvMaxCascades];         // slots of each of its light sets
 uniform int uCascadeCount;
 uniform int uResolution;
 uniform float uApplyNormalOffset;
 
 layout(location = 0) out vec4 outColor;
 
-// Face f's irradiance at uvw, filtered within its own block of the stack.
-vec3 faceIrradiance(sampler3D cube, int f, vec3 uvw) {
-    float n = float(uResolution);
-    float z = (float(f) * n + clamp(uvw.z * n, 0.5, n - 0.5)) / (6.0 * n);
-    return texture(cube, vec3(uvw.xy, z)).rgb;
+// Cell `cell` of cascade c among its slots' cells (brickCell); -1 where its brick is not stored.
+int storedCell(int c, ivec3 cell) {
+    int slot = brickTables[uTableStart[c] + brickTableIndex(cell, uTableSide[c])];
+    return slot < 0 ? -1 : brickCell(slot, cell);
 }
 
-// Irradiance (W/m^2) for normal n: the three faces n points along, weighted by n^2.
-vec3 cubeIrradiance(sampler3D cube, vec3 uvw, vec3 n) {
-    vec3 w = n * n;
-    return w.x * faceIrradiance(cube, n.x >= 0.0 ? 0 : 1, uvw) + w.y * faceIrradiance(cube, n.y >= 0.0 ? 2 : 3, uvw) +
-           w.z * faceIrradiance(cube, n.z >= 0.0 ? 4 : 5, uvw);
+// Irradiance (W/m^2) for normal n: the three faces n points along, weighted by n^2, trilinear
+// between cell centres and clamped at the grid's edge as a texture would be (rgb), over the
+// cells whose bricks are stored (a: their trilinear weight). Receivers read stored cells only
+// (the bricks reach ordinatesReach cells around every surface); the glossy march may not.
+vec4 cubeIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
+    float size = float(uResolution);
+    vec3 x = clamp(uvw * size - 0.5, vec3(0.0), vec3(size - 1.0));
+    ivec3 i0 = ivec3(floor(x));
+    ivec3 i1 = min(i0 + 1, ivec3(uResolution - 1));
+    vec3 f = x - vec3(i0), w = n * n;
+    ivec3 faces = ivec3(n.x >= 0.0 ? 0 : 1, n.y >= 0.0 ? 2 : 3, n.z >= 0.0 ? 4 : 5);
+    int first = firstSlot * 6 * kBrickCells, slots = uSlots[c];
+    vec4 e = vec4(0.0);
+    for (int k = 0; k < 8; ++k) {
+        bvec3 upper = bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0);
+        int cell = storedCell(c, mix(i0, i1, upper));
+        if (cell < 0) continue;
+        vec3 t = mix(1.0 - f, f, upper);
+        float weight = t.x * t.y * t.z;
+        vec3 v = w.x * lightBricks[first + brickValue(slots, cell, faces.x)].rgb +
+                 w.y * lightBricks[first + brickValue(slots, cell, faces.y)].rgb +
+                 w.z * lightBricks[first + brickValue(slots, cell, faces.z)].rgb;
+        e += weight * vec4(v, 1.0);
+    }
+    return e;
+}
+
+// The stored cells' irradiance, renormalized over their weight.
+vec3 storedIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
+    vec4 e = cubeIrradiance(c, firstSlot, uvw, n);
+    return e.a > 0.0 ? e.rgb / e.a : vec3(0.0);
 }
 
 #include "lpv/glossy_march.glsl"
 
-// A surface facing r collects the radiance around r: its irradiance over pi.
-vec3 glossyCellRadiance(vec3 uvw, vec3 r) { return cubeIrradiance(uRing[0], uvw, r) * kInvPi; }
+// A surface facing r collects the radiance around r: its irradiance over pi (a: stored weight).
+vec4 glossyCellRadiance(vec3 uvw, vec3 r) {
+    vec4 e = cubeIrradiance(0, uRingSlot[0], uvw, r);
+    return e.a > 0.0 ? vec4(e.rgb / e.a * kInvPi, 1.0) : vec4(0.0);
+}
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -51,8 +86,8 @@ void main() {
         float held = 1.0 - outside + w;           // S_c
         vec3 uvw = uvwOf(c, p);
         if (held > 0.0 && all(greaterThanEqual(uvw, vec3(0.0))) && all(lessThanEqual(uvw, vec3(1.0)))) {
-            e += held * cubeIrradiance(uRing[c], uvw, n);
-            if (c > 0 && w > 0.0) e += w * cubeIrradiance(uInner[c], uvw, n);
+            e += held * storedIrradiance(c, uRingSlot[c], uvw, n);
+            if (c > 0 && w > 0.0) e += w * storedIrradiance(c, uInnerSlot[c], uvw, n);
         }
         outside -= w;
     }

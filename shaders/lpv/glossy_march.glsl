@@ -1,13 +1,15 @@
 // Glossy reflections from the finest cascade (seed 000 section 3.10.4), for both transports'
 // apply passes: march along the reflected ray one cell per step and average the radiance
-// arriving back along it with 1/d^2 weights. Included after the cascade uniforms (uCellSize);
-// the including shader defines glossyCellRadiance.
+// arriving back along it with 1/d^2 weights, over the cells the volume stores (the ordinates
+// keep bricks around surfaces only). Included after the cascade uniforms (uCellSize); the
+// including shader defines glossyCellRadiance.
 uniform float uTracedRoughness;
 uniform vec3 uEye;
 uniform int uGlossy;
 
-// Radiance (W/m^2/sr) arriving at uvw of cascade 0 from direction r.
-vec3 glossyCellRadiance(vec3 uvw, vec3 r);
+// Radiance (W/m^2/sr) arriving at uvw of cascade 0 from direction r (rgb); a: 1 where the volume
+// stores it, 0 where not.
+vec4 glossyCellRadiance(vec3 uvw, vec3 r);
 
 vec3 glossyRadiance(vec3 p, vec3 r, float roughness) {
     int steps = int(mix(12.0, 4.0, clamp(roughness, 0.0, 1.0)));
@@ -16,8 +18,9 @@ vec3 glossyRadiance(vec3 p, vec3 r, float roughness) {
     for (int i = 1; i <= steps; ++i) {
         vec3 q = p + r * (float(i) * uCellSize[0]);
         if (cascadeInlier(0, q) <= 0.0) break;
-        float w = 1.0 / (float(i) * float(i));
-        sum += max(glossyCellRadiance(uvwOf(0, q), r), vec3(0.0)) * w;
+        vec4 radiance = glossyCellRadiance(uvwOf(0, q), r);
+        float w = radiance.a / (float(i) * float(i));
+        sum += max(radiance.rgb, vec3(0.0)) * w;
         weights += w;
     }
     return weights > 0.0 ? sum / weights : vec3(0.0);

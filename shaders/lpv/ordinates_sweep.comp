@@ -6,16 +6,22 @@
 // different planes, so no two invocations of a dispatch add to the same value.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
+#include "shared/light_bricks.h"
+
 layout(std430, binding = 0) readonly buffer BinTaps { vec4 binTaps[]; };      // per bin
-layout(std430, binding = 1) readonly buffer SurfaceOf { int surfaceOf[]; };   // per cell, -1: none
+// The brick table (per brick: slot, -1: none), then per slot and brick cell a surface index, -1: none.
+layout(std430, binding = 1) readonly buffer SurfaceOf { int surfaceOf[]; };
 layout(std430, binding = 2) readonly buffer Surfaces { vec4 surfaces[]; };    // [2s] (m, S), [2s+1] (albedo, 0)
 layout(std430, binding = 3) readonly buffer Sources { float sources[]; };     // [bin][surface][rgb]
 layout(std430, binding = 4) readonly buffer PrevParts { vec4 prevParts[]; };  // [bin][padded cell][tap]
 layout(std430, binding = 5) writeonly buffer CurParts { vec4 curParts[]; };
-layout(std430, binding = 6) buffer Irradiance { vec4 irradiance[]; };          // [axis][face][cell]
+layout(std430, binding = 6) buffer Irradiance { vec4 irradiance[]; };          // [axis][face][slot][brick cell]
 layout(std430, binding = 7) buffer Reflected { vec4 reflected[]; };            // [axis][surface][face]
 
 uniform int uN;
+uniform int uTableSide;        // bricks per side (gi/lpv/brick_map.h)
+uniform int uBrickCellsStart;  // where the slots' surface indices start in SurfaceOf
+uniform int uSlots;
 uniform int uStep;      // slabs into the sweep box along the pyramid's axis
 uniform ivec3 uBoxMin;  // the sweep box (OrdinatesTransport::sweepBox), inclusive
 uniform ivec3 uBoxMax;
@@ -24,13 +30,14 @@ uniform int uSurfaces;
 uniform int uOcclusion;
 uniform float uPerArea;  // 1 / h^2
 
-int gAxis, gU, gV, gCells;
+int gAxis, gU, gV, gValues;
 ivec3 gMove[4];
 
 vec3 crossedBy(int j, vec3 perAxis) {
     return vec3(perAxis[gAxis], (j & 1) != 0 ? perAxis[gU] : 0.0, (j & 2) != 0 ? perAxis[gV] : 0.0);
 }
 
+// cell: the cell among the slots' cells (brickCell; face f at brickValue).
 void reflectAt(int s, int j, vec3 hit, vec3 parts, int cell, bool countIrradiance) {
     float total = parts.x + parts.y + parts.z;
     vec3 r = surfaces[2 * s + 1].rgb * hit;
@@ -41,7 +48,7 @@ void reflectAt(int s, int j, vec3 hit, vec3 parts, int cell, bool countIrradianc
         int ax = axes[c];
         int face = 2 * ax + (gMove[j][ax] > 0 ? 1 : 0);
         reflected[(gAxis * uSurfaces + s) * 6 + face] += vec4(r * share, 0.0);
-        if (countIrradiance) irradiance[(gAxis * 6 + face) * gCells + cell] += vec4(hit * (share * uPerArea), 0.0);
+        if (countIrradiance) irradiance[gAxis * gValues + brickValue(uSlots, cell, face)] += vec4(hit * (share * uPerArea), 0.0);
     }
 }
 
@@ -54,14 +61,19 @@ void main() {
     gV = (gAxis + 2) % 3;
     int x = uBoxMin[gU] + int(gl_GlobalInvocationID.x), y = uBoxMin[gV] + int(gl_GlobalInvocationID.y);
     if (x > uBoxMax[gU] || y > uBoxMax[gV] || uStep > uBoxMax[gAxis] - uBoxMin[gAxis]) return;
-    gCells = n * n * n;
+    gValues = uSlots * 6 * kBrickCells;
     int sign = pyramid % 2 == 0 ? 1 : -1;
     int a = sign > 0 ? uBoxMin[gAxis] + uStep : uBoxMax[gAxis] - uStep;
-    int stride[3] = int[3](1, n, n * n);
-    int cell = a * stride[gAxis] + x * stride[gU] + y * stride[gV];
+    ivec3 local;
+    local[gAxis] = a;
+    local[gU] = x;
+    local[gV] = y;
+    // Outside the bricks no receiver reads and no surface is: the light only moves on.
+    int slot = surfaceOf[brickTableIndex(local, uTableSide)];
+    int cell = slot < 0 ? -1 : brickCell(slot, local);
     int row = n + 2, plane = row * row;
     int here = (y + 1) * row + x + 1;
-    int s = surfaceOf[cell];
+    int s = slot < 0 ? -1 : surfaceOf[uBrickCellsStart + cell];
     for (int q = 0; q < uBinsPerPyramid; ++q) {
         int k = pyramid * uBinsPerPyramid + q;
         vec4 taps = binTaps[2 * k];
@@ -79,11 +91,12 @@ void main() {
         vec3 inLight = part[0] + part[1] + part[2] + part[3];
         vec3 outLight = inLight;
         bool lit = inLight != vec3(0.0);
-        if (lit) {
+        if (lit && slot >= 0) {
             int slabFace = 2 * gAxis + (sign > 0 ? 1 : 0), uFace = 2 * gU + (su > 0 ? 1 : 0), vFace = 2 * gV + (sv > 0 ? 1 : 0);
-            irradiance[(gAxis * 6 + slabFace) * gCells + cell] += vec4(inLight * uPerArea, 0.0);
-            irradiance[(gAxis * 6 + uFace) * gCells + cell] += vec4((part[1] + part[3]) * uPerArea, 0.0);
-            irradiance[(gAxis * 6 + vFace) * gCells + cell] += vec4((part[2] + part[3]) * uPerArea, 0.0);
+            int at = gAxis * gValues;
+            irradiance[at + brickValue(uSlots, cell, slabFace)] += vec4(inLight * uPerArea, 0.0);
+            irradiance[at + brickValue(uSlots, cell, uFace)] += vec4((part[1] + part[3]) * uPerArea, 0.0);
+            irradiance[at + brickValue(uSlots, cell, vFace)] += vec4((part[2] + part[3]) * uPerArea, 0.0);
         }
         int out0 = (k * plane + here) * 4;
         if (s < 0) {
