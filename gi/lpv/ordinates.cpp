@@ -278,21 +278,24 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
         const int side = bricks_.tableSide();
         const int shift[3] = {0, 3, 6}, tableStride[3] = {1, side, side * side};
         const int slabOffset = (a & 7) << shift[axis], slabTable = (a >> 3) * tableStride[axis];
+        const int innerShift = shift[innerAxis], innerTable = tableStride[innerAxis];
+        const int* table = bricks_.table().data();
+        const int lo = box.min[innerAxis], hi = box.max[innerAxis];
         for (int outer = box.min[outerAxis]; outer <= box.max[outerAxis]; ++outer) {
             const int rowOffset = slabOffset | ((outer & 7) << shift[outerAxis]),
                       rowTable = slabTable + (outer >> 3) * tableStride[outerAxis];
-            int slot = -1;  // the brick of the row's cells, looked up where a brick starts
-            for (int inner = box.min[innerAxis]; inner <= box.max[innerAxis]; ++inner) {
+            // The row brick by brick: each run of cells in one brick looks its slot up once.
+            for (int run = lo; run <= hi; run = (run | 7) + 1) {
+            const int runEnd = std::min(run | 7, hi);
+            const int slot = table[rowTable + (run >> 3) * innerTable];
+            const std::size_t runBase = slot < 0 ? 0 : std::size_t(slot) * std::size_t(shading::kBrickCells) + std::size_t(rowOffset);
+            for (int inner = run; inner <= runEnd; ++inner) {
                 const std::size_t here = (std::size_t(outer) + 1) * row + std::size_t(inner) + 1;
                 glm::vec3 part[4];
                 for (int j = 0; j < 4; ++j) part[j] = prev[std::size_t(std::ptrdiff_t(here) + from[j])][std::size_t(j)];
                 const glm::vec3 in = part[0] + part[1] + part[2] + part[3];
                 // Outside the bricks no receiver reads and no surface is: the light only moves on.
-                if (inner == box.min[innerAxis] || (inner & 7) == 0)
-                    slot = bricks_.table()[std::size_t(rowTable + (inner >> 3) * tableStride[innerAxis])];
-                const std::size_t brickCell =
-                    slot < 0 ? 0 : std::size_t(slot) * std::size_t(shading::kBrickCells) +
-                                       std::size_t(rowOffset | ((inner & 7) << shift[innerAxis]));
+                const std::size_t brickCell = runBase + (std::size_t(inner & 7) << innerShift);
                 const std::size_t cell = slot < 0 ? SIZE_MAX : brickCell;
                 glm::vec3 out = in;
                 const bool lit = in != glm::vec3(0.0f);
@@ -339,6 +342,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                     }
                     leaving[std::size_t(j)] = go;
                 }
+            }
             }
         }
         std::swap(prev, cur);
