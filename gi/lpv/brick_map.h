@@ -26,8 +26,9 @@ public:
 
     // Slot of the brick holding a cell, -1 where none is allocated (or outside the grid).
     int slotOf(glm::ivec3 cell) const {
-        if (glm::any(glm::lessThan(cell, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(cell, glm::ivec3(resolution_))))
-            return -1;
+        const bool inside = glm::all(glm::greaterThanEqual(cell, glm::ivec3(0))) &&
+                            glm::all(glm::lessThan(cell, glm::ivec3(resolution_)));
+        if (!inside) return -1;
         return slotOfInside(cell);
     }
     // The same for a cell known to be inside the grid.

@@ -64,7 +64,8 @@ DebugDrawing cellSpheres(const CascadeGrid& g, int stride, float exposureStops, 
 }  // namespace
 
 DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposureStops) {
-    return cellSpheres(light.grid, stride, exposureStops, [&](glm::ivec3 local, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
+    return cellSpheres(light.grid, stride, exposureStops, [&](glm::ivec3 local, glm::vec4& r, glm::vec4& g,
+                                                              glm::vec4& b) {
         const std::size_t i = light.grid.index(local);
         if (i >= light.r.size()) return false;
         r = light.r[i], g = light.g[i], b = light.b[i];
@@ -74,7 +75,8 @@ DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposure
 
 DebugDrawing lpvCellSpheres(const OrdinatesTransport& transport, const IrradianceBricks& cube, int stride,
                             float exposureStops) {
-    return cellSpheres(transport.grid(), stride, exposureStops, [&](glm::ivec3 local, glm::vec4& r, glm::vec4& g, glm::vec4& b) {
+    return cellSpheres(transport.grid(), stride, exposureStops, [&](glm::ivec3 local, glm::vec4& r, glm::vec4& g,
+                                                                   glm::vec4& b) {
         if (transport.bricks().slotOf(local) < 0) return false;
         glm::vec3 e[kOrdinateFaces];
         for (int f = 0; f < kOrdinateFaces; ++f) e[f] = glm::vec3(transport.irradianceAt(cube, local, f));

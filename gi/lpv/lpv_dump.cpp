@@ -109,9 +109,10 @@ void writeOrdinatesVdb(const std::string& path, const std::vector<OrdinatesDump>
             grid->setTransform(xform);
             tag(*grid, "irradiance_" + std::string(faces[f]) + "_L" + std::to_string(c), int(c), g.cellSize);
             grid->insertMeta("units", openvdb::StringMetadata("W/m^2"));
-            for (std::size_t slot = 0; slot < bricks.slots() && (slot + 1) * kOrdinateFaces * std::size_t(shading::kBrickCells) <= e.size(); ++slot) {
+            if (e.size() < kOrdinateFaces * bricks.faceStride()) continue;
+            for (std::size_t slot = 0; slot < bricks.slots(); ++slot) {
                 const glm::ivec3 o = bricks.slotOrigins()[slot];
-                const glm::vec4* values = e.data() + std::size_t(f) * bricks.faceStride() + slot * std::size_t(shading::kBrickCells);
+                const glm::vec4* values = e.data() + std::size_t(f) * bricks.faceStride() + BrickMap::brickCell(int(slot), o);
                 auto leaf = std::make_unique<Leaf>(openvdb::Coord(o.x, o.y, o.z), openvdb::Vec3s(0.0f), false);
                 bool any = false;
                 for (int i = 0; i < shading::kBrickCells; ++i) {

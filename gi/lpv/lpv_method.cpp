@@ -169,7 +169,8 @@ MethodInfo lpvFamily(bool cascaded) {
                 // sources and plane shares (16 a bin and surface cell), two padded slabs of every
                 // bin's four taps (64 bytes a lateral cell and bin).
                 const double side = double(d.resolution + 2);
-                perCascade += 2.0 * (bricked * 288.0 + 0.25 * cells * (288.0 + 16.0 * bins) + 2.0 * bins * side * side * 64.0);
+                perCascade +=
+                    2.0 * (bricked * 288.0 + 0.25 * cells * (288.0 + 16.0 * bins) + 2.0 * bins * side * side * 64.0);
             }
             return double(d.cascades) * perCascade + rsm;
         }

@@ -92,7 +92,11 @@ int ordinatesReach(float applyNormalOffsetCells) {
 }
 
 OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace, int reach)
-    : grid_(grid), bins_(makeOrdinateBins(perFace)), reach_(reach), bricks_(grid.resolution), revision_(nextRevision++) {}
+    : grid_(grid),
+      bins_(makeOrdinateBins(perFace)),
+      reach_(reach),
+      bricks_(grid.resolution),
+      revision_(nextRevision++) {}
 
 void OrdinatesTransport::allocateBricks(glm::ivec3 cell, int reach) {
     const std::size_t before = bricks_.slots();
@@ -267,8 +271,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
     const int first = box.min[axis], last = box.max[axis];
     for (int t = 0; t <= last - first; ++t) {
         const int a = b.sign > 0 ? first + t : last - t;
-        // Slab offsets of the taps' upstream cells.
-        // The slab buffers run along the inner axis, like the bricks.
+        // Slab offsets of the taps' upstream cells (the slab buffers run along the inner axis).
         const std::ptrdiff_t du = uInner ? su : std::ptrdiff_t(su) * std::ptrdiff_t(row),
                              dv = uInner ? std::ptrdiff_t(sv) * std::ptrdiff_t(row) : sv;
         const std::ptrdiff_t from[4] = {0, -du, -dv, -du - dv};
@@ -286,63 +289,64 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                       rowTable = slabTable + (outer >> 3) * tableStride[outerAxis];
             // The row brick by brick: each run of cells in one brick looks its slot up once.
             for (int run = lo; run <= hi; run = (run | 7) + 1) {
-            const int runEnd = std::min(run | 7, hi);
-            const int slot = table[rowTable + (run >> 3) * innerTable];
-            const std::size_t runBase = slot < 0 ? 0 : std::size_t(slot) * std::size_t(shading::kBrickCells) + std::size_t(rowOffset);
-            for (int inner = run; inner <= runEnd; ++inner) {
-                const std::size_t here = (std::size_t(outer) + 1) * row + std::size_t(inner) + 1;
-                glm::vec3 part[4];
-                for (int j = 0; j < 4; ++j) part[j] = prev[std::size_t(std::ptrdiff_t(here) + from[j])][std::size_t(j)];
-                const glm::vec3 in = part[0] + part[1] + part[2] + part[3];
-                // Outside the bricks no receiver reads and no surface is: the light only moves on.
-                const std::size_t brickCell = runBase + (std::size_t(inner & 7) << innerShift);
-                const std::size_t cell = slot < 0 ? SIZE_MAX : brickCell;
-                glm::vec3 out = in;
-                const bool lit = in != glm::vec3(0.0f);
-                if (lit && slot >= 0) {
-                    irradiance[cell + slabFace] += glm::vec4(in * perArea, 0.0f);
-                    irradiance[cell + uFace] += glm::vec4((part[1] + part[3]) * perArea, 0.0f);
-                    irradiance[cell + vFace] += glm::vec4((part[2] + part[3]) * perArea, 0.0f);
-                }
-                Parts& leaving = cur[here];
-                const int s = slot < 0 ? -1 : surfaceOf_[brickCell];
-                if (s < 0) {
-                    for (int j = 0; j < 4; ++j) leaving[std::size_t(j)] = b.taps[std::size_t(j)] * out;
-                    continue;
-                }
-                const glm::vec3 m = vectorCoverage_[std::size_t(s)];
-                if (occlusion && lit) {
-                    // Entering a cell, a move meets the surfaces whose normal axis it crosses, from
-                    // either side: a floor stops what moves up or down into its cell, not what
-                    // slides along it.
-                    const float clutter = 0.25f * std::max(coverage_[std::size_t(s)] - glm::length(m), 0.0f);
-                    for (int j = 0; j < 4; ++j) {
-                        if (part[j] == glm::vec3(0.0f)) continue;
-                        const glm::vec3 crossed = crossedBy(j, glm::abs(m));
-                        const float stopped = std::min(crossed.x + crossed.y + crossed.z + clutter, 1.0f);
-                        if (stopped <= 0.0f) continue;
-                        const glm::vec3 hit = part[j] * stopped;
-                        out -= hit;
-                        reflect(s, j, hit, crossed);
+                const int runEnd = std::min(run | 7, hi);
+                const int slot = table[rowTable + (run >> 3) * innerTable];
+                const std::size_t runBase =
+                    slot < 0 ? 0 : std::size_t(slot) * std::size_t(shading::kBrickCells) + std::size_t(rowOffset);
+                for (int inner = run; inner <= runEnd; ++inner) {
+                    const std::size_t here = (std::size_t(outer) + 1) * row + std::size_t(inner) + 1;
+                    glm::vec3 part[4];
+                    for (int j = 0; j < 4; ++j) part[j] = prev[std::size_t(std::ptrdiff_t(here) + from[j])][std::size_t(j)];
+                    const glm::vec3 in = part[0] + part[1] + part[2] + part[3];
+                    // Outside the bricks no receiver reads and no surface is: the light only moves on.
+                    const std::size_t brickCell = runBase + (std::size_t(inner & 7) << innerShift);
+                    const std::size_t cell = slot < 0 ? SIZE_MAX : brickCell;
+                    glm::vec3 out = in;
+                    const bool lit = in != glm::vec3(0.0f);
+                    if (lit && slot >= 0) {
+                        irradiance[cell + slabFace] += glm::vec4(in * perArea, 0.0f);
+                        irradiance[cell + uFace] += glm::vec4((part[1] + part[3]) * perArea, 0.0f);
+                        irradiance[cell + vFace] += glm::vec4((part[2] + part[3]) * perArea, 0.0f);
                     }
-                }
-                const float* p = source.data() + (k * coverage_.size() + std::size_t(s)) * 3;
-                out += glm::vec3(p[0], p[1], p[2]);
-                for (int j = 0; j < 4; ++j) {
-                    glm::vec3 go = b.taps[std::size_t(j)] * out;
-                    if (occlusion && go != glm::vec3(0.0f)) {
-                        // Leaving a cell, a move meets the surfaces there that face against it (a
-                        // corner cell's wall, for the light its floor reflects towards the wall).
-                        const glm::vec3 facing = crossedBy(j, glm::max(-m * move[j], glm::vec3(0.0f)));
-                        const float stopped = std::min(facing.x + facing.y + facing.z, 1.0f);
-                        if (stopped > 0.0f) {
-                            reflect(s, j, go * stopped, facing, cell);
-                            go *= 1.0f - stopped;
+                    Parts& leaving = cur[here];
+                    const int s = slot < 0 ? -1 : surfaceOf_[brickCell];
+                    if (s < 0) {
+                        for (int j = 0; j < 4; ++j) leaving[std::size_t(j)] = b.taps[std::size_t(j)] * out;
+                        continue;
+                    }
+                    const glm::vec3 m = vectorCoverage_[std::size_t(s)];
+                    if (occlusion && lit) {
+                        // Entering a cell, a move meets the surfaces whose normal axis it crosses, from
+                        // either side: a floor stops what moves up or down into its cell, not what
+                        // slides along it.
+                        const float clutter = 0.25f * std::max(coverage_[std::size_t(s)] - glm::length(m), 0.0f);
+                        for (int j = 0; j < 4; ++j) {
+                            if (part[j] == glm::vec3(0.0f)) continue;
+                            const glm::vec3 crossed = crossedBy(j, glm::abs(m));
+                            const float stopped = std::min(crossed.x + crossed.y + crossed.z + clutter, 1.0f);
+                            if (stopped <= 0.0f) continue;
+                            const glm::vec3 hit = part[j] * stopped;
+                            out -= hit;
+                            reflect(s, j, hit, crossed);
                         }
                     }
-                    leaving[std::size_t(j)] = go;
+                    const float* p = source.data() + (k * coverage_.size() + std::size_t(s)) * 3;
+                    out += glm::vec3(p[0], p[1], p[2]);
+                    for (int j = 0; j < 4; ++j) {
+                        glm::vec3 go = b.taps[std::size_t(j)] * out;
+                        if (occlusion && go != glm::vec3(0.0f)) {
+                            // Leaving a cell, a move meets the surfaces there that face against it (a
+                            // corner cell's wall, for the light its floor reflects towards the wall).
+                            const glm::vec3 facing = crossedBy(j, glm::max(-m * move[j], glm::vec3(0.0f)));
+                            const float stopped = std::min(facing.x + facing.y + facing.z, 1.0f);
+                            if (stopped > 0.0f) {
+                                reflect(s, j, go * stopped, facing, cell);
+                                go *= 1.0f - stopped;
+                            }
+                        }
+                        leaving[std::size_t(j)] = go;
+                    }
                 }
-            }
             }
         }
         std::swap(prev, cur);
