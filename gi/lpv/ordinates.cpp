@@ -87,6 +87,8 @@ namespace {
 std::atomic<std::uint64_t> nextRevision{1};
 }  // namespace
 
+std::uint64_t OrdinatesTransport::newRevision() { return nextRevision++; }
+
 int ordinatesReach(float applyNormalOffsetCells) {
     return std::max(kSweepMargin, int(std::ceil(std::max(applyNormalOffsetCells, 0.0f))) + 1);
 }
@@ -99,19 +101,11 @@ OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace, int
       revision_(nextRevision++) {}
 
 void OrdinatesTransport::allocateBricks(glm::ivec3 cell, int reach) {
-    const std::size_t before = bricks_.slots();
-    bricks_.allocateAround(cell, reach);
-    if (bricks_.slots() == before) return;
-    surfaceOf_.resize(bricks_.slots() * std::size_t(shading::kBrickCells), -1);
-    revision_ = nextRevision++;
+    allocate([&] { bricks_.allocateAround(cell, reach); });
 }
 
 void OrdinatesTransport::allocateAllBricks() {
-    const std::size_t before = bricks_.slots();
-    bricks_.allocateAll();
-    if (bricks_.slots() == before) return;
-    surfaceOf_.resize(bricks_.slots() * std::size_t(shading::kBrickCells), -1);
-    revision_ = nextRevision++;
+    allocate([&] { bricks_.allocateAll(); });
 }
 
 glm::vec4 OrdinatesTransport::irradianceAt(const IrradianceBricks& e, glm::ivec3 cell, int face) const {
@@ -166,12 +160,7 @@ void OrdinatesTransport::addSurfaces(const std::vector<OrdinateSurface>& surface
     cells.reserve(surfaces.size());
     for (const OrdinateSurface& s : surfaces)
         if (grid_.contains(s.cell) && s.coverage > 0.0f) cells.push_back(s.cell);
-    const std::size_t before = bricks_.slots();
-    bricks_.allocateAround(cells, reach_);
-    if (bricks_.slots() != before) {
-        surfaceOf_.resize(bricks_.slots() * std::size_t(shading::kBrickCells), -1);
-        revision_ = nextRevision++;
-    }
+    allocate([&] { bricks_.allocateAround(cells, reach_); });
     for (const OrdinateSurface& s : surfaces) addSurface(s);
 }
 

@@ -196,6 +196,16 @@ private:
     void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion, const IndexBox& box,
                IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const;
     void allocateBricks(glm::ivec3 cell, int reach);
+    // Runs `add` (which adds bricks); new slots get no surfaces and a new geometry revision.
+    template <typename Add>
+    void allocate(Add add) {
+        const std::size_t before = bricks_.slots();
+        add();
+        if (bricks_.slots() == before) return;
+        surfaceOf_.resize(bricks_.slots() * std::size_t(shading::kBrickCells), -1);
+        revision_ = newRevision();
+    }
+    static std::uint64_t newRevision();
 
     CascadeGrid grid_;
     std::vector<OrdinateBin> bins_;
