@@ -71,8 +71,8 @@ TechniquePlan lpvPlan(const Scene& scene, bool cascaded) {
         p.update.push_back({"lpv.propagate", std::to_string(bins) + " bins swept across " + volumes +
                                                  (d.bounces ? ", one sweep per bounce until under 1e-3 of the light is left"
                                                             : ", one sweep (lpv.bounces=false)") +
-                                                 (gl ? " on gl, into the irradiance cubes' textures"
-                                                     : " on cpu, irradiance cubes to 3D textures")});
+                                                 (gl ? " on gl, into the irradiance cubes' brick pool"
+                                                     : " on cpu, irradiance cubes uploaded to the brick pool")});
     } else {
         p.update.push_back({"lpv.inject", sourcesName + " surfels as virtual point lights into " + volumes});
         std::vector<std::string> sources;
