@@ -269,6 +269,31 @@ TEST(DebugViewData, LpvCellsSitInTheCascadeAndCarryColourBleeding) {
     EXPECT_TRUE(drawView(renderer, "probes", scene.camera).spheres.empty());
 }
 
+// The stored bricks: as many boxes as the technique reports (fewer than the grid has), each
+// inside its cascade and at most 8 cells wide.
+TEST(DebugViewData, LpvBricksAreTheStoredBricksInsideTheCascade) {
+    auto context = gl::Context::createHeadless();
+    Scene scene = test::cornellBox();
+    scene.camera.width = scene.camera.height = 32;
+    scene.gi.set("lpv.resolution", "32");
+    FrameRenderer renderer(scene, FrameOptions{}, "lpv");
+    renderer.renderFrame();
+    const DebugBox cascade = drawView(renderer, "cascades", scene.camera).boxes.at(0);
+    const std::vector<DebugBox> bricks = drawView(renderer, "lpv_bricks", scene.camera).boxes;
+    double stored = 0.0, grid = 0.0;
+    for (const TechniqueStat& st : renderer.technique()->stats()) {
+        if (st.name == "light_bricks") stored = st.value;
+        if (st.name == "grid_bricks") grid = st.value;
+    }
+    EXPECT_EQ(double(bricks.size()), stored);
+    EXPECT_LT(stored, grid);
+    const float cell = (cascade.max.x - cascade.min.x) / 32.0f;
+    for (const DebugBox& b : bricks) {
+        EXPECT_TRUE(inside(b.min, cascade, 1e-4f) && inside(b.max, cascade, 1e-4f));
+        EXPECT_LE(b.max.x - b.min.x, 8.0f * cell * 1.0001f);
+    }
+}
+
 TEST(DebugViewData, ClpvShowsNestedCascades) {
     auto context = gl::Context::createHeadless();
     Scene scene = test::cornellBox();

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gi/sh/sh.h"
+#include "shaders/shared/light_bricks.h"
 #include "shaders/lpv/limits.h"
 
 namespace voxgi {
@@ -18,6 +19,15 @@ const SettingsTable<LpvCellsOptions>& lpvCellsOptions() {
     return table;
 }
 
+const SettingsTable<LpvBricksOptions>& lpvBricksOptions() {
+    static const SettingsTable<LpvBricksOptions> table = [] {
+        SettingsTable<LpvBricksOptions> t(kLpvBricksView);
+        t.integer("cascade", &LpvBricksOptions::cascade, 0, kLpvMaxCascades - 1, "the cascade shown");
+        return t;
+    }();
+    return table;
+}
+
 std::vector<DebugViewInfo> lpvDebugViews() {
     return {cascadeBoundsView("the light volumes as placed for the current camera"),
             // Refreshed every 8 frames: each drawing reads the whole volume back from the GPU.
@@ -25,7 +35,22 @@ std::vector<DebugViewInfo> lpvDebugViews() {
              "one sphere per stride-th cell of a cascade that holds light, painted with the cell's 2-band SH toward "
              "each point's normal (ordinates: the irradiance a surface facing that way receives), the brightest "
              "cell's mean scaled to 1 before the exposure",
-             lpvCellsOptions().info(), 8}};
+             lpvCellsOptions().info(), 8},
+            {kLpvBricksView, "LPV bricks", 'K',
+             "one box per 8^3 brick of a cascade that stores light (lpv.transport=ordinates: the bricks within a "
+             "receiver's reach of the voxelized surfaces; none for sh)",
+             lpvBricksOptions().info(), 8}};
+}
+
+DebugDrawing lpvBricks(const OrdinatesTransport& transport, int cascade, int cascades) {
+    DebugDrawing d;
+    const CascadeGrid& g = transport.grid();
+    const glm::vec3 color = cascadeColor(cascade, cascades);
+    for (const glm::ivec3& o : transport.bricks().slotOrigins()) {
+        const glm::ivec3 end = glm::min(o + shading::kBrickSide, glm::ivec3(g.resolution));
+        d.boxes.push_back({glm::vec3(g.origin + o) * g.cellSize, glm::vec3(g.origin + end) * g.cellSize, color});
+    }
+    return d;
 }
 
 DebugDrawing cascadeBounds(const std::vector<CascadePlacement>& cascades) {

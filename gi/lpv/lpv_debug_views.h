@@ -1,6 +1,7 @@
-// The LPV's debug views: the cascades' bounds, and one cascade's light volume as spheres painted
+// The LPV's debug views: the cascades' bounds, one cascade's light volume as spheres painted
 // with each cell's 2-band SH (what flows out of it, bright where light leaves) or, with the
-// ordinates, with the irradiance a surface facing each point of the sphere would receive.
+// ordinates, with the irradiance a surface facing each point of the sphere would receive, and
+// the ordinates' stored bricks.
 #pragma once
 
 #include <array>
@@ -20,10 +21,20 @@ struct LpvCellsOptions {
 };
 const SettingsTable<LpvCellsOptions>& lpvCellsOptions();
 
+constexpr const char* kLpvBricksView = "lpv_bricks";
+
+struct LpvBricksOptions {
+    int cascade = 0;
+};
+const SettingsTable<LpvBricksOptions>& lpvBricksOptions();
+
 // The views lpv and clpv declare.
 std::vector<DebugViewInfo> lpvDebugViews();
 
 DebugDrawing cascadeBounds(const std::vector<CascadePlacement>& cascades);
+// One box per brick that cascade `cascade` of `cascades` stores (gi/lpv/brick_map.h; a brick
+// past the grid's edge cut to it), in the cascade's colour.
+DebugDrawing lpvBricks(const OrdinatesTransport& transport, int cascade, int cascades);
 // A sphere at every `stride`-th cell (per axis, in world cell indices) holding light; the SH
 // scale maps the brightest cell's mean intensity to 1, times 2^exposureStops.
 DebugDrawing lpvCellSpheres(const LightVolume& light, int stride, float exposureStops);

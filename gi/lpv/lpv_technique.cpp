@@ -494,6 +494,11 @@ public:
             const Camera& c = context.camera;
             return cascadeBounds(placeCascades(desc, scene.bounds(), c.eye, c.target - c.eye));
         }
+        if (view == kLpvBricksView && valid && ordinatesLight) {
+            const int c = lpvBricksOptions().read(context.options).cascade;
+            if (c >= int(placements.size())) return {};
+            return lpvBricks(ordinatesLight->transport(std::size_t(c)), c, int(placements.size()));
+        }
         if (view == kLpvCellsView && valid) {
             const LpvCellsOptions o = lpvCellsOptions().read(context.options);
             if (o.cascade >= int(placements.size())) return {};
