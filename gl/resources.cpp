@@ -53,10 +53,10 @@ Handle createTimerQuery() {
     return Handle(id, [](GLuint i) { glDeleteQueries(1, &i); });
 }
 
-void ensureBuffer(Handle& buffer, std::size_t& capacity, std::size_t bytes) {
+void ensureBuffer(Handle& buffer, std::size_t& capacity, std::size_t bytes, double growth) {
     bytes = std::max<std::size_t>(bytes, 16);
     if (buffer && capacity >= bytes) return;
-    capacity = bytes * 2;
+    capacity = std::max(bytes, std::size_t(double(bytes) * growth));
     buffer = createBuffer(capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
 

@@ -43,9 +43,10 @@ private:
 Handle createTexture(GLenum target, GLenum internalFormat, int width, int height, int depth = 1,
                      int levels = 1);
 Handle createBuffer(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
-// Makes `buffer` hold at least `bytes` (at least 16), growing it to twice the request when it
-// is too small so that sizes changing frame by frame settle; `capacity` tracks its size.
-void ensureBuffer(Handle& buffer, std::size_t& capacity, std::size_t bytes);
+// Makes `buffer` hold at least `bytes` (at least 16), growing it to `growth` times the request
+// when it is too small (twice: sizes changing frame by frame settle; 1 for large buffers whose
+// size changes rarely); `capacity` tracks its size.
+void ensureBuffer(Handle& buffer, std::size_t& capacity, std::size_t bytes, double growth = 2.0);
 Handle createFramebuffer();
 Handle createVertexArray();
 // A sampler object: bound to a unit, its filtering and comparison override the texture's.

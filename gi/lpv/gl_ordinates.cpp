@@ -16,8 +16,8 @@ void upload(gl::Handle& buffer, std::size_t& capacity, const std::vector<T>& dat
     if (!data.empty()) glNamedBufferSubData(buffer.id(), 0, GLsizeiptr(data.size() * sizeof(T)), data.data());
 }
 
-void zero(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes) {
-    gl::ensureBuffer(buffer, capacity, bytes);
+void zero(gl::Handle& buffer, std::size_t& capacity, std::size_t bytes, double growth = 2.0) {
+    gl::ensureBuffer(buffer, capacity, bytes, growth);
     glClearNamedBufferData(buffer.id(), GL_R32F, GL_RED, GL_FLOAT, nullptr);
 }
 
@@ -79,7 +79,8 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
     std::vector<float> source = t.binMajor(sources);
     source.resize(std::max<std::size_t>(source.size(), 3), 0.0f);
     upload(m.sources, m.sourcesCap, source);
-    zero(m.irradiance, m.irradianceCap, std::max<std::size_t>(3 * values, 1) * sizeof(glm::vec4));
+    // The stored bricks' cells by axis group: the largest buffer here, sized to them.
+    zero(m.irradiance, m.irradianceCap, std::max<std::size_t>(3 * values, 1) * sizeof(glm::vec4), 1.0);
     zero(m.reflected, m.reflectedCap, std::max<std::size_t>(3 * surfaces * kOrdinateFaces, 1) * sizeof(glm::vec4));
     const std::size_t groups = (std::max<std::size_t>(surfaces, 1) + 63) / 64;
     zero(m.power, m.powerCap, groups * sizeof(float));

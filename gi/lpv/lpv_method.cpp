@@ -164,13 +164,13 @@ MethodInfo lpvFamily(bool cascaded) {
             const double bricked = std::pow(std::ceil(double(d.resolution) / 8.0) * 8.0, 3.0);
             double perCascade = bricked * 676.0 + cells * 0.25 * (36.0 * bins + 400.0);
             if (d.backend == Backend::Gl) {
-                // The GPU's buffers (gi/lpv/gl_ordinates.cpp), allocated at twice the request:
-                // irradiance by axis group (288 bytes a stored cell), reflections (288 a surface cell),
-                // sources and plane shares (16 a bin and surface cell), two padded slabs of every
-                // bin's four taps (64 bytes a lateral cell and bin).
+                // The GPU's buffers (gi/lpv/gl_ordinates.cpp): irradiance by axis group (288 bytes a
+                // stored cell, allocated as requested); at twice the request, reflections (288 a
+                // surface cell), sources and plane shares (16 a bin and surface cell), two padded
+                // slabs of every bin's four taps (64 bytes a lateral cell and bin).
                 const double side = double(d.resolution + 2);
-                perCascade +=
-                    2.0 * (bricked * 288.0 + 0.25 * cells * (288.0 + 16.0 * bins) + 2.0 * bins * side * side * 64.0);
+                perCascade += bricked * 288.0 +
+                              2.0 * (0.25 * cells * (288.0 + 16.0 * bins) + 2.0 * bins * side * side * 64.0);
             }
             return double(d.cascades) * perCascade + rsm;
         }

@@ -172,7 +172,8 @@ void OrdinatesLight::layOutPool() {
     }
     constexpr std::size_t kSlotValues = kOrdinateFaces * std::size_t(shading::kBrickCells);
     stats_.poolBytes = slots * kSlotValues * sizeof(glm::vec4);
-    gl::ensureBuffer(pool_, poolCap_, stats_.poolBytes);
+    // Exactly the slots: the pool is the largest buffer, and grows only when a surface appears.
+    gl::ensureBuffer(pool_, poolCap_, stats_.poolBytes, 1.0);
     if (!changed && tables_) return;
     std::vector<int> all;
     all.reserve(tables);

@@ -6,6 +6,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <system_error>
+#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,12 +36,30 @@ RunResult runShell(const std::string& command) {
     return r;
 }
 
+namespace {
+
+// The directories a test process made, removed when it exits (VOXGI_KEEP_TEST_DIRS=1 keeps them
+// to look at after a failure). Only the thread running the tests makes them.
+struct TempDirs {
+    std::vector<fs::path> made;
+    ~TempDirs() {
+        const char* keep = std::getenv("VOXGI_KEEP_TEST_DIRS");
+        if (keep && *keep && std::string(keep) != "0") return;
+        std::error_code ignored;
+        for (const fs::path& dir : made) fs::remove_all(dir, ignored);
+    }
+};
+
+}  // namespace
+
 std::string makeTempDir(const std::string& tag) {
     static std::atomic<int> counter{0};
+    static TempDirs dirs;
     fs::path dir = fs::temp_directory_path() /
                    ("voxgi-test-" + tag + "-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
     fs::remove_all(dir);
     fs::create_directories(dir);
+    dirs.made.push_back(dir);
     return dir.string();
 }
 

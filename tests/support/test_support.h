@@ -20,7 +20,8 @@ RunResult runShell(const std::string& command);
 // Runs `voxgi <arguments>` through the shell and captures its output and exit status.
 RunResult runVoxgi(const std::string& arguments);
 
-// A fresh empty directory under the system temp dir, unique per call.
+// A fresh empty directory under the system temp dir, unique per call, removed when the test
+// process exits (VOXGI_KEEP_TEST_DIRS=1 keeps it).
 std::string makeTempDir(const std::string& tag);
 void writeFile(const std::string& path, const std::string& text);
 bool fileExists(const std::string& path);
