@@ -36,8 +36,11 @@ public:
     // A cell's index among the slots' cells ([slot][kBrickCells], slotOf(cell) >= 0): in the
     // surface indices, and in each face of an irradiance cube (faceStride values per face).
     static std::size_t brickCell(int slot, glm::ivec3 cell) { return std::size_t(shading::brickCell(slot, cell)); }
-    std::size_t faceStride() const { return slots() * std::size_t(shading::kBrickCells); }
+    std::size_t faceStride() const { return std::size_t(shading::brickValue(int(slots()), 0, 1)); }
     std::size_t slots() const { return origins_.size(); }
+    // Values of an irradiance cube over the slots (six faces of each slot's cells).
+    static constexpr std::size_t kSlotValues = 6 * std::size_t(shading::kBrickCells);
+    std::size_t valueCount() const { return slots() * kSlotValues; }
     int tableSide() const { return side_; }
     std::size_t tableSize() const { return table_.size(); }
 
@@ -47,7 +50,10 @@ public:
     const std::vector<glm::ivec3>& slotOrigins() const { return origins_; }
 
 private:
-    void allocateCells(glm::ivec3 lo, glm::ivec3 hi);  // the bricks of cells lo..hi
+    // f(table index) for every brick holding a cell of the grid within `reach` of `cell`.
+    template <typename F>
+    void forEachBrickAround(glm::ivec3 cell, int reach, F f) const;
+    void allocate(std::size_t brick);  // by table index; a slot unless it has one
 
     int resolution_ = 0;
     int side_ = 0;

@@ -4,7 +4,6 @@
 #include <cstdint>
 
 #include "gl/program.h"
-#include "shaders/shared/light_bricks.h"
 
 namespace voxgi {
 
@@ -45,7 +44,7 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
     const std::vector<OrdinateBin>& bins = t.bins();
     const BrickMap& bricks = t.bricks();
     const std::size_t nb = bins.size(), surfaces = t.coverage().size(), slots = bricks.slots(),
-                      values = slots * kOrdinateFaces * std::size_t(shading::kBrickCells);
+                      values = bricks.valueCount();
     const std::size_t row = std::size_t(n) + 2, plane = row * row;
 
     // The bins and surfaces go up when they differ from the last solve's (a cascade's ring and
@@ -150,7 +149,7 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
 }
 
 IrradianceBricks readBricks(GLuint pool, std::size_t firstSlot, std::size_t slots) {
-    constexpr std::size_t perSlot = kOrdinateFaces * std::size_t(shading::kBrickCells);
+    constexpr std::size_t perSlot = BrickMap::kSlotValues;
     IrradianceBricks out(slots * perSlot);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (!out.empty())

@@ -109,10 +109,11 @@ void writeOrdinatesVdb(const std::string& path, const std::vector<OrdinatesDump>
             grid->setTransform(xform);
             tag(*grid, "irradiance_" + std::string(faces[f]) + "_L" + std::to_string(c), int(c), g.cellSize);
             grid->insertMeta("units", openvdb::StringMetadata("W/m^2"));
-            if (e.size() < kOrdinateFaces * bricks.faceStride()) continue;
+            if (e.size() < bricks.valueCount()) continue;
             for (std::size_t slot = 0; slot < bricks.slots(); ++slot) {
                 const glm::ivec3 o = bricks.slotOrigins()[slot];
-                const glm::vec4* values = e.data() + std::size_t(f) * bricks.faceStride() + BrickMap::brickCell(int(slot), o);
+                const glm::vec4* values =
+                    e.data() + shading::brickValue(int(bricks.slots()), shading::brickCell(int(slot), o), f);
                 auto leaf = std::make_unique<Leaf>(openvdb::Coord(o.x, o.y, o.z), openvdb::Vec3s(0.0f), false);
                 bool any = false;
                 for (int i = 0; i < shading::kBrickCells; ++i) {

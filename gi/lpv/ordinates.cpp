@@ -100,10 +100,6 @@ OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace, int
       bricks_(grid.resolution),
       revision_(nextRevision++) {}
 
-void OrdinatesTransport::allocateBricks(glm::ivec3 cell, int reach) {
-    allocate([&] { bricks_.allocateAround(cell, reach); });
-}
-
 void OrdinatesTransport::allocateAllBricks() {
     allocate([&] { bricks_.allocateAll(); });
 }
@@ -111,7 +107,7 @@ void OrdinatesTransport::allocateAllBricks() {
 glm::vec4 OrdinatesTransport::irradianceAt(const IrradianceBricks& e, glm::ivec3 cell, int face) const {
     const int slot = bricks_.slotOf(cell);
     if (slot < 0) return glm::vec4(0.0f);
-    const std::size_t i = std::size_t(face) * bricks_.faceStride() + BrickMap::brickCell(slot, cell);
+    const std::size_t i = std::size_t(shading::brickValue(int(bricks_.slots()), shading::brickCell(slot, cell), face));
     return i < e.size() ? e[i] : glm::vec4(0.0f);
 }
 
@@ -129,18 +125,16 @@ int OrdinatesTransport::surfaceIndex(glm::ivec3 cell) const {
 int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
     if (const int known = surfaceIndex(cell); known >= 0) return known;
     // A surface cell stores light `reach_` cells around it: its receivers read there.
-    allocateBricks(cell, reach_);
-    int& s = surfaceOf_[BrickMap::brickCell(bricks_.slotOf(cell), cell)];
-    {
-        s = int(cells_.size());
-        revision_ = nextRevision++;
-        cells_.push_back(cell);
-        surfaceBounds_.min = glm::min(surfaceBounds_.min, cell);
-        surfaceBounds_.max = glm::max(surfaceBounds_.max, cell);
-        coverage_.push_back(0.0f);
-        vectorCoverage_.push_back(glm::vec3(0.0f));
-        albedo_.push_back(glm::vec3(0.0f));
-    }
+    allocate([&] { bricks_.allocateAround(cell, reach_); });
+    const int s = int(cells_.size());
+    surfaceOf_[BrickMap::brickCell(bricks_.slotOf(cell), cell)] = s;
+    revision_ = nextRevision++;
+    cells_.push_back(cell);
+    surfaceBounds_.min = glm::min(surfaceBounds_.min, cell);
+    surfaceBounds_.max = glm::max(surfaceBounds_.max, cell);
+    coverage_.push_back(0.0f);
+    vectorCoverage_.push_back(glm::vec3(0.0f));
+    albedo_.push_back(glm::vec3(0.0f));
     return s;
 }
 
@@ -257,22 +251,21 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
     const int innerAxis = u == 0 || v == 0 ? 0 : 1;
     const bool uInner = innerAxis == u;
     const int outerAxis = uInner ? v : u;
+    // Slab offsets of the taps' upstream cells (the slab buffers run along the inner axis).
+    const std::ptrdiff_t du = uInner ? su : std::ptrdiff_t(su) * std::ptrdiff_t(row),
+                         dv = uInner ? std::ptrdiff_t(sv) * std::ptrdiff_t(row) : sv;
+    const std::ptrdiff_t from[4] = {0, -du, -dv, -du - dv};
+    // A cell's offset in its brick and its brick's table index, axis by axis (light_bricks.h:
+    // bits 0, 3 and 6 of the offset for x, y and z; the table's x fastest too).
+    const int side = bricks_.tableSide();
+    const int shift[3] = {0, 3, 6}, tableStride[3] = {1, side, side * side};
+    const int innerShift = shift[innerAxis], innerTable = tableStride[innerAxis];
+    const int* table = bricks_.table().data();
+    const int lo = box.min[innerAxis], hi = box.max[innerAxis];
     const int first = box.min[axis], last = box.max[axis];
     for (int t = 0; t <= last - first; ++t) {
         const int a = b.sign > 0 ? first + t : last - t;
-        // Slab offsets of the taps' upstream cells (the slab buffers run along the inner axis).
-        const std::ptrdiff_t du = uInner ? su : std::ptrdiff_t(su) * std::ptrdiff_t(row),
-                             dv = uInner ? std::ptrdiff_t(sv) * std::ptrdiff_t(row) : sv;
-        const std::ptrdiff_t from[4] = {0, -du, -dv, -du - dv};
-
-        // A cell's offset in its brick and its brick's table index, axis by axis (light_bricks.h:
-        // bits 0, 3 and 6 of the offset for x, y and z; the table's x fastest too).
-        const int side = bricks_.tableSide();
-        const int shift[3] = {0, 3, 6}, tableStride[3] = {1, side, side * side};
         const int slabOffset = (a & 7) << shift[axis], slabTable = (a >> 3) * tableStride[axis];
-        const int innerShift = shift[innerAxis], innerTable = tableStride[innerAxis];
-        const int* table = bricks_.table().data();
-        const int lo = box.min[innerAxis], hi = box.max[innerAxis];
         for (int outer = box.min[outerAxis]; outer <= box.max[outerAxis]; ++outer) {
             const int rowOffset = slabOffset | ((outer & 7) << shift[outerAxis]),
                       rowTable = slabTable + (outer >> 3) * tableStride[outerAxis];
@@ -388,8 +381,7 @@ IrradianceBricks OrdinatesTransport::solve(const Sources& sources, bool occlusio
                                            std::vector<glm::vec3>* carry) {
     stats_ = {};
     stats_.emittedWatts = sources.watts;
-    const std::size_t values = bricks_.slots() * kOrdinateFaces * std::size_t(shading::kBrickCells),
-                      surfaces = coverage_.size(), nb = bins_.size();
+    const std::size_t values = bricks_.valueCount(), surfaces = coverage_.size(), nb = bins_.size();
     IrradianceBricks irradiance(values, glm::vec4(0.0f));
     const std::array<std::vector<float>, kOrdinateFaces> faceShares = faceReflectionShares();
     const std::vector<float> planeShares = planeReflectionShares();

@@ -195,7 +195,6 @@ private:
     glm::vec3 planeNormal(std::size_t s) const;
     void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion, const IndexBox& box,
                IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const;
-    void allocateBricks(glm::ivec3 cell, int reach);
     // Runs `add` (which adds bricks); new slots get no surfaces and a new geometry revision.
     template <typename Add>
     void allocate(Add add) {

@@ -9,7 +9,6 @@
 #include "gi/lpv/gl_cascade_uniforms.h"
 #include "shaders/lpv/limits.h"
 #include "gi/sky/sky_volume.h"
-#include "shaders/shared/light_bricks.h"
 #include "volumes/voxel_surfaces.h"
 
 namespace voxgi {
@@ -113,7 +112,7 @@ void OrdinatesLight::solve() {
     const bool incremental = desc_.bounces && desc_.sweeps != kFittedInteger;
     const int maxBounces = !desc_.bounces ? 1 : incremental ? desc_.sweeps : 256;
     layOutPool();
-    constexpr std::size_t kSlotBytes = kOrdinateFaces * std::size_t(shading::kBrickCells) * sizeof(glm::vec4);
+    constexpr std::size_t kSlotBytes = BrickMap::kSlotValues * sizeof(glm::vec4);
     for (std::size_t c = 0; c < transports_.size(); ++c) {
         for (int set = 0; set < 2; ++set) {
             const OrdinatesTransport::Sources& sources = set == 0 ? ring_[c] : inner_[c];
@@ -170,8 +169,7 @@ void OrdinatesLight::layOutPool() {
         stats_.bricks += b.slots();
         stats_.gridBricks += b.tableSize();
     }
-    constexpr std::size_t kSlotValues = kOrdinateFaces * std::size_t(shading::kBrickCells);
-    stats_.poolBytes = slots * kSlotValues * sizeof(glm::vec4);
+    stats_.poolBytes = slots * BrickMap::kSlotValues * sizeof(glm::vec4);
     // Exactly the slots: the pool is the largest buffer, and grows only when a surface appears.
     gl::ensureBuffer(pool_, poolCap_, stats_.poolBytes, 1.0);
     if (!changed && tables_) return;

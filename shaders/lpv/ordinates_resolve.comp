@@ -1,7 +1,7 @@
 #version 450 core
 // The irradiance cube the apply pass reads (apply_ordinates.frag): each face's three axis
 // groups (ordinates_sweep.comp) summed into the volume's slots of the brick pool
-// (shaders/shared/light_bricks.h). Work groups of 512 values, x y of them.
+// (shaders/shared/light_bricks.h), value by value: 6 x slots work groups of 512 invocations.
 layout(local_size_x = 512) in;
 
 #include "shared/light_bricks.h"
