@@ -147,6 +147,65 @@ TEST(LpvOrdinates, AWallStopsTheLightBehindIt) {
     EXPECT_LT(behind, 1e-6 * front) << "rounding only";
 }
 
+// A layer of cells each holding a vertical column (a closed surface whose normals are horizontal:
+// no net normal, area S, projected coverage P = (p, 0, p) with S = p pi / 2) between black emitters
+// and receivers. Light moving up passes the columns where it only crosses the layer's y faces and
+// loses at most the mean shadow p / 2 over the faces a move crosses; light moving sideways loses at
+// least that. Not knowing P (normals spread evenly) every move loses S / 4.
+TEST(LpvOrdinates, AColonnadeLetsLightPassAlongItsColumnsAndStopsWhatCrossesThem) {
+    const int n = 32;
+    const float p = 0.8f, area = p * float(kPi) / 2.0f;
+    // Light emitted by the plane `along` = 0 towards +along, crossing a layer of columns at
+    // `along` = 8 (none when `columns` is false), received at 16..23 by faces facing -along, up to a
+// black plane at 28. (Nearer the layer the grazing bins of the other axes add light that slid
+// along the layer, through several of its cells.)
+    auto received = [&](int along, bool columns, glm::vec3 projected) {
+        OrdinatesTransport t(gridOf(n), 2);
+        t.allocateAllBricks();
+        auto cell = [&](int a, int x, int y) {
+            glm::ivec3 c;
+            c[along] = a;
+            c[(along + 1) % 3] = x;
+            c[(along + 2) % 3] = y;
+            return c;
+        };
+        glm::vec3 normal(0.0f);
+        normal[along] = 1.0f;
+        SurfelSource emitters;
+        for (int x = 0; x < n; ++x)
+            for (int y = 0; y < n; ++y) {
+                t.addSurface({cell(0, x, y), 1.0f, normal, glm::vec3(0.0f)});
+                t.addSurface({cell(28, x, y), 1.0f, -normal, glm::vec3(0.0f)});  // the sweeps reach it
+                if (columns) t.addSurface({cell(8, x, y), area, glm::vec3(0.0f), glm::vec3(0.0f), projected});
+                Surfel f;
+                f.position = glm::vec3(cell(0, x, y)) + 0.5f;
+                f.normal = normal;
+                f.flux = glm::vec3(1.0f);
+                f.area = 1.0f;
+                emitters.surfels.push_back(f);
+            }
+        OrdinatesTransport::Sources s = t.emptySources();
+        t.addSurfels(emitters, 0.0f, s);
+        const auto e = t.solve(s, true, 1);
+        double sum = 0.0;
+        for (int a = 16; a < 24; ++a)
+            for (int x = 8; x < 24; ++x)
+                for (int y = 8; y < 24; ++y) sum += t.irradianceAt(e, cell(a, x, y), 2 * along + 1).r;
+        return sum;
+    };
+    const glm::vec3 column(p, 0.0f, p), unknown(0.0f);
+    const double up = received(1, true, column) / received(1, false, column);
+    const double sideways = received(0, true, column) / received(0, false, column);
+    const double evenly = received(1, true, unknown) / received(1, false, unknown);
+    EXPECT_NEAR(evenly, 1.0 - area / 4.0, 1e-4);
+    EXPECT_GT(up, 1.0 - p / 3.0);  // taps crossing y and one or two lateral faces lose p/4 or p/3
+    EXPECT_LT(up, 1.0);            // ... and some taps do
+    EXPECT_GT(up, evenly);
+    EXPECT_LE(sideways, 1.0 - p / 4.0 + 1e-4);  // every sideways move loses at least p / 4
+    EXPECT_GE(sideways, 1.0 - p / 2.0 - 1e-4);
+    EXPECT_LT(sideways, up - 0.05);
+}
+
 // A closed cube of albedo a lit by sources of power P: everything emitted is eventually absorbed,
 // so the walls receive P / (1 - a) over all bounces and reflect a P / (1 - a); a leak would lose it.
 TEST(LpvOrdinates, BouncesInAClosedBoxSumToTheGeometricSeries) {

@@ -21,6 +21,8 @@
 
 #include "scenes/errors.h"
 #include "support/test_support.h"
+#include "scenes/primitives.h"
+#include "volumes/blocker_sh.h"
 #include "volumes/detail/geometry_grids.h"
 #include "volumes/geometry_volume.h"
 
@@ -98,7 +100,7 @@ TEST(VolumeCompact, AlbedoHalvesStayWithinTheStatedBound) {
     std::uniform_real_distribution<float> exponent(-30.0f, 16.0f);
     for (int i = 0; i < 200000; ++i) {
         const float v = std::exp2(exponent(rng));
-        const glm::vec3 got = detail::dequantizeAlbedo(detail::quantizeAlbedo(glm::vec3(v, 0.5f * v, v / 3.0f)));
+        const glm::vec3 got = detail::fromHalves(detail::toHalves(glm::vec3(v, 0.5f * v, v / 3.0f)));
         const glm::vec3 want(v, 0.5f * v, v / 3.0f);
         for (int c = 0; c < 3; ++c) {
             const float bound = std::abs(want[c]) >= 6.1035156e-05f ? kHalfRelative * std::abs(want[c]) : kHalfSubnormal;
@@ -107,8 +109,8 @@ TEST(VolumeCompact, AlbedoHalvesStayWithinTheStatedBound) {
     }
     // Exact values the tests and materials use survive unchanged; the range saturates.
     for (float v : {0.0f, 1.0f, 0.5f, 0.25f, 0.75f})
-        EXPECT_EQ(detail::dequantizeAlbedo(detail::quantizeAlbedo(glm::vec3(v))), glm::vec3(v));
-    EXPECT_EQ(detail::dequantizeAlbedo(detail::quantizeAlbedo(glm::vec3(1e9f))), glm::vec3(65504.0f));
+        EXPECT_EQ(detail::fromHalves(detail::toHalves(glm::vec3(v))), glm::vec3(v));
+    EXPECT_EQ(detail::fromHalves(detail::toHalves(glm::vec3(1e9f))), glm::vec3(65504.0f));
 }
 
 TEST(VolumeCompact, EveryVoxelReadsItsOwnAttributes) {
@@ -140,7 +142,7 @@ TEST(VolumeCompact, FileGridsAreDenseCopiesOfTheAccessors) {
     std::map<VoxelKey, Expected> expected;
     SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected), 2);
     openvdb::GridPtrVec grids = detail::expandGrids(v.grids());
-    ASSERT_EQ(grids.size(), 14u);
+    ASSERT_EQ(grids.size(), 16u);
     for (int level = 0; level < 2; ++level) {
         auto find = [&](const std::string& base) {
             for (const auto& g : grids)
@@ -151,7 +153,8 @@ TEST(VolumeCompact, FileGridsAreDenseCopiesOfTheAccessors) {
         auto occupancy = openvdb::gridPtrCast<openvdb::BoolGrid>(find("occupancy"));
         auto albedo = openvdb::gridPtrCast<openvdb::Vec3fGrid>(find("albedo"));
         auto normal = openvdb::gridPtrCast<openvdb::Vec3fGrid>(find("normal"));
-        ASSERT_TRUE(occupancy && albedo && normal);
+        auto projected = openvdb::gridPtrCast<openvdb::Vec3fGrid>(find("projected_coverage"));
+        ASSERT_TRUE(occupancy && albedo && normal && projected);
         EXPECT_EQ(occupancy->activeVoxelCount(), v.activeVoxelCount(level));
         EXPECT_EQ(albedo->activeVoxelCount(), v.activeVoxelCount(level));
         EXPECT_EQ(normal->activeVoxelCount(), v.activeVoxelCount(level));
@@ -170,6 +173,8 @@ TEST(VolumeCompact, FileGridsAreDenseCopiesOfTheAccessors) {
             const openvdb::Vec3f a = albedo->tree().getValue(it.getCoord()), n = normal->tree().getValue(it.getCoord());
             ASSERT_EQ(glm::vec3(a.x(), a.y(), a.z()), v.albedo(ijk, level));
             ASSERT_EQ(glm::vec3(n.x(), n.y(), n.z()), v.normal(ijk, level));
+            const openvdb::Vec3f p = projected->tree().getValue(it.getCoord());
+            ASSERT_EQ(glm::vec3(p.x(), p.y(), p.z()), v.projectedCoverage(ijk, level));
         }
         // Inactive voxels of the dense leaves hold zero, as before the compact layout.
         for (auto it = albedo->cbeginValueOff(); it; ++it) ASSERT_EQ(*it, openvdb::Vec3f(0.0f));
@@ -181,15 +186,88 @@ TEST(VolumeCompact, MemoryCountsTreesAndArraysAndBeatsDenseGrids) {
     SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected));
     const detail::LevelGrids& l = v.grids().levels.at(0);
     const std::uint64_t active = v.activeVoxelCount();
-    const std::uint64_t arrays = l.normalC0.capacity() * sizeof(glm::vec4) + l.albedo.capacity() * sizeof(detail::HalfRgb);
+    const std::uint64_t arrays = l.normalC0.capacity() * sizeof(glm::vec4) +
+                                 (l.albedo.capacity() + l.projected.capacity()) * sizeof(detail::Half3);
     EXPECT_EQ(l.normalC0.size(), active);
     EXPECT_EQ(l.albedo.size(), active);
-    EXPECT_EQ(sizeof(glm::vec4) + sizeof(detail::HalfRgb), 22u);  // bytes per active voxel
+    EXPECT_EQ(l.projected.size(), active);
+    EXPECT_EQ(sizeof(glm::vec4) + 2 * sizeof(detail::Half3), 28u);  // bytes per active voxel
     EXPECT_GE(v.memoryBytes(), l.occupancy->memUsage() + arrays);
     EXPECT_LE(v.memoryBytes(), l.occupancy->memUsage() + arrays + 4096);
     std::uint64_t dense = 0;
     for (const auto& g : detail::expandGrids(v.grids())) dense += g->memUsage();
     EXPECT_LT(4 * v.memoryBytes(), dense);
+}
+
+// The projected coverage is the surfaces' area seen along each axis, every layer counted: a
+// closed 0.5 m cube in a 1 m voxel shows 2 x 0.25 on every axis with no net normal; an open
+// octagonal column of radius r and height l (vertices on the axes) none on y and 2 x 2r x l on x
+// and z; a floor what its normal says. A coarser level sums its children over its larger face.
+TEST(VolumeCompact, ProjectedCoverageIsTheAreaSeenAlongEachAxis) {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    scene.meshes.push_back(makeBox(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f)), 0));
+    const float r = 0.3f, l = 0.8f;
+    std::vector<glm::vec3> ring;
+    for (int k = 0; k < 8; ++k) {
+        const float a = float(k) * 0.25f * 3.14159265f;
+        ring.push_back({2.5f + r * std::cos(a), 0.1f, 0.5f + r * std::sin(a)});
+    }
+    std::vector<glm::vec3> vertices = ring;
+    for (glm::vec3 v : ring) vertices.push_back(v + glm::vec3(0.0f, l, 0.0f));
+    std::vector<std::vector<std::uint32_t>> sides;
+    for (std::uint32_t k = 0; k < 8; ++k) sides.push_back({k, (k + 1) % 8, 8 + (k + 1) % 8, 8 + k});
+    scene.meshes.push_back(makePolygons(vertices, sides, 0));
+    scene.meshes.push_back(makeQuad({glm::vec3(4.2f, 0.5f, 0.2f), glm::vec3(4.2f, 0.5f, 0.8f), glm::vec3(4.8f, 0.5f, 0.8f),
+                                     glm::vec3(4.8f, 0.5f, 0.2f)},
+                                    0));
+    const SparseGeometryVolume v = voxelizeUnit(scene, 2);
+    auto expectNear = [](glm::vec3 got, glm::vec3 want, const char* what) {
+        for (int a = 0; a < 3; ++a) EXPECT_NEAR(got[a], want[a], 2e-3f * (1.0f + want[a])) << what << " axis " << a;
+    };
+    expectNear(v.projectedCoverage({0, 0, 0}), glm::vec3(0.5f), "cube");
+    expectNear(v.normal({0, 0, 0}), glm::vec3(0.0f), "cube's net normal");
+    expectNear(v.projectedCoverage({2, 0, 0}), glm::vec3(4.0f * r * l, 0.0f, 4.0f * r * l), "column");
+    const glm::vec3 floor = v.projectedCoverage({4, 0, 0});
+    expectNear(floor, glm::abs(v.normal({4, 0, 0})), "floor");
+    EXPECT_NEAR(floor.y, 0.36f, 1e-3f);
+    // Level 1: voxel (0, 0, 0) holds the cube and the column's voxel (2 -> 1 is the next one).
+    expectNear(v.projectedCoverage({0, 0, 0}, 1), glm::vec3(0.5f) / 4.0f, "cube at level 1");
+    expectNear(v.projectedCoverage({1, 0, 0}, 1), glm::vec3(4.0f * r * l, 0.0f, 4.0f * r * l) / 4.0f, "column at level 1");
+}
+
+// A file from before the projected coverage (no projected_coverage grids) reads the estimate
+// with the normals beyond the net normal spread evenly; a negative area in the grid is refused.
+TEST(VolumeCompact, ProjectedCoverageFromOlderFilesAndBadValues) {
+    std::map<VoxelKey, Expected> expected;
+    SparseGeometryVolume v = voxelizeUnit(scatteredTriangles(expected));
+    const std::string dir = test::makeTempDir("vol-compact");
+    openvdb::GridPtrVec grids = detail::expandGrids(v.grids()), older;
+    for (const auto& g : grids)
+        if (g->getName() != "projected_coverage") older.push_back(g);
+    ASSERT_EQ(older.size() + 1, grids.size());
+    openvdb::io::File(dir + "/older.vdb").write(older);
+    const SparseGeometryVolume r = readGeometryVolume(dir + "/older.vdb");
+    for (const glm::ivec3 c : {glm::ivec3(0, 0, 0), glm::ivec3(3, 4, 5), glm::ivec3(7, 15, 23)}) {
+        const glm::vec3 m = r.normal(c);
+        const glm::vec3 want = isotropicProjectedCoverage(coverageFromBlocker(r.blockerSH(c)[0], m, BlockerFit::PlaneExact), m);
+        for (int a = 0; a < 3; ++a) EXPECT_NEAR(r.projectedCoverage(c)[a], want[a], kHalfRelative * want[a] + kHalfSubnormal);
+        // One triangle per voxel: its normals do not cancel, so the estimate is the exact |m|.
+        for (int a = 0; a < 3; ++a) EXPECT_NEAR(r.projectedCoverage(c)[a], v.projectedCoverage(c)[a], 1e-3f * (1.0f + want[a]));
+    }
+    for (const auto& g : grids)
+        if (g->getName() == "projected_coverage")
+            openvdb::gridPtrCast<openvdb::Vec3fGrid>(g)->tree().setValue({7, 15, 23}, openvdb::Vec3f(0.1f, -1.0f, 0.0f));
+    openvdb::io::File(dir + "/negative.vdb").write(grids);
+    try {
+        readGeometryVolume(dir + "/negative.vdb");
+        FAIL() << "a negative area was accepted";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(dir + "/negative.vdb"), std::string::npos) << message;
+        EXPECT_NE(message.find("projected_coverage"), std::string::npos) << message;
+        EXPECT_NE(message.find("(7, 15, 23)"), std::string::npos) << message;
+    }
 }
 
 TEST(VolumeCompact, ReadingRefusesABlockerThatContradictsTheNormal) {

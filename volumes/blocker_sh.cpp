@@ -40,6 +40,10 @@ float coverageFromBlocker(float c0, const glm::vec3& vectorCoverage, BlockerFit 
     return fit == BlockerFit::Projection ? constant : constant + glm::length(vectorCoverage);
 }
 
+glm::vec3 isotropicProjectedCoverage(float coverage, const glm::vec3& vectorCoverage) {
+    return glm::abs(vectorCoverage) + 0.5f * std::max(0.0f, coverage - glm::length(vectorCoverage));
+}
+
 glm::vec4 blockerSH(float c0, const glm::vec3& vectorCoverage, BlockerFit fit) {
     const glm::vec3 linear = fit == BlockerFit::Projection ? 0.5f * vectorCoverage : vectorCoverage;
     return glm::vec4(c0, -linear.y / kShY1, linear.z / kShY1, -linear.x / kShY1);

@@ -37,6 +37,12 @@ glm::vec4 blockerSH(float c0, const glm::vec3& vectorCoverage, BlockerFit fit);
 // blockerFromCoverage's c0, up to rounding).
 float coverageFromBlocker(float c0, const glm::vec3& vectorCoverage, BlockerFit fit);
 
+// The projected coverage P (sum of clipped area * |n_a| / voxel face area, per axis a) of
+// surfaces known only by S and m: the part |m_a| of one orientation, plus the rest spread as if
+// its normals pointed every way evenly (the mean |n_a| over the sphere is 1/2). Files written
+// before the voxelizer stored P get this.
+glm::vec3 isotropicProjectedCoverage(float coverage, const glm::vec3& vectorCoverage);
+
 // B(w) with the convention above, clamped to [0, 1].
 float evaluateBlocker(const glm::vec4& sh, const glm::vec3& w);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include <tbb/parallel_for.h>
 
@@ -43,16 +44,16 @@ std::int64_t LevelGrids::attributeIndex(const openvdb::Coord& ijk) const {
 }
 
 std::uint64_t LevelGrids::memoryBytes() const {
-    return occupancy->memUsage() + normalC0.capacity() * sizeof(glm::vec4) + albedo.capacity() * sizeof(HalfRgb);
+    return occupancy->memUsage() + normalC0.capacity() * sizeof(glm::vec4) + (albedo.capacity() + projected.capacity()) * sizeof(Half3);
 }
 
-HalfRgb quantizeAlbedo(const glm::vec3& albedo) {
-    HalfRgb h;
+Half3 toHalves(const glm::vec3& albedo) {
+    Half3 h;
     for (int c = 0; c < 3; ++c) h[std::size_t(c)] = openvdb::math::half(std::clamp(albedo[c], -65504.0f, 65504.0f));
     return h;
 }
 
-glm::vec3 dequantizeAlbedo(const HalfRgb& albedo) {
+glm::vec3 fromHalves(const Half3& albedo) {
     return glm::vec3(float(albedo[0]), float(albedo[1]), float(albedo[2]));
 }
 
@@ -76,6 +77,7 @@ LevelGrids compactLevel(LevelFileGrids&& file, BlockerFit fit, const std::string
     const std::uint64_t active = indexLeaves(tree);
     level.normalC0.resize(active);
     level.albedo.resize(active);
+    level.projected.resize(active);
     const std::vector<OccupancyLeaf*> leaves = leavesOf(tree);
 
     std::mutex mismatchMutex;
@@ -83,6 +85,8 @@ LevelGrids compactLevel(LevelFileGrids&& file, BlockerFit fit, const std::string
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         auto albedo = file.albedo->getConstAccessor();
         auto normal = file.normal->getConstAccessor();
+        std::optional<openvdb::Vec3fGrid::ConstAccessor> projected;
+        if (file.projected) projected.emplace(file.projected->getConstAccessor());
         std::array<openvdb::FloatGrid::ConstAccessor, 4> blocker = {
             file.blocker[0]->getConstAccessor(), file.blocker[1]->getConstAccessor(),
             file.blocker[2]->getConstAccessor(), file.blocker[3]->getConstAccessor()};
@@ -107,7 +111,24 @@ LevelGrids compactLevel(LevelFileGrids&& file, BlockerFit fit, const std::string
                                    " its normal grid implies";
                 }
                 level.normalC0[index] = glm::vec4(m, stored[0]);
-                level.albedo[index] = quantizeAlbedo(glm::vec3(a.x(), a.y(), a.z()));
+                level.albedo[index] = toHalves(glm::vec3(a.x(), a.y(), a.z()));
+                glm::vec3 p;
+                if (projected) {
+                    const openvdb::Vec3f v = projected->getValue(ijk);
+                    p = glm::vec3(v.x(), v.y(), v.z());
+                    // Areas: a negative or non-finite one would make light out of nothing.
+                    if (!(p.x >= 0.0f && p.y >= 0.0f && p.z >= 0.0f && p.x + p.y + p.z < 3e38f)) {
+                        std::lock_guard<std::mutex> lock(mismatchMutex);
+                        if (mismatch.empty())
+                            mismatch = "grid '" + file.projected->getName() + "' at voxel (" + std::to_string(ijk.x()) + ", " +
+                                       std::to_string(ijk.y()) + ", " + std::to_string(ijk.z()) +
+                                       ") is not a finite, non-negative area";
+                        p = glm::vec3(0.0f);
+                    }
+                } else {
+                    p = isotropicProjectedCoverage(coverageFromBlocker(stored[0], m, fit), m);
+                }
+                level.projected[index] = toHalves(p);
             }
         }
     });

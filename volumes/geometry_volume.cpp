@@ -67,13 +67,19 @@ glm::vec4 SparseGeometryVolume::blockerSH(const glm::ivec3& ijk, int level) cons
 glm::vec3 SparseGeometryVolume::albedo(const glm::ivec3& ijk, int level) const {
     const auto& l = levelOf(*grids_, level);
     const std::int64_t i = l.attributeIndex(coord(ijk));
-    return i < 0 ? glm::vec3(0.0f) : detail::dequantizeAlbedo(l.albedo[std::size_t(i)]);
+    return i < 0 ? glm::vec3(0.0f) : detail::fromHalves(l.albedo[std::size_t(i)]);
 }
 
 glm::vec3 SparseGeometryVolume::normal(const glm::ivec3& ijk, int level) const {
     const auto& l = levelOf(*grids_, level);
     const std::int64_t i = l.attributeIndex(coord(ijk));
     return i < 0 ? glm::vec3(0.0f) : glm::vec3(l.normalC0[std::size_t(i)]);
+}
+
+glm::vec3 SparseGeometryVolume::projectedCoverage(const glm::ivec3& ijk, int level) const {
+    const auto& l = levelOf(*grids_, level);
+    const std::int64_t i = l.attributeIndex(coord(ijk));
+    return i < 0 ? glm::vec3(0.0f) : detail::fromHalves(l.projected[std::size_t(i)]);
 }
 
 float SparseGeometryVolume::sdf(const glm::ivec3& ijk) const {

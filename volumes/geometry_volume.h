@@ -92,6 +92,10 @@ public:
     // Sum of clipped area * unit normal / voxel face area: direction = mean normal, length =
     // projected coverage (1 for a wall crossing the voxel along an axis).
     glm::vec3 normal(const glm::ivec3& ijk, int level = 0) const;
+    // Per axis a, the sum of clipped area * |n_a| / voxel face area: the area of the surfaces seen
+    // along the axis, every layer counted (a floor's 1 on y; a closed surface shows half of it,
+    // each part seen from both sides; a vertical column none on y). Halves like albedo.
+    glm::vec3 projectedCoverage(const glm::ivec3& ijk, int level = 0) const;
     float sdf(const glm::ivec3& ijk) const;  // level 0 only; background outside the band
 
     std::uint64_t activeVoxelCount(int level = 0) const;

@@ -44,7 +44,8 @@ void AccumLeaf::writeAttributes(LevelGrids& level, BlockerFit fit) const {
     forEachActive([&](int, const VoxelSums& s) {
         glm::vec3 albedo = s.albedoWeight > 0.0f ? s.albedoSum / s.albedoWeight : glm::vec3(0.0f);
         level.normalC0[index] = glm::vec4(s.vectorArea, blockerFromCoverage(s.area, s.vectorArea, fit)[0]);
-        level.albedo[index] = quantizeAlbedo(albedo);
+        level.albedo[index] = toHalves(albedo);
+        level.projected[index] = toHalves(s.axisArea);
         ++index;
     });
 }
@@ -71,6 +72,7 @@ AccumLevel downsample(const AccumLevel& fine) {
                 // Areas are in face units of their level; a coarse face is 4 fine faces.
                 s.area *= 0.25f;
                 s.vectorArea *= 0.25f;
+                s.axisArea *= 0.25f;
                 s.albedoSum *= 0.25f;
                 s.albedoWeight *= 0.25f;
                 leaf->add(AccumLeaf::offset(p.x, p.y, p.z), s, dense);
@@ -91,6 +93,7 @@ LevelGrids buildLevelGrids(AccumLevel&& level, double voxelSize, BlockerFit fit)
     const std::uint64_t active = indexLeaves(g.occupancy->tree());
     g.normalC0.resize(active);
     g.albedo.resize(active);
+    g.projected.resize(active);
     tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t i) {
         level[i]->writeAttributes(g, fit);
         level[i].reset();

@@ -51,7 +51,7 @@ void appendLevel(const GeometryGrids& g, int level, openvdb::GridPtrVec& out) {
     out.push_back(occupancy);
 
     auto albedo = expandAttribute<openvdb::Vec3fGrid>(l, leaves, [&](std::size_t i) {
-        glm::vec3 a = dequantizeAlbedo(l.albedo[i]);
+        glm::vec3 a = fromHalves(l.albedo[i]);
         return openvdb::Vec3f(a.x, a.y, a.z);
     });
     annotate(*albedo, gridName("albedo", level), "albedo", level, l.voxelSize, g);
@@ -83,6 +83,16 @@ void appendLevel(const GeometryGrids& g, int level, openvdb::GridPtrVec& out) {
         b->insertMeta("voxgi_blocker_fit", openvdb::StringMetadata(blockerFitName(g.blockerFit)));
         out.push_back(b);
     }
+    auto projected = expandAttribute<openvdb::Vec3fGrid>(l, leaves, [&](std::size_t i) {
+        const glm::vec3 p = fromHalves(l.projected[i]);
+        return openvdb::Vec3f(p.x, p.y, p.z);
+    });
+    annotate(*projected, gridName("projected_coverage", level), "projected_coverage", level, l.voxelSize, g);
+    projected->setGridClass(openvdb::GRID_UNKNOWN);
+    projected->setVectorType(openvdb::VEC_INVARIANT);
+    projected->insertMeta("voxgi_meaning", openvdb::StringMetadata(
+        "per axis a: sum of clipped triangle area * |normal_a| / voxel face area"));
+    out.push_back(projected);
 }
 
 }  // namespace

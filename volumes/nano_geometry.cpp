@@ -118,7 +118,7 @@ NanoGeometry makeNanoGeometry(const SparseGeometryVolume& volume, int level, con
     }
     const auto albedo = attributeGrid<openvdb::Vec3fGrid>(l, holdsSurface, [&](std::size_t i, const openvdb::Coord&) {
         const glm::vec3 a = !surfaces.empty() && surfaces[i].albedoSeen ? surfaces[i].albedo
-                                                                         : detail::dequantizeAlbedo(l.albedo[i]);
+                                                                         : detail::fromHalves(l.albedo[i]);
         return openvdb::Vec3f(a.x, a.y, a.z);
     });
     append(out, *albedo, out.albedoGrid);

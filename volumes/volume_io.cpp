@@ -34,7 +34,8 @@ struct Hasher {
 // Bumped whenever the voxelizer's output for the same input changes, invalidating caches.
 // 2: the albedo grid holds the diffuse albedo (metallic and specular taken out).
 // 3: pieces clipped row, column, then voxel (the same areas to float rounding).
-constexpr int kFormatRevision = 3;
+// 4: the projected coverage per axis (projected_coverage grids).
+constexpr int kFormatRevision = 4;
 
 }  // namespace
 
@@ -121,6 +122,9 @@ SparseGeometryVolume readGeometryVolume(const std::string& path) {
         l.occupancy = requireGrid<openvdb::BoolGrid>(grids, gridName("occupancy", level), path);
         l.albedo = requireGrid<openvdb::Vec3fGrid>(grids, gridName("albedo", level), path);
         l.normal = requireGrid<openvdb::Vec3fGrid>(grids, gridName("normal", level), path);
+        // Optional: files from before revision 4 estimate it (LevelFileGrids).
+        if (hasGrid(grids, gridName("projected_coverage", level)))
+            l.projected = requireGrid<openvdb::Vec3fGrid>(grids, gridName("projected_coverage", level), path);
         for (int c = 0; c < 4; ++c)
             l.blocker[std::size_t(c)] =
                 requireGrid<openvdb::FloatGrid>(grids, gridName("blocker_sh" + std::to_string(c), level), path);

@@ -18,6 +18,7 @@ void forEachVoxelSurface(const SparseGeometryVolume& volume, int level, const In
                 s.coverage = coverageFromBlocker(volume.blockerSH(v, level)[0], s.vectorCoverage, fit);
                 if (!(s.coverage > 0.0f)) continue;
                 s.albedo = volume.albedo(v, level);
+                s.projectedCoverage = volume.projectedCoverage(v, level);
                 visit(s);
             }
 }

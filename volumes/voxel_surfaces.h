@@ -1,5 +1,6 @@
-// The surfaces inside each voxel, as area and area-weighted normal: what a transport that stops
-// light by projected area needs (gi/lpv/ordinates.h), read from the stored blocker c0 and normal.
+// The surfaces inside each voxel, as area, area-weighted normal and area projected per axis: what
+// a transport that stops light by projected area needs (gi/lpv/ordinates.h), read from the stored
+// blocker c0, normal and projected coverage.
 #pragma once
 
 #include <functional>
@@ -14,6 +15,7 @@ struct VoxelSurfaceArea {
     glm::ivec3 voxel{0};
     float coverage = 0.0f;           // sum of clipped areas / voxel face area
     glm::vec3 vectorCoverage{0.0f};  // sum of clipped area x unit normal / voxel face area
+    glm::vec3 projectedCoverage{0.0f};  // per axis, sum of clipped area x |normal component| / face area
     glm::vec3 albedo{0.0f};          // area-weighted diffuse albedo
 };
 

@@ -204,6 +204,7 @@ private:
         VoxelSums s;
         s.area = m.area;
         s.vectorArea = m.area * t.unitNormal;
+        s.axisArea = m.area * glm::abs(t.unitNormal);
         glm::vec3 albedo = t.albedo;
         if (t.texture) albedo *= t.texture->at(uvAt(t, q, m.area > 0.0f ? m.centroid : piece.count ? piece.v[0] : q[0]));
         const float w = m.area + kTouchWeight;
@@ -354,8 +355,9 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
                          std::to_string(levelsEstimate) + " voxels estimated, above --max-voxels " +
                          std::to_string(settings.maxVoxels) + "; use a larger voxel size");
     // Held at the peak, while a level is finished: every level's packed sums, the finished
-    // level's attributes (normal and c0, albedo halves) and occupancy leaves of ~1/6 fill.
-    const double perVoxel = double(sizeof(VoxelSums)) + 16.0 + 6.0 + 64.0 / 6.0;
+    // level's attributes (normal and c0, albedo and projected-coverage halves) and occupancy
+    // leaves of ~1/6 fill.
+    const double perVoxel = double(sizeof(VoxelSums)) + 16.0 + 2.0 * 6.0 + 64.0 / 6.0;
     requireMemory(double(levelsEstimate) * perVoxel, "voxelizing at --voxel-size " + std::to_string(settings.voxelSize) +
                                                          " (about " + std::to_string(levelsEstimate) + " voxels)");
 

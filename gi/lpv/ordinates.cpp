@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/lpv/detail/subnormals_flushed.h"
+#include "volumes/blocker_sh.h"
 
 namespace voxgi {
 
@@ -135,6 +136,8 @@ int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
     coverage_.push_back(0.0f);
     vectorCoverage_.push_back(glm::vec3(0.0f));
     albedo_.push_back(glm::vec3(0.0f));
+    projected_.push_back(glm::vec3(0.0f));
+    clutterShadow_.push_back(glm::vec3(0.0f));
     return s;
 }
 
@@ -146,6 +149,12 @@ void OrdinatesTransport::addSurface(const OrdinateSurface& surface) {
         (albedo_[std::size_t(s)] * coverage_[std::size_t(s)] + surface.albedo * surface.coverage) / total;
     coverage_[std::size_t(s)] = total;
     vectorCoverage_[std::size_t(s)] += surface.vectorCoverage;
+    projected_[std::size_t(s)] += surface.projectedCoverage != glm::vec3(0.0f)
+                                      ? surface.projectedCoverage
+                                      : isotropicProjectedCoverage(surface.coverage, surface.vectorCoverage);
+    // Halves' rounding may put P an ulp below |m|.
+    clutterShadow_[std::size_t(s)] =
+        0.5f * glm::max(projected_[std::size_t(s)] - glm::abs(vectorCoverage_[std::size_t(s)]), glm::vec3(0.0f));
     revision_ = nextRevision++;
 }
 
@@ -228,6 +237,8 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
     auto crossedBy = [&](int j, glm::vec3 perAxis) {  // perAxis[a] where tap j crosses axis a
         return glm::vec3(perAxis[axis], (j & 1) ? perAxis[u] : 0.0f, (j & 2) ? perAxis[v] : 0.0f);
     };
+    // 1 / the axes tap j crosses: the clutter's shadow is their mean.
+    const float meanOver[4] = {1.0f, 0.5f, 0.5f, 1.0f / 3.0f};
     // Reflects `hit` (stopped by the surfaces of `s` on tap j's move) from the axis faces the
     // light arrives on, each crossed axis by its part of the stopping area `parts`.
     // With `cell`, the stopped light is also irradiance on those faces there: light that moved
@@ -301,11 +312,11 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                         // Entering a cell, a move meets the surfaces whose normal axis it crosses, from
                         // either side: a floor stops what moves up or down into its cell, not what
                         // slides along it.
-                        const float clutter = 0.25f * std::max(coverage_[std::size_t(s)] - glm::length(m), 0.0f);
+                        const glm::vec3 shadow = clutterShadow_[std::size_t(s)];
                         for (int j = 0; j < 4; ++j) {
                             if (part[j] == glm::vec3(0.0f)) continue;
-                            const glm::vec3 crossed = crossedBy(j, glm::abs(m));
-                            const float stopped = std::min(crossed.x + crossed.y + crossed.z + clutter, 1.0f);
+                            const glm::vec3 crossed = crossedBy(j, glm::abs(m)) + crossedBy(j, shadow) * meanOver[j];
+                            const float stopped = std::min(crossed.x + crossed.y + crossed.z, 1.0f);
                             if (stopped <= 0.0f) continue;
                             const glm::vec3 hit = part[j] * stopped;
                             out -= hit;

@@ -27,13 +27,19 @@
 // this irradiance for the six axis normals (an ambient cube); a receiver blends them by n^2
 // (shaders/lpv/apply_ordinates.frag).
 //
-// Surfaces: each cell's coverage S (area / h^2) and vector coverage m (area x normal / h^2) from
-// the voxelizer. A tap's move into a cell crosses the slab face and possibly side faces; the
-// cell's surfaces stop the fraction sum over the crossed axes a of |m_a|, plus (S - |m|) / 4 for
-// surfaces whose normals cancel (clutter, both sides of a thin plate: a closed surface's mean
-// projected area is a quarter of its area), at most all of it: a floor stops what moves up or down
-// into its cell, not what slides along it, so light neither leaks through a one-cell wall nor is
-// stopped by surfaces it runs parallel to. A move out of a cell is stopped by the cell's surfaces
+// Surfaces: each cell's coverage S (area / h^2), vector coverage m (area x normal / h^2) and
+// projected coverage P (per axis a, area x |n_a| / h^2) from the voxelizer. A tap's move into a
+// cell crosses the slab face and possibly side faces; the cell's surfaces stop the fraction sum
+// over the crossed axes a of |m_a| (the surfaces of one orientation: a floor stops what moves up
+// or down into its cell, not what slides along it, so light neither leaks through a one-cell wall
+// nor is stopped by surfaces it runs parallel to), plus the mean over the crossed axes of the
+// shadow (P_a - |m_a|) / 2 of the surfaces whose normals cancel (clutter, both sides of a thin
+// plate: a closed surface seen along an axis hides half of its projected area P_a, each part of it
+// being seen from both sides; the mean, because a small object's shadow over a cell's cross-section
+// does not grow with the faces a move crosses), at most all of it. So a colonnade's cells let
+// light move up and down past the columns (P_y = 0) and stop what crosses them sideways; with
+// normals spread evenly (P_a - |m_a| = (S - |m|) / 2 on every axis) the shadow is (S - |m|) / 4,
+// a closed surface's mean projected area. A move out of a cell is stopped by the cell's surfaces
 // that face against it (a corner cell's wall, for its floor's light). Stopped power times the
 // albedo is reflected: by a cell whose surfaces share one orientation into its normal's
 // hemisphere, else by each crossed axis's part of the surfaces into the hemisphere of the axis
@@ -80,6 +86,9 @@ struct OrdinateSurface {
     float coverage = 0.0f;            // sum of areas / h^2
     glm::vec3 vectorCoverage{0.0f};   // sum of area x unit normal / h^2
     glm::vec3 albedo{0.0f};
+    // Per axis, area x |normal component| / h^2; zero: not known, estimated from S and m as if the
+    // normals beyond m pointed every way evenly (isotropicProjectedCoverage).
+    glm::vec3 projectedCoverage{0.0f};
 };
 
 // Axis faces of the irradiance cube: a receiver facing +x, -x, +y, -y, +z, -z.
@@ -169,12 +178,15 @@ public:
     int surfaceIndex(glm::ivec3 cell) const;
 
     // The layout the GL back end uploads (gi/lpv/gl_ordinates.h): per brick slot and cell its
-    // surface index or -1 ([slot][kBrickCells]); per surface its coverage, vector coverage and albedo; per surface the shares of its
+    // surface index or -1 ([slot][kBrickCells]); per surface its coverage, vector coverage, clutter
+    // shadow and albedo; per surface the shares of its
     // one-plane reflection over the bins (empty where its normals differ), and per axis face the
     // shares of its hemisphere.
     const std::vector<int>& surfaceOfBrickCells() const { return surfaceOf_; }
     const std::vector<float>& coverage() const { return coverage_; }
     const std::vector<glm::vec3>& vectorCoverage() const { return vectorCoverage_; }
+    // Per surface and axis, the shadow (P_a - |m_a|) / 2 of its surfaces whose normals cancel.
+    const std::vector<glm::vec3>& clutterShadow() const { return clutterShadow_; }
     const std::vector<glm::vec3>& albedo() const { return albedo_; }
     // Changes whenever the surfaces do (a surface added or a cell given one), unique across
     // transports: what the gl back end has uploaded is current while it stays the same.
@@ -215,6 +227,7 @@ private:
     IndexBox surfaceBounds_{glm::ivec3(1 << 30), glm::ivec3(-1)};  // of cells_; empty while there are none
     std::vector<float> coverage_;
     std::vector<glm::vec3> vectorCoverage_, albedo_;
+    std::vector<glm::vec3> projected_, clutterShadow_;  // P, and (P - |m|) / 2 from P and m
     std::uint64_t revision_ = 0;
     OrdinatesStats stats_;
 };

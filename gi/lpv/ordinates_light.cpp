@@ -45,7 +45,7 @@ bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, cons
             box.max = g.origin + glm::ivec3(g.resolution - 1);
             std::vector<OrdinateSurface> surfaces;
             forEachVoxelSurface(*voxels, int(c), box, [&](const VoxelSurfaceArea& s) {
-                surfaces.push_back({s.voxel - g.origin, s.coverage, s.vectorCoverage, s.albedo});
+                surfaces.push_back({s.voxel - g.origin, s.coverage, s.vectorCoverage, s.albedo, s.projectedCoverage});
             });
             t->addSurfaces(surfaces);
         }

@@ -11,7 +11,8 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(std430, binding = 0) readonly buffer BinTaps { vec4 binTaps[]; };      // per bin
 // The brick table (per brick: slot, -1: none), then per slot and brick cell a surface index, -1: none.
 layout(std430, binding = 1) readonly buffer SurfaceOf { int surfaceOf[]; };
-layout(std430, binding = 2) readonly buffer Surfaces { vec4 surfaces[]; };    // [2s] (m, S), [2s+1] (albedo, 0)
+// [3s] (m, 0), [3s+1] (clutter shadow per axis, 0), [3s+2] (albedo, 0)
+layout(std430, binding = 2) readonly buffer Surfaces { vec4 surfaces[]; };
 layout(std430, binding = 3) readonly buffer Sources { float sources[]; };     // [bin][surface][rgb]
 layout(std430, binding = 4) readonly buffer PrevParts { vec4 prevParts[]; };  // [bin][padded cell][tap]
 layout(std430, binding = 5) writeonly buffer CurParts { vec4 curParts[]; };
@@ -40,7 +41,7 @@ vec3 crossedBy(int j, vec3 perAxis) {
 // cell: the cell among the slots' cells (brickCell; face f at brickValue).
 void reflectAt(int s, int j, vec3 hit, vec3 parts, int cell, bool countIrradiance) {
     float total = parts.x + parts.y + parts.z;
-    vec3 r = surfaces[2 * s + 1].rgb * hit;
+    vec3 r = surfaces[3 * s + 2].rgb * hit;
     int axes[3] = int[3](gAxis, gU, gV);
     for (int c = 0; c < 3; ++c) {
         float share = total > 0.0 ? parts[c] / total : (c == 0 ? 1.0 : 0.0);
@@ -103,14 +104,14 @@ void main() {
             for (int j = 0; j < 4; ++j) curParts[out0 + j] = vec4(taps[j] * outLight, 0.0);
             continue;
         }
-        vec4 mc = surfaces[2 * s];
-        vec3 m = mc.xyz;
+        vec3 m = surfaces[3 * s].xyz;
         if (uOcclusion != 0 && lit) {
-            float clutter = 0.25 * max(mc.w - length(m), 0.0);
+            vec3 shadow = surfaces[3 * s + 1].xyz;
+            const float meanOver[4] = float[4](1.0, 0.5, 0.5, 1.0 / 3.0);  // 1 / the axes tap j crosses
             for (int j = 0; j < 4; ++j) {
                 if (part[j] == vec3(0.0)) continue;
-                vec3 crossed = crossedBy(j, abs(m));
-                float stopped = min(crossed.x + crossed.y + crossed.z + clutter, 1.0);
+                vec3 crossed = crossedBy(j, abs(m)) + crossedBy(j, shadow) * meanOver[j];
+                float stopped = min(crossed.x + crossed.y + crossed.z, 1.0);
                 if (stopped <= 0.0) continue;
                 vec3 hit = part[j] * stopped;
                 outLight -= hit;

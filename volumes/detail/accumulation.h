@@ -15,12 +15,14 @@ namespace voxgi::detail {
 struct VoxelSums {
     float area = 0.0f;             // clipped triangle area / h^2
     glm::vec3 vectorArea{0.0f};    // sum of clipped area * unit normal / h^2
+    glm::vec3 axisArea{0.0f};      // sum of clipped area * |unit normal| / h^2, per axis
     glm::vec3 albedoSum{0.0f};     // albedo weighted by area (+ a tiny weight for touch-only)
     float albedoWeight = 0.0f;
 
     VoxelSums& operator+=(const VoxelSums& s) {
         area += s.area;
         vectorArea += s.vectorArea;
+        axisArea += s.axisArea;
         albedoSum += s.albedoSum;
         albedoWeight += s.albedoWeight;
         return *this;
