@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/lpv/detail/subnormals_flushed.h"
+#include "shaders/shared/ordinate_taps.h"
 #include "volumes/blocker_sh.h"
 
 namespace voxgi {
@@ -234,11 +235,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
         if (j & 1) move[j][u] = float(su);
         if (j & 2) move[j][v] = float(sv);
     }
-    auto crossedBy = [&](int j, glm::vec3 perAxis) {  // perAxis[a] where tap j crosses axis a
-        return glm::vec3(perAxis[axis], (j & 1) ? perAxis[u] : 0.0f, (j & 2) ? perAxis[v] : 0.0f);
-    };
-    // 1 / the axes tap j crosses: the clutter's shadow is their mean.
-    const float meanOver[4] = {1.0f, 0.5f, 0.5f, 1.0f / 3.0f};
+    auto crossedBy = [&](int j, glm::vec3 perAxis) { return shading::crossedBy(j, perAxis, axis, u, v); };
     // Reflects `hit` (stopped by the surfaces of `s` on tap j's move) from the axis faces the
     // light arrives on, each crossed axis by its part of the stopping area `parts`.
     // With `cell`, the stopped light is also irradiance on those faces there: light that moved
@@ -315,7 +312,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                         const glm::vec3 shadow = clutterShadow_[std::size_t(s)];
                         for (int j = 0; j < 4; ++j) {
                             if (part[j] == glm::vec3(0.0f)) continue;
-                            const glm::vec3 crossed = crossedBy(j, glm::abs(m)) + crossedBy(j, shadow) * meanOver[j];
+                            const glm::vec3 crossed = shading::enteringStop(j, glm::abs(m), shadow, axis, u, v);
                             const float stopped = std::min(crossed.x + crossed.y + crossed.z, 1.0f);
                             if (stopped <= 0.0f) continue;
                             const glm::vec3 hit = part[j] * stopped;

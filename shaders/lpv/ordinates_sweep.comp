@@ -7,6 +7,7 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "shared/light_bricks.h"
+#include "shared/ordinate_taps.h"
 
 layout(std430, binding = 0) readonly buffer BinTaps { vec4 binTaps[]; };      // per bin
 // The brick table (per brick: slot, -1: none), then per slot and brick cell a surface index, -1: none.
@@ -34,9 +35,7 @@ uniform float uPerArea;  // 1 / h^2
 int gAxis, gU, gV, gValues;
 ivec3 gMove[4];
 
-vec3 crossedBy(int j, vec3 perAxis) {
-    return vec3(perAxis[gAxis], (j & 1) != 0 ? perAxis[gU] : 0.0, (j & 2) != 0 ? perAxis[gV] : 0.0);
-}
+vec3 crossedBy(int j, vec3 perAxis) { return crossedBy(j, perAxis, gAxis, gU, gV); }
 
 // cell: the cell among the slots' cells (brickCell; face f at brickValue).
 void reflectAt(int s, int j, vec3 hit, vec3 parts, int cell, bool countIrradiance) {
@@ -107,10 +106,9 @@ void main() {
         vec3 m = surfaces[3 * s].xyz;
         if (uOcclusion != 0 && lit) {
             vec3 shadow = surfaces[3 * s + 1].xyz;
-            const float meanOver[4] = float[4](1.0, 0.5, 0.5, 1.0 / 3.0);  // 1 / the axes tap j crosses
             for (int j = 0; j < 4; ++j) {
                 if (part[j] == vec3(0.0)) continue;
-                vec3 crossed = crossedBy(j, abs(m)) + crossedBy(j, shadow) * meanOver[j];
+                vec3 crossed = enteringStop(j, abs(m), shadow, gAxis, gU, gV);
                 float stopped = min(crossed.x + crossed.y + crossed.z, 1.0);
                 if (stopped <= 0.0) continue;
                 vec3 hit = part[j] * stopped;
