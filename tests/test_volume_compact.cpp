@@ -1,7 +1,8 @@
 // The compact in-memory geometry set: attributes stored for active voxels only and found
 // through the occupancy topology (leaf base index + active bits below the voxel), albedo halves
 // within their stated bound, the dense file grids agreeing with the accessors, memoryBytes
-// counting every array, and a file whose blocker contradicts its normal grid refused.
+// counting every array, a file whose blocker contradicts its normal grid refused, and the
+// projected coverage: the area seen along each axis, estimated for older files.
 //
 // This file builds OpenVDB grids itself; the voxgi_volumes objects are compiled with
 // OPENVDB_USE_DELAYED_LOADING (from OpenVDB's CMake target), which changes OpenVDB's class

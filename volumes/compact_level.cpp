@@ -1,5 +1,5 @@
-// The compact in-memory level: attribute lookup through the occupancy topology, albedo
-// quantization, and turning a file's dense grids back into the compact form.
+// The compact in-memory level: attribute lookup through the occupancy topology, albedo and
+// projected-coverage quantization, and turning a file's dense grids back into the compact form.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -47,14 +47,14 @@ std::uint64_t LevelGrids::memoryBytes() const {
     return occupancy->memUsage() + normalC0.capacity() * sizeof(glm::vec4) + (albedo.capacity() + projected.capacity()) * sizeof(Half3);
 }
 
-Half3 toHalves(const glm::vec3& albedo) {
+Half3 toHalves(const glm::vec3& value) {
     Half3 h;
-    for (int c = 0; c < 3; ++c) h[std::size_t(c)] = openvdb::math::half(std::clamp(albedo[c], -65504.0f, 65504.0f));
+    for (int c = 0; c < 3; ++c) h[std::size_t(c)] = openvdb::math::half(std::clamp(value[c], -65504.0f, 65504.0f));
     return h;
 }
 
-glm::vec3 fromHalves(const Half3& albedo) {
-    return glm::vec3(float(albedo[0]), float(albedo[1]), float(albedo[2]));
+glm::vec3 fromHalves(const Half3& value) {
+    return glm::vec3(float(value[0]), float(value[1]), float(value[2]));
 }
 
 std::uint64_t indexLeaves(openvdb::BoolTree& tree) {
