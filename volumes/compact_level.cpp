@@ -81,7 +81,13 @@ LevelGrids compactLevel(LevelFileGrids&& file, BlockerFit fit, const std::string
     const std::vector<OccupancyLeaf*> leaves = leavesOf(tree);
 
     std::mutex mismatchMutex;
-    std::string mismatch;
+    std::string mismatch;  // the first bad value found, named by grid and voxel
+    auto refuse = [&](const openvdb::GridBase& grid, const openvdb::Coord& ijk, const std::string& what) {
+        std::lock_guard<std::mutex> lock(mismatchMutex);
+        if (mismatch.empty())
+            mismatch = "grid '" + grid.getName() + "' at voxel (" + std::to_string(ijk.x()) + ", " + std::to_string(ijk.y()) +
+                       ", " + std::to_string(ijk.z()) + ") " + what;
+    };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         auto albedo = file.albedo->getConstAccessor();
         auto normal = file.normal->getConstAccessor();
@@ -103,12 +109,9 @@ LevelGrids compactLevel(LevelFileGrids&& file, BlockerFit fit, const std::string
                 const glm::vec4 derived = blockerSH(stored[0], m, fit);
                 for (int c = 1; c < 4; ++c) {
                     if (std::abs(derived[c] - stored[c]) <= 1e-5f * (1.0f + std::abs(stored[c]))) continue;
-                    std::lock_guard<std::mutex> lock(mismatchMutex);
-                    if (mismatch.empty())
-                        mismatch = "grid '" + file.blocker[std::size_t(c)]->getName() + "' at voxel (" + std::to_string(ijk.x()) + ", " +
-                                   std::to_string(ijk.y()) + ", " + std::to_string(ijk.z()) + ") is " +
-                                   std::to_string(stored[c]) + ", not the " + std::to_string(derived[c]) +
-                                   " its normal grid implies";
+                    refuse(*file.blocker[std::size_t(c)], ijk,
+                           "is " + std::to_string(stored[c]) + ", not the " + std::to_string(derived[c]) +
+                               " its normal grid implies");
                 }
                 level.normalC0[index] = glm::vec4(m, stored[0]);
                 level.albedo[index] = toHalves(glm::vec3(a.x(), a.y(), a.z()));
@@ -118,11 +121,7 @@ LevelGrids compactLevel(LevelFileGrids&& file, BlockerFit fit, const std::string
                     p = glm::vec3(v.x(), v.y(), v.z());
                     // Areas: a negative or non-finite one would make light out of nothing.
                     if (!(p.x >= 0.0f && p.y >= 0.0f && p.z >= 0.0f && p.x + p.y + p.z < 3e38f)) {
-                        std::lock_guard<std::mutex> lock(mismatchMutex);
-                        if (mismatch.empty())
-                            mismatch = "grid '" + file.projected->getName() + "' at voxel (" + std::to_string(ijk.x()) + ", " +
-                                       std::to_string(ijk.y()) + ", " + std::to_string(ijk.z()) +
-                                       ") is not a finite, non-negative area";
+                        refuse(*file.projected, ijk, "is not a finite, non-negative area");
                         p = glm::vec3(0.0f);
                     }
                 } else {

@@ -70,11 +70,7 @@ AccumLevel downsample(const AccumLevel& fine) {
             child->forEachActive([&](int o, VoxelSums s) {
                 glm::ivec3 p = (child->origin() + glm::ivec3(o >> 6, (o >> 3) & 7, o & 7)) >> 1;
                 // Areas are in face units of their level; a coarse face is 4 fine faces.
-                s.area *= 0.25f;
-                s.vectorArea *= 0.25f;
-                s.axisArea *= 0.25f;
-                s.albedoSum *= 0.25f;
-                s.albedoWeight *= 0.25f;
+                s *= 0.25f;
                 leaf->add(AccumLeaf::offset(p.x, p.y, p.z), s, dense);
             });
         }

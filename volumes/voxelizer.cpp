@@ -357,7 +357,8 @@ AccumLevel voxelizeTriangles(const Scene& scene, const VoxelizeSettings& setting
     // Held at the peak, while a level is finished: every level's packed sums, the finished
     // level's attributes (normal and c0, albedo and projected-coverage halves) and occupancy
     // leaves of ~1/6 fill.
-    const double perVoxel = double(sizeof(VoxelSums)) + 16.0 + 2.0 * 6.0 + 64.0 / 6.0;
+    const double perVoxel =
+        double(sizeof(VoxelSums) + sizeof(glm::vec4) + 2 * sizeof(detail::Half3)) + 64.0 / 6.0;
     requireMemory(double(levelsEstimate) * perVoxel, "voxelizing at --voxel-size " + std::to_string(settings.voxelSize) +
                                                          " (about " + std::to_string(levelsEstimate) + " voxels)");
 

@@ -64,7 +64,7 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
         std::vector<glm::vec4> surf(std::max<std::size_t>(3 * surfaces, 3));
         for (std::size_t s = 0; s < surfaces; ++s) {
             surf[3 * s] = glm::vec4(t.vectorCoverage()[s], 0.0f);
-            surf[3 * s + 1] = glm::vec4(t.clutterShadow()[s], 0.0f);
+            surf[3 * s + 1] = glm::vec4(t.clutterShadow(s), 0.0f);
             surf[3 * s + 2] = glm::vec4(t.albedo()[s], 0.0f);
         }
         upload(m.surfaces, m.surfacesCap, surf);

@@ -100,7 +100,7 @@ OrdinatesTransport::OrdinatesTransport(const CascadeGrid& grid, int perFace, int
       bins_(makeOrdinateBins(perFace)),
       reach_(reach),
       bricks_(grid.resolution),
-      revision_(nextRevision++) {}
+      revision_(newRevision()) {}
 
 void OrdinatesTransport::allocateAllBricks() {
     allocate([&] { bricks_.allocateAll(); });
@@ -130,7 +130,7 @@ int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
     allocate([&] { bricks_.allocateAround(cell, reach_); });
     const int s = int(cells_.size());
     surfaceOf_[BrickMap::brickCell(bricks_.slotOf(cell), cell)] = s;
-    revision_ = nextRevision++;
+    revision_ = newRevision();
     cells_.push_back(cell);
     surfaceBounds_.min = glm::min(surfaceBounds_.min, cell);
     surfaceBounds_.max = glm::max(surfaceBounds_.max, cell);
@@ -138,7 +138,6 @@ int OrdinatesTransport::surfaceFor(glm::ivec3 cell) {
     vectorCoverage_.push_back(glm::vec3(0.0f));
     albedo_.push_back(glm::vec3(0.0f));
     projected_.push_back(glm::vec3(0.0f));
-    clutterShadow_.push_back(glm::vec3(0.0f));
     return s;
 }
 
@@ -153,10 +152,7 @@ void OrdinatesTransport::addSurface(const OrdinateSurface& surface) {
     projected_[std::size_t(s)] += surface.projectedCoverage != glm::vec3(0.0f)
                                       ? surface.projectedCoverage
                                       : isotropicProjectedCoverage(surface.coverage, surface.vectorCoverage);
-    // Halves' rounding may put P an ulp below |m|.
-    clutterShadow_[std::size_t(s)] =
-        0.5f * glm::max(projected_[std::size_t(s)] - glm::abs(vectorCoverage_[std::size_t(s)]), glm::vec3(0.0f));
-    revision_ = nextRevision++;
+    revision_ = newRevision();
 }
 
 void OrdinatesTransport::addSurfaces(const std::vector<OrdinateSurface>& surfaces) {
@@ -309,7 +305,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                         // Entering a cell, a move meets the surfaces whose normal axis it crosses, from
                         // either side: a floor stops what moves up or down into its cell, not what
                         // slides along it.
-                        const glm::vec3 shadow = clutterShadow_[std::size_t(s)];
+                        const glm::vec3 shadow = clutterShadow(std::size_t(s));
                         for (int j = 0; j < 4; ++j) {
                             if (part[j] == glm::vec3(0.0f)) continue;
                             const glm::vec3 crossed = shading::enteringStop(j, glm::abs(m), shadow, axis, u, v);

@@ -185,8 +185,11 @@ public:
     const std::vector<int>& surfaceOfBrickCells() const { return surfaceOf_; }
     const std::vector<float>& coverage() const { return coverage_; }
     const std::vector<glm::vec3>& vectorCoverage() const { return vectorCoverage_; }
-    // Per surface and axis, the shadow (P_a - |m_a|) / 2 of its surfaces whose normals cancel.
-    const std::vector<glm::vec3>& clutterShadow() const { return clutterShadow_; }
+    // Per axis, the shadow (P_a - |m_a|) / 2 of surface s's surfaces whose normals cancel (halves'
+    // rounding may put P an ulp below |m|).
+    glm::vec3 clutterShadow(std::size_t s) const {
+        return 0.5f * glm::max(projected_[s] - glm::abs(vectorCoverage_[s]), glm::vec3(0.0f));
+    }
     const std::vector<glm::vec3>& albedo() const { return albedo_; }
     // Changes whenever the surfaces do (a surface added or a cell given one), unique across
     // transports: what the gl back end has uploaded is current while it stays the same.
@@ -227,7 +230,7 @@ private:
     IndexBox surfaceBounds_{glm::ivec3(1 << 30), glm::ivec3(-1)};  // of cells_; empty while there are none
     std::vector<float> coverage_;
     std::vector<glm::vec3> vectorCoverage_, albedo_;
-    std::vector<glm::vec3> projected_, clutterShadow_;  // P, and (P - |m|) / 2 from P and m
+    std::vector<glm::vec3> projected_;  // P
     std::uint64_t revision_ = 0;
     OrdinatesStats stats_;
 };

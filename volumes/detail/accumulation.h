@@ -27,6 +27,15 @@ struct VoxelSums {
         albedoWeight += s.albedoWeight;
         return *this;
     }
+    // Every sum scaled (a coarser level's face is 4 finer faces).
+    VoxelSums& operator*=(float k) {
+        area *= k;
+        vectorArea *= k;
+        axisArea *= k;
+        albedoSum *= k;
+        albedoWeight *= k;
+        return *this;
+    }
 };
 
 // One leaf's sums by voxel offset while triangles (or finer voxels) are added to it. A scratch
