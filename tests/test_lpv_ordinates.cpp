@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "gi/lpv/ordinates.h"
+#include "shaders/shared/irradiance_cube.h"
 #include "shaders/shared/light_bricks.h"
 #include "shaders/shared/constants.h"
 
@@ -394,4 +395,56 @@ TEST(LpvOrdinates, ABricksCellsRunXFastest) {
     EXPECT_EQ(map.slotOf({33, 7, 7}), 1);
     EXPECT_EQ(map.slotOf({33, 8, 7}), -1);
     EXPECT_EQ(map.slotOf({40, 0, 0}), -1);
+}
+
+namespace {
+
+// A receiver's irradiance from six face values by shading::cubeWeights.
+float readCube(const float faces[6], glm::vec3 n, bool quadratic) {
+    const shading::CubeWeights w = shading::cubeWeights(n, quadratic);
+    float e = 0.0f;
+    for (int a = 0; a < 3; ++a) e += w.towards[a] * faces[2 * a] + w.against[a] * faces[2 * a + 1];
+    return e;
+}
+
+glm::vec3 spherePoint(int i, int count) {
+    const float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(count), r = std::sqrt(1.0f - z * z);
+    const float phi = 2.399963f * float(i);  // golden angle
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+}  // namespace
+
+// How receivers read a cell's six axis faces (shaders/shared/irradiance_cube.h): both reads give
+// each face's value on its axis normal and a uniform field's irradiance for every normal. Under a
+// hemisphere of uniform radiance (a sky, a large lit wall) the irradiance is linear in the normal,
+// pi L (1 + n . d) / 2, which the quadratic reads exactly for every normal while the ambient
+// cube's n^2 blend is off by up to a fifth of it for tilted normals.
+TEST(LpvCubeRead, TheQuadraticReadsAHemisphereOfLightExactlyForEveryNormal) {
+    const float pi = 3.14159265f;
+    for (bool quadratic : {false, true}) {
+        SCOPED_TRACE(quadratic ? "quadratic" : "ambient");
+        const float faces[6] = {1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f};
+        for (int f = 0; f < 6; ++f) {
+            glm::vec3 n(0.0f);
+            n[f / 2] = f % 2 == 0 ? 1.0f : -1.0f;
+            EXPECT_FLOAT_EQ(readCube(faces, n, quadratic), faces[f]) << "face " << f;
+        }
+        const float uniform[6] = {2.5f, 2.5f, 2.5f, 2.5f, 2.5f, 2.5f};
+        for (int i = 0; i < 64; ++i) EXPECT_NEAR(readCube(uniform, spherePoint(i, 64), quadratic), 2.5f, 1e-5f);
+    }
+    float worstAmbient = 0.0f, worstQuadratic = 0.0f;
+    for (int j = 0; j < 16; ++j) {
+        const glm::vec3 d = spherePoint(j, 16);  // the hemisphere's axis
+        float faces[6];
+        for (int f = 0; f < 6; ++f) faces[f] = pi * (1.0f + (f % 2 == 0 ? d[f / 2] : -d[f / 2])) / 2.0f;
+        for (int i = 0; i < 256; ++i) {
+            const glm::vec3 n = spherePoint(i, 256);
+            const float truth = pi * (1.0f + glm::dot(n, d)) / 2.0f;
+            worstAmbient = std::max(worstAmbient, std::abs(readCube(faces, n, false) - truth) / pi);
+            worstQuadratic = std::max(worstQuadratic, std::abs(readCube(faces, n, true) - truth) / pi);
+        }
+    }
+    EXPECT_LT(worstQuadratic, 1e-5f);
+    EXPECT_GT(worstAmbient, 0.1f);
 }

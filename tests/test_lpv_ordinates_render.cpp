@@ -80,6 +80,39 @@ TEST_F(LpvOrdinatesRender, CornellBoxRegionsGetThePathTracersIndirectLight) {
 
 // A sunlit floor with nothing above it: its true indirect light is zero. The SH transport gave
 // it 0.42 of its own radiance back (docs/lpv.md, "Self-illumination").
+// lpv.cube_read reaches the apply pass: the Cornell box's walls, floor and ceiling face along the
+// axes, where both reads give the face's own value, and its blocks are turned about y, where the
+// quadratic read differs.
+TEST_F(LpvOrdinatesRender, TheQuadraticCubeReadChangesOnlyTiltedReceivers) {
+    Scene s = test::cornellBox();
+    s.camera.width = s.camera.height = 48;
+    const Image ambient = render(s, "lpv");
+    s.gi.set("lpv.cube_read", "quadratic");
+    const Image quadratic = render(s, "lpv");
+    const ImageLayer* a = ambient.find("indirect");
+    const ImageLayer* q = quadratic.find("indirect");
+    const ImageLayer* normal = ambient.find("normal");
+    ASSERT_TRUE(a && q && normal);
+    int axisPixels = 0, tiltedPixels = 0, tiltedChanged = 0;
+    for (std::size_t i = 0; i < a->data.size() / 3; ++i) {
+        const glm::vec3 n(normal->data[3 * i], normal->data[3 * i + 1], normal->data[3 * i + 2]);
+        const float largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+        if (glm::length(n) < 0.5f) continue;  // no surface
+        const float before = a->data[3 * i] + a->data[3 * i + 1] + a->data[3 * i + 2];
+        const float after = q->data[3 * i] + q->data[3 * i + 1] + q->data[3 * i + 2];
+        if (largest > 0.9999f) {
+            ++axisPixels;
+            EXPECT_NEAR(after, before, 1e-5f * std::max(before, 1e-3f)) << "pixel " << i;
+        } else if (largest < 0.98f) {
+            ++tiltedPixels;
+            if (std::abs(after - before) > 0.01f * before) ++tiltedChanged;
+        }
+    }
+    EXPECT_GT(axisPixels, 1000);
+    EXPECT_GT(tiltedPixels, 50);
+    EXPECT_GT(tiltedChanged, tiltedPixels / 2);
+}
+
 TEST_F(LpvOrdinatesRender, ASunlitFloorUnderAnOpenSkyGetsNoIndirectLight) {
     Scene s = parseSceneJson(R"({"camera": {"eye": [0, 6, 9], "target": [0, 0, 0], "resolution": [32, 32]},
         "materials": {"stone": {"albedo": 0.7}},

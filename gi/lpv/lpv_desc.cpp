@@ -59,6 +59,9 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
                    "ordinates: sweeps (bounces) per update; fit: until converged; a number continues from the last "
                    "update's reflections, converging over updates",
                    "fit");
+    t.choice("cube_read", &D::cubeRead, {{"ambient", CubeRead::Ambient}, {"quadratic", CubeRead::Quadratic}},
+             "ordinates: a receiver's irradiance from its cell's six axis faces: ambient, the faces its normal points "
+             "along by n^2; quadratic, the quadratic in n through all six (closer for tilted normals)");
     t.flag("reuse", &D::reuse, "skip the update while lights, geometry and placement are unchanged");
     return t;
 }

@@ -18,6 +18,11 @@ enum class LpvTransport { Sh, Ordinates };
 // camera but kept inside the bounds, so no cell lies where nothing can send or receive light.
 enum class CascadeBounds { Camera, Scene };
 
+// How a receiver reads a cell's irradiance cube (ordinates; shaders/shared/irradiance_cube.h):
+// Ambient, the three faces its normal points along by n^2; Quadratic, the quadratic in the normal
+// that takes the six faces' values on the axis normals (closer for tilted normals, docs/lpv.md).
+enum class CubeRead { Ambient, Quadratic };
+
 struct LpvDesc {
     int resolution = 32;        // cells per side of every cascade (32^3, as CryEngine and seed 000)
     int cascades = 1;           // 1 for lpv, 3 for clpv
@@ -58,6 +63,7 @@ struct LpvDesc {
     // sweep's reflections into the next update, which converges over updates (one bounce of lag
     // per sweep) at that many sweeps' cost each.
     int sweeps = kFittedInteger;
+    CubeRead cubeRead = CubeRead::Ambient;  // ordinates: see CubeRead
 };
 
 // The table of `lpv` (cascaded = false: one volume) or `clpv`.

@@ -197,6 +197,7 @@ void OrdinatesLight::apply(const GBufferView& g) const {
     bindGBufferTextures(program_, g);
     program_.set("uCascadeCount", int(placements_.size()));
     program_.set("uApplyNormalOffset", desc_.applyNormalOffset);
+    program_.set("uQuadraticRead", desc_.cubeRead == CubeRead::Quadratic ? 1 : 0);
     program_.set("uResolution", desc_.resolution);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, pool_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, tables_.id());

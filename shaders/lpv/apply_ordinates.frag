@@ -1,12 +1,13 @@
 #version 450 core
 // Deferred apply of `lpv.transport=ordinates` (gi/lpv/ordinates.h): per pixel, the irradiance a
-// receiver facing n gets, blended from the cell's six axis-facing irradiances by n^2 (trilinear
+// receiver facing n gets, from the cell's six axis-facing irradiances (cubeIrradiance, trilinear
 // between cells, read from the brick pool: shaders/shared/light_bricks.h), times the diffuse
 // albedo / pi. Cascades are read as apply.frag reads the SH
 // light: cascade c gives S_c x ring_c + (S_c - S_{c-1}) x inner_c (gi/lpv/cascades.h). Glossy
 // surfaces add the finest cascade's march (lpv/glossy_march.glsl).
 #include "lpv/cascade_weights.glsl"
 #include "shared/constants.h"
+#include "shared/irradiance_cube.h"
 #include "shared/light_bricks.h"
 #include "common/gbuffer_textures.glsl"
 
@@ -22,6 +23,7 @@ uniform int uSlots[kLpvMaxCascades];         // slots of each of its light sets
 uniform int uCascadeCount;
 uniform int uResolution;
 uniform float uApplyNormalOffset;
+uniform int uQuadraticRead;                 // lpv.cube_read: 1 quadratic, 0 ambient cube
 
 layout(location = 0) out vec4 outColor;
 
@@ -31,17 +33,18 @@ int storedCell(int c, ivec3 cell) {
     return slot < 0 ? -1 : brickCell(slot, cell);
 }
 
-// Irradiance (W/m^2) for normal n: the three faces n points along, weighted by n^2, trilinear
-// between cell centres and clamped at the grid's edge as a texture would be (rgb), over the
-// cells whose bricks are stored (a: their trilinear weight). Receivers read stored cells only
-// (the bricks reach ordinatesReach cells around every surface); the glossy march may not.
+// Irradiance (W/m^2) for normal n: the cell's six faces read as uQuadraticRead says
+// (shared/irradiance_cube.h), trilinear between cell centres and clamped at the grid's edge as a
+// texture would be (rgb), over the cells whose bricks are stored (a: their trilinear weight).
+// Receivers read stored cells only (the bricks reach ordinatesReach cells around every surface);
+// the glossy march may not.
 vec4 cubeIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
     float size = float(uResolution);
     vec3 x = clamp(uvw * size - 0.5, vec3(0.0), vec3(size - 1.0));
     ivec3 i0 = ivec3(floor(x));
     ivec3 i1 = min(i0 + 1, ivec3(uResolution - 1));
-    vec3 f = x - vec3(i0), w = n * n;
-    ivec3 faces = ivec3(n.x >= 0.0 ? 0 : 1, n.y >= 0.0 ? 2 : 3, n.z >= 0.0 ? 4 : 5);
+    vec3 f = x - vec3(i0);
+    CubeWeights w = cubeWeights(n, uQuadraticRead != 0);
     int first = firstSlot * 6 * kBrickCells, slots = uSlots[c];
     vec4 e = vec4(0.0);
     for (int k = 0; k < 8; ++k) {
@@ -50,9 +53,10 @@ vec4 cubeIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
         if (cell < 0) continue;
         vec3 t = mix(1.0 - f, f, upper);
         float weight = t.x * t.y * t.z;
-        vec3 v = w.x * lightBricks[first + brickValue(slots, cell, faces.x)].rgb +
-                 w.y * lightBricks[first + brickValue(slots, cell, faces.y)].rgb +
-                 w.z * lightBricks[first + brickValue(slots, cell, faces.z)].rgb;
+        vec3 v = vec3(0.0);
+        for (int a = 0; a < 3; ++a)
+            v += w.towards[a] * lightBricks[first + brickValue(slots, cell, 2 * a)].rgb +
+                 w.against[a] * lightBricks[first + brickValue(slots, cell, 2 * a + 1)].rgb;
         e += weight * vec4(v, 1.0);
     }
     return e;
