@@ -125,8 +125,16 @@ int GlOrdinates::solve(const OrdinatesTransport& t, const OrdinatesTransport::So
             m.sweep.set("uStep", step);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, m.parts[step % 2].id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, m.parts[(step + 1) % 2].id());
-            glDispatchCompute(lateral, lateral, 6);
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            // Where an axis's +axis and -axis pyramids reach the same (middle) plane, both would add
+            // to its cells' side faces and reflections in one dispatch: one sign after the other.
+            bool meet = false;
+            for (int a = 0; a < 3; ++a) meet = meet || box.max[a] - box.min[a] == 2 * step;
+            const int signs[2] = {meet ? 1 : 3, 2};
+            for (int pass = 0; pass < (meet ? 2 : 1); ++pass) {
+                m.sweep.set("uSigns", signs[pass]);
+                glDispatchCompute(lateral, lateral, 6);
+                glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            }
         }
         ++sweeps;
         m.reflect.use();

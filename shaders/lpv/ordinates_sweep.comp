@@ -3,7 +3,9 @@
 // math in the same order per bin): invocation (x, y) is a lateral cell of the sweep box, z a
 // pyramid of bins (axis and sign), whose bins run one after the other. Pyramids of one axis write their own
 // group of the irradiance and reflection buffers: the +axis and -axis pyramids step through
-// different planes, so no two invocations of a dispatch add to the same value.
+// different planes, so no two invocations of a dispatch add to the same value, except at the step
+// where both reach the sweep box's middle plane (an odd number of planes), which the host runs as
+// two dispatches, one per sign (uSigns).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
 #include "shared/light_bricks.h"
@@ -25,6 +27,7 @@ uniform int uTableSide;        // bricks per side (gi/lpv/brick_map.h)
 uniform int uBrickCellsStart;  // where the slots' surface indices start in SurfaceOf
 uniform int uSlots;
 uniform int uStep;      // slabs into the sweep box along the pyramid's axis
+uniform int uSigns;     // which pyramids run: bit 0 the +axis ones, bit 1 the -axis ones
 uniform ivec3 uBoxMin;  // the sweep box (OrdinatesTransport::sweepBox), inclusive
 uniform ivec3 uBoxMax;
 uniform int uBinsPerPyramid;
@@ -55,7 +58,7 @@ void reflectAt(int s, int j, vec3 hit, vec3 parts, int cell, bool countIrradianc
 void main() {
     int n = uN;
     int pyramid = int(gl_GlobalInvocationID.z);
-    if (pyramid >= 6) return;
+    if (pyramid >= 6 || ((uSigns >> (pyramid % 2)) & 1) == 0) return;
     gAxis = pyramid / 2;
     gU = (gAxis + 1) % 3;
     gV = (gAxis + 2) % 3;
