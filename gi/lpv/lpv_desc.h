@@ -57,13 +57,14 @@ struct LpvDesc {
     // "Surfel blockers", for what each choice does to the light.
     bool surfelBlockers = true;
     LpvTransport transport = LpvTransport::Ordinates;
-    // ordinates: bins per cube face along each lateral axis (6 x n^2 bins: 24 at 2, 96 at 4).
+    // ordinates: bins per cube face along each lateral axis (6 x n^2 bins: 24 at 2, 96 at 4);
+    // clpv's default is 4 (lpvDefaults).
     int ordinatesPerFace = 2;
     // ordinates: sweeps (bounces) per update; fit: until converged. A number carries the last
     // sweep's reflections into the next update, which converges over updates (one bounce of lag
     // per sweep) at that many sweeps' cost each.
     int sweeps = kFittedInteger;
-    CubeRead cubeRead = CubeRead::Ambient;  // ordinates: see CubeRead
+    CubeRead cubeRead = CubeRead::Ambient;  // ordinates: see CubeRead; clpv's default is Quadratic (lpvDefaults)
 };
 
 // The table of `lpv` (cascaded = false: one volume) or `clpv`.
