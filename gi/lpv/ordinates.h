@@ -24,8 +24,9 @@
 // |w_axis|)) times its cosine moment, and in a cell whose surfaces stop light it counts only what
 // crosses into the cell, as a surface there receives it (a radiance estimate there read the
 // grazing light twice attenuated: walls came out at 0.7 of the path tracer). Each cell stores
-// this irradiance for the six axis normals (an irradiance cube); a receiver reads the quadratic in
-// n that takes these six values on the axis normals (shaders/lpv/apply_ordinates.frag).
+// this irradiance for the six axis normals (an irradiance cube); a receiver blends the three
+// faces its normal points along by n^2 or reads the quadratic in n that takes the six values on
+// the axis normals (lpv.cube_read; shaders/shared/irradiance_cube.h, apply_ordinates.frag).
 //
 // Surfaces: each cell's coverage S (area / h^2), vector coverage m (area x normal / h^2) and
 // projected coverage P (per axis a, area x |n_a| / h^2) from the voxelizer. A tap's move into a

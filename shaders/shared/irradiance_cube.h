@@ -3,9 +3,9 @@
 // towards_a x E+a + against_a x E-a. One definition for the apply pass
 // (shaders/lpv/apply_ordinates.frag) and the C++ tests.
 //
-// - ambient cube (the default, `lpv.cube_read=ambient`): the three faces n points along, by n_a^2;
-// - quadratic (`lpv.cube_read=quadratic`): the quadratic in n that takes the six values on the
-//   axis normals, sum over a of n_a^2 (E+a + E-a) / 2 + n_a (E+a - E-a) / 2. Radiance convolved
+// - ambient cube (`lpv.cube_read=ambient`, lpv's default): the three faces n points along, by n_a^2;
+// - quadratic (`lpv.cube_read=quadratic`, clpv's default): the quadratic in n that takes the six
+//   values on the axis normals, sum over a of n_a^2 (E+a + E-a) / 2 + n_a (E+a - E-a) / 2. Radiance convolved
 //   with the cosine and cut to three SH bands is such a quadratic; the six faces fix its band 0,
 //   band 1 and band 2's diagonal, and its off-diagonal band-2 terms (which no axis face sees) are
 //   taken as zero. Both read the faces exactly on the axis normals and a uniform field exactly
