@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "gi/lpv/ordinates.h"
+#include "gi/sampling/sequences.h"
 #include "shaders/shared/irradiance_cube.h"
 #include "shaders/shared/light_bricks.h"
 #include "shaders/shared/constants.h"
@@ -407,12 +408,6 @@ float readCube(const float faces[6], glm::vec3 n, bool quadratic) {
     return e;
 }
 
-glm::vec3 spherePoint(int i, int count) {
-    const float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(count), r = std::sqrt(1.0f - z * z);
-    const float phi = 2.399963f * float(i);  // golden angle
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
 }  // namespace
 
 // How receivers read a cell's six axis faces (shaders/shared/irradiance_cube.h): both reads give
@@ -421,7 +416,6 @@ glm::vec3 spherePoint(int i, int count) {
 // pi L (1 + n . d) / 2, which the quadratic reads exactly for every normal while the ambient
 // cube's n^2 blend is off by up to a fifth of it for tilted normals.
 TEST(LpvCubeRead, TheQuadraticReadsAHemisphereOfLightExactlyForEveryNormal) {
-    const float pi = 3.14159265f;
     for (bool quadratic : {false, true}) {
         SCOPED_TRACE(quadratic ? "quadratic" : "ambient");
         const float faces[6] = {1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f};
@@ -431,18 +425,18 @@ TEST(LpvCubeRead, TheQuadraticReadsAHemisphereOfLightExactlyForEveryNormal) {
             EXPECT_FLOAT_EQ(readCube(faces, n, quadratic), faces[f]) << "face " << f;
         }
         const float uniform[6] = {2.5f, 2.5f, 2.5f, 2.5f, 2.5f, 2.5f};
-        for (int i = 0; i < 64; ++i) EXPECT_NEAR(readCube(uniform, spherePoint(i, 64), quadratic), 2.5f, 1e-5f);
+        for (int i = 0; i < 64; ++i) EXPECT_NEAR(readCube(uniform, sphericalFibonacci(i, 64), quadratic), 2.5f, 1e-5f);
     }
     float worstAmbient = 0.0f, worstQuadratic = 0.0f;
     for (int j = 0; j < 16; ++j) {
-        const glm::vec3 d = spherePoint(j, 16);  // the hemisphere's axis
+        const glm::vec3 d = sphericalFibonacci(j, 16);  // the hemisphere's axis
         float faces[6];
-        for (int f = 0; f < 6; ++f) faces[f] = pi * (1.0f + (f % 2 == 0 ? d[f / 2] : -d[f / 2])) / 2.0f;
+        for (int f = 0; f < 6; ++f) faces[f] = kPi * (1.0f + (f % 2 == 0 ? d[f / 2] : -d[f / 2])) / 2.0f;
         for (int i = 0; i < 256; ++i) {
-            const glm::vec3 n = spherePoint(i, 256);
-            const float truth = pi * (1.0f + glm::dot(n, d)) / 2.0f;
-            worstAmbient = std::max(worstAmbient, std::abs(readCube(faces, n, false) - truth) / pi);
-            worstQuadratic = std::max(worstQuadratic, std::abs(readCube(faces, n, true) - truth) / pi);
+            const glm::vec3 n = sphericalFibonacci(i, 256);
+            const float truth = kPi * (1.0f + glm::dot(n, d)) / 2.0f;
+            worstAmbient = std::max(worstAmbient, std::abs(readCube(faces, n, false) - truth) / kPi);
+            worstQuadratic = std::max(worstQuadratic, std::abs(readCube(faces, n, true) - truth) / kPi);
         }
     }
     EXPECT_LT(worstQuadratic, 1e-5f);

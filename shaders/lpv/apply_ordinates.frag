@@ -53,10 +53,12 @@ vec4 cubeIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
         if (cell < 0) continue;
         vec3 t = mix(1.0 - f, f, upper);
         float weight = t.x * t.y * t.z;
+        // The ambient read weighs one face per axis: the other is not loaded.
         vec3 v = vec3(0.0);
-        for (int a = 0; a < 3; ++a)
-            v += w.towards[a] * lightBricks[first + brickValue(slots, cell, 2 * a)].rgb +
-                 w.against[a] * lightBricks[first + brickValue(slots, cell, 2 * a + 1)].rgb;
+        for (int a = 0; a < 3; ++a) {
+            if (w.towards[a] != 0.0) v += w.towards[a] * lightBricks[first + brickValue(slots, cell, 2 * a)].rgb;
+            if (w.against[a] != 0.0) v += w.against[a] * lightBricks[first + brickValue(slots, cell, 2 * a + 1)].rgb;
+        }
         e += weight * vec4(v, 1.0);
     }
     return e;
