@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "scenes/gi_settings.h"
+#include "scenes/large_pages.h"
 
 namespace voxgi {
 
@@ -74,7 +75,7 @@ struct Texture {
     std::string path;
     int width = 0;
     int height = 0;
-    std::vector<std::uint8_t> rgba;
+    LargeVector<std::uint8_t> rgba;  // read at random by rays: in large pages (large_pages.h)
     glm::vec3 averageLinear{0.0f};  // mean linear colour, for voxel albedo and sanity checks
 
     // Bilinear, repeat-wrapped lookup returning linear RGB; uv with v = 0 at the image bottom.

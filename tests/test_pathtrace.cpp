@@ -13,6 +13,7 @@
 #include <tbb/global_control.h>
 
 #include "gi/pathtrace/bsdf.h"
+#include "gi/pathtrace/integrator.h"
 #include "gi/pathtrace/path_tracer.h"
 #include "scenes/primitives.h"
 #include "scenes/scene_loader.h"
@@ -536,6 +537,72 @@ TEST(PathTracer, SameImageWhateverTheThreadCount) {
     PathTracer other(s, o);
     other.render(3);
     EXPECT_NE(other.image().find("beauty")->data, one.find("beauty")->data);
+}
+
+TEST(PathTracer, PathsTracedTogetherAreThePathsTracedAlone) {
+    // Integrator::traceBatch interleaves the stages of many paths' bounces; each path must still
+    // be the one trace() makes alone, bit for bit. The Cornell box with a point light (so light
+    // subpaths and connections run), a sun with a disc and a glass block (delta lobes).
+    Scene s = test::cornellBox();
+    Light lamp;
+    lamp.type = LightType::Point;
+    lamp.position = glm::vec3(0.3f, 0.45f, 0.3f);
+    lamp.emission = glm::vec3(0.05f);
+    s.lights.push_back(lamp);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.1f, -0.3f, 1.0f));  // in through the open front
+    sun.emission = glm::vec3(2.0f);
+    sun.angularDiameterDegrees = 2.0f;
+    s.lights.push_back(sun);
+    Material glass;
+    glass.transmission = 1.0f;
+    glass.roughness = 0.0f;
+    s.materials.push_back(glass);
+    s.meshes.push_back(makeBox(glm::translate(glm::mat4(1.0f), glm::vec3(0.2f, 0.1f, 0.25f)) *
+                                   glm::scale(glm::mat4(1.0f), glm::vec3(0.05f)),
+                               std::uint32_t(s.materials.size() - 1), false));
+    s.addQuadLightGeometry();
+    const RayTracer tracer(s);
+    const pt::Integrator integrator(s, tracer, 0);
+    ASSERT_TRUE(integrator.tracesLightPaths());
+    pt::LightVertices pool;
+    for (std::uint64_t j = 0; j < 64; ++j) {
+        pool.rays += integrator.traceLightPath(pt::PathSampler(5, 1000 + j, 0), pool.vertices);
+        ++pool.paths;
+    }
+    ASSERT_FALSE(pool.vertices.empty());
+    const glm::vec3 eye = s.camera.eye;
+    constexpr int kPaths = 37;  // not a multiple of anything the batch might assume
+    std::vector<RayHit> firstHits;
+    std::vector<pt::Integrator::PathStart> starts;
+    firstHits.reserve(kPaths);
+    for (int i = 0; i < kPaths; ++i) {
+        const glm::vec3 d = glm::normalize(glm::vec3(0.05f * float(i % 7) - 0.15f, 0.06f * float(i / 7) - 0.15f, 1.0f));
+        firstHits.push_back(tracer.intersect(eye, d));
+        // Every other path is given its first hit, as the tiles do.
+        starts.push_back({eye, d, pt::PathSampler(5, std::uint64_t(i), 3), i % 2 ? &firstHits.back() : nullptr});
+    }
+    const pt::LightVertices* pools[] = {nullptr, &pool};
+    for (const pt::LightVertices* lightVertices : pools) {
+        std::vector<PathSample> together(kPaths);
+        integrator.traceBatch(starts.data(), kPaths, lightVertices, together.data());
+        int scattered = 0;
+        for (int i = 0; i < kPaths; ++i) {
+            const pt::Integrator::PathStart& start = starts[std::size_t(i)];
+            const PathSample alone = integrator.trace(start.origin, start.direction, start.sampler, lightVertices);
+            const PathSample& t = together[std::size_t(i)];
+            EXPECT_EQ(t.direct, alone.direct) << "path " << i;
+            EXPECT_EQ(t.indirect, alone.indirect) << "path " << i;
+            EXPECT_EQ(t.albedo, alone.albedo) << "path " << i;
+            EXPECT_EQ(t.normal, alone.normal) << "path " << i;
+            EXPECT_EQ(t.depth, alone.depth) << "path " << i;
+            EXPECT_EQ(t.rays, alone.rays) << "path " << i;
+            EXPECT_EQ(t.scatterings, alone.scatterings) << "path " << i;
+            scattered += alone.scatterings >= 2;
+        }
+        EXPECT_GT(scattered, kPaths / 4);  // the batch ran paths of several bounces
+    }
 }
 
 TEST(PathTracer, AovsAddUpAndBackgroundIsEmpty) {

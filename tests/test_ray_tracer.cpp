@@ -105,6 +105,47 @@ TEST(RayTracer, FansFindTheHitsOfSingleRays) {
     }
 }
 
+TEST(RayTracer, RecordsBuiltLaterAndCoherentStreamsFindTheHitsOfSingleRays) {
+    const Scene scene = triangleSoup(11);
+    const RayTracer tracer(scene);
+    const int n = 150;  // more than one internal batch of intersectCoherent
+    std::vector<glm::vec3> origins, directions;
+    for (int i = 0; i < n; ++i) {
+        // Neighbouring rays from nearby origins, as a tile's camera rays, and some far apart.
+        origins.push_back(glm::vec3(0.01f * float(i % 10), 0.01f * float(i / 10), 6.0f) + (i % 13 == 0 ? glm::vec3(-9.0f, 0.0f, -6.0f) : glm::vec3(0.0f)));
+        directions.push_back(glm::normalize(glm::vec3(0.03f * float(i % 10) - 0.15f, 0.03f * float(i / 10) - 0.2f, -1.0f)));
+    }
+    std::vector<RayHit> coherent(static_cast<std::size_t>(n));
+    tracer.intersectCoherent(origins.data(), directions.data(), n, coherent.data());
+    int hits = 0;
+    for (int i = 0; i < n; ++i) {
+        const RayHit one = tracer.intersect(origins[std::size_t(i)], directions[std::size_t(i)]);
+        RayHit later;
+        tracer.hitRecord(tracer.intersectRaw(origins[std::size_t(i)], directions[std::size_t(i)]), directions[std::size_t(i)],
+                         later);
+        // Built later, the record is the same bit for bit.
+        ASSERT_EQ(later.hit, one.hit) << "ray " << i;
+        EXPECT_EQ(later.t, one.t);
+        EXPECT_EQ(later.position, one.position);
+        EXPECT_EQ(later.shadingNormal, one.shadingNormal);
+        EXPECT_EQ(later.smoothPosition, one.smoothPosition);
+        EXPECT_EQ(later.uv, one.uv);
+        EXPECT_EQ(later.material, one.material);
+        // Traced in packets: the same triangle; Embree's SIMD tests may round differently.
+        const RayHit& c = coherent[std::size_t(i)];
+        ASSERT_EQ(c.hit, one.hit) << "ray " << i;
+        if (!one.hit) continue;
+        ++hits;
+        EXPECT_EQ(c.mesh, one.mesh) << "ray " << i;
+        EXPECT_EQ(c.triangle, one.triangle) << "ray " << i;
+        EXPECT_EQ(c.frontFace, one.frontFace) << "ray " << i;
+        EXPECT_NEAR(c.t, one.t, 1e-5f * one.t) << "ray " << i;
+        EXPECT_LT(glm::length(c.position - one.position), 1e-5f) << "ray " << i;
+    }
+    EXPECT_GT(hits, n / 4);
+    EXPECT_LT(hits, n);
+}
+
 TEST(RayTracer, EmptyFansWriteNothing) {
     const Scene scene = triangleSoup(3);
     const RayTracer tracer(scene);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "gi/pathtrace/bsdf.h"
 #include "shaders/shared/constants.h"
@@ -351,141 +352,219 @@ void Integrator::connect(const Bsdf& bsdf, const RayHit& hit, const LightVertice
         deposit(c.scatterings, c.contribution * (total / (weights[pick] * float(kConnections))));
 }
 
-PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
-                             const LightVertices* lightVertices) const {
-    const bool connecting = lightVertices && !lightVertices->vertices.empty();
-    PathSample out;
-    glm::vec3 throughput(1.0f);
+struct Integrator::PathState {
+    PathState(const PathStart& start, const LightVertices* pool, PathSample& result);
+    void deposit(int scatterings, glm::vec3 radiance) { (scatterings <= 1 ? out.direct : out.indirect) += radiance; }
+
+    PathSampler sampler;
+    const LightVertices* lightVertices;  // null: no connections
+    const RayHit* firstHit;
+    PathSample& out;
+    glm::vec3 throughput{1.0f};
     float radianceScale = 1.0f;
     float previousPdf = 0.0f;
     bool previousDelta = true;  // the camera: what it sees directly gets full weight
-    glm::vec3 previousPosition = origin;
+    glm::vec3 previousPosition;
     float previousCosine = 0.0f;  // |geometric normal . direction| at the previous surface
     CameraHistory history;        // kept only for connections
-    auto deposit = [&](int scatterings, glm::vec3 radiance) {
-        (scatterings <= 1 ? out.direct : out.indirect) += radiance;
-    };
+    glm::vec3 origin, direction;
+    int depth = 0;
+    bool done = false;
+    // Carried from one stage of the bounce to the next.
+    glm::vec2 uConnect{0.0f};
+    RawHit raw;
+    RayHit hit;
+    glm::vec3 uLight{0.0f}, uBsdf{0.0f};
+    glm::vec2 uDisc{0.0f};
+    std::optional<Bsdf> bsdf;
+    std::uint64_t visibleDeltas = 0;
+};
 
-    for (int depth = 0;; ++depth) {
-        // The light vertices this bounce connects to are picked now and their cache lines
-        // requested, so that they load while Embree traces (a pool of light subpaths is
-        // megabytes, and each pick a random miss).
-        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
-        const glm::vec2 uConnect = connecting ? sampler.get2D(decision + 3) : glm::vec2(0.0f);
-        if (connecting)
-            for (int m = 0; m < kConnections; ++m) prefetchLightVertex(*lightVertices, connectionPick(uConnect.x, m));
-        RayHit hit = tracer_.intersect(origin, direction);
-        ++out.rays;
-        if (!hit.hit) {
-            // A tabulated sky is also sampled by next-event estimation; a constant one only
-            // by the BSDF, where it takes full weight.
-            float weight = 1.0f;
-            if (!previousDelta && environment_.active()) weight = powerHeuristic(previousPdf, environmentShare() * environment_.pdf(direction));
-            deposit(depth, throughput * scene_.sky.radianceAt(direction) * weight);
-            break;
-        }
-        const Material& material = scene_.materials[hit.material];
-        // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
-        // direction in a sun's disc (gi/pathtrace/sampler.h). The albedo's texels are requested
-        // first: they load while the points are computed and the delta lights' shadow rays
-        // are traced (below).
-        tracer_.prefetchAlbedo(hit);
-        glm::vec3 uLight(0.0f), uBsdf(0.0f);
-        glm::vec2 uDisc(0.0f);
-        if (depth < maxBounces_) {
-            // Read only by an emitter or sky sample (delta lights take uDisc alone).
-            if (lights_.hasEmitters() || environment_.active()) uLight = sampler.get3D(decision);
-            if (lights_.hasSunDisc()) uDisc = sampler.get2D(decision + 4);
-            uBsdf = sampler.get3D(decision + 1);
-        }
-        if (depth == 0) {
-            out.depth = hit.t;
-            glm::vec3 ng = hit.frontFace ? hit.geometricNormal : -hit.geometricNormal;
-            out.normal = glm::dot(hit.shadingNormal, ng) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
-        }
-        if (hit.frontFace && material.isEmissive()) {
-            float weight = 1.0f;
-            if (!previousDelta) {
-                float lightPdf = (1.0f - environmentShare()) *
-                                 lights_.emitterPdf(hit.mesh, hit.triangle, previousPosition, hit.position,
-                                                    -glm::dot(hit.geometricNormal, direction));
-                weight = powerHeuristic(previousPdf, lightPdf);
-                const float pointPdf = connecting ? lights_.emissionPointPdf(hit.mesh, hit.triangle) : 0.0f;
-                if (pointPdf > 0.0f && lightPdf > 0.0f) {
-                    // Next-event estimation at the previous surface, and light subpaths from here
-                    // joined at any edge, make the same path.
-                    const int k = history.surfaces;
-                    const float longer = longerLightSubpaths(history, emitterLightArea(previousCosine, pointPdf, lightPdf),
-                                                             [&] { return history.at(k).reverse; }, 0);
-                    weight = 1.0f / (1.0f + mis(lightPdf / previousPdf) * (1.0f + longer));
-                }
-            }
-            deposit(depth, throughput * material.emission * weight);
-        }
-        if (depth >= maxBounces_) {
-            if (depth == 0) out.albedo = tracer_.albedoAt(hit);
-            break;
-        }
-
-        // The BSDF's frame first, then the delta lights' shadow rays, then the albedo: its
-        // texels (a cache miss on textured scenes, a fifth of Sponza's time when looked up
-        // right away) load while Embree traces.
-        Bsdf bsdf(material, -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
-        const std::uint64_t visibleDeltas = bsdf.hasSmoothPart() ? deltaShadows(bsdf, hit, uDisc, out.rays) : 0;
-        const glm::vec3 albedo = tracer_.albedoAt(hit);
-        if (depth == 0) out.albedo = albedo;
-        bsdf.setAlbedo(material, albedo);
-        if (connecting) {
-            const int k = depth + 1;
-            const float cosine = std::abs(glm::dot(hit.geometricNormal, direction));
-            history.surfaces = k;
-            CameraHistory::Surface& here = history.at(k);
-            here.arrival = k >= 2 && !previousDelta ? previousPdf * cosine / (hit.t * hit.t) : 0.0f;
-            here.toPreviousArea = k >= 2 ? previousCosine / (hit.t * hit.t) : 0.0f;
-            here.reverse = 0.0f;
-        }
-        if (bsdf.hasSmoothPart()) {
-            deposit(depth + 1, throughput * sampleLights(bsdf, hit, uLight, uDisc, visibleDeltas, connecting ? &history : nullptr,
-                                                         out.rays));
-            if (connecting)
-                connect(bsdf, hit, *lightVertices, uConnect, history,
-                        [&](int scatterings, glm::vec3 c) { deposit(scatterings, throughput * c); }, out.rays);
-        }
-
-        BsdfSample s;
-        if (!bsdf.sample(uBsdf, s)) break;
-        throughput *= s.weight;
-        out.scatterings = depth + 1;
-        previousPdf = s.pdf;
-        previousDelta = s.delta;
-        previousPosition = hit.position;
-        if (connecting) {
-            // A light subpath going on from here to the previous surface: what it would sample.
-            // The MIS sums read it from the third surface on (no strategy joins the camera).
-            CameraHistory::Surface& here = history.at(depth + 1);
-            here.reverse = s.delta || depth < 2 ? 0.0f : reverseArea(bsdf, s.direction, history);
-            previousCosine = std::abs(glm::dot(hit.geometricNormal, s.direction));
-        }
-        radianceScale *= s.radianceScale;
-        if (depth >= 2) {
-            // Russian roulette keeps the estimate unbiased: survivors carry 1 / q. Survival
-            // follows the throughput (without the radiance scaling of refractions, which undoes
-            // itself on the way out), so weights stay at 1 even for albedo 0.99 and paths that
-            // lose no energy are never cut; kBounceGuard ends those. From the third surface on:
-            // from the fourth, Sponza's equal-time RMSE was 16 % higher, the Cornell box's 10 %
-            // and Sibenik's 7 %; from the second, Sponza's relMSE and HDR-FLIP rose
-            // (docs/reference.md, "Roulette from the third surface").
-            float q = maxComponent(throughput) / radianceScale;
-            if (q < 1.0f) {
-                if (!(sampler.get1D(decision + 2) < q)) break;
-                throughput /= q;
-            }
-        }
-        if (maxComponent(throughput) <= 0.0f) break;
-        origin = leavingPoint(hit, s.direction, sceneScale_);
-        direction = s.direction;
-    }
+PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
+                             const LightVertices* lightVertices, const RayHit* firstHit) const {
+    PathSample out;
+    const PathStart start{origin, direction, sampler, firstHit};
+    traceBatch(&start, 1, lightVertices, &out);
     return out;
+}
+
+void Integrator::traceBatch(const PathStart* starts, int n, const LightVertices* lightVertices, PathSample* out) const {
+    // Each bounce of every path in three stages, each stage over all paths before the next: a
+    // path's loads (its hit's triangle records after Embree's traversal, then its albedo's
+    // texels) are requested in one stage and read in the next, after the other paths' work.
+    // One path at a time, those loads were cache misses the core sat out (a fifth of Sponza's
+    // time); the paths' arithmetic is the same either way, so the image is too.
+    const bool connecting = lightVertices && !lightVertices->vertices.empty();
+    std::vector<PathState> paths;
+    paths.reserve(std::size_t(n));
+    for (int i = 0; i < n; ++i) paths.emplace_back(starts[i], connecting ? lightVertices : nullptr, out[i]);
+    for (bool active = true; active;) {
+        for (PathState& path : paths)
+            if (!path.done) findSurface(path);
+        for (PathState& path : paths)
+            if (!path.done) enterSurface(path);
+        active = false;
+        for (PathState& path : paths) {
+            if (path.done) continue;
+            leaveSurface(path);
+            active = active || !path.done;
+        }
+    }
+}
+
+Integrator::PathState::PathState(const PathStart& start, const LightVertices* pool, PathSample& result)
+    : sampler(start.sampler), lightVertices(pool), firstHit(start.firstHit), out(result), previousPosition(start.origin),
+      origin(start.origin), direction(start.direction) {
+    out = PathSample{};
+}
+
+void Integrator::findSurface(PathState& path) const {
+    // The light vertices this bounce connects to are picked now and their cache lines
+    // requested, so that they load while Embree traces (a pool of light subpaths is
+    // megabytes, and each pick a random miss).
+    const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(path.depth, 1 << 20));
+    path.uConnect = path.lightVertices ? path.sampler.get2D(decision + 3) : glm::vec2(0.0f);
+    if (path.lightVertices)
+        for (int m = 0; m < kConnections; ++m) prefetchLightVertex(*path.lightVertices, connectionPick(path.uConnect.x, m));
+    if (path.depth == 0 && path.firstHit) return;
+    path.raw = tracer_.intersectRaw(path.origin, path.direction);
+}
+
+void Integrator::enterSurface(PathState& path) const {
+    PathSample& out = path.out;
+    const int depth = path.depth;
+    const glm::vec3 direction = path.direction;
+    if (depth == 0 && path.firstHit)
+        path.hit = *path.firstHit;
+    else
+        tracer_.hitRecord(path.raw, direction, path.hit);
+    const RayHit& hit = path.hit;
+    ++out.rays;
+    if (!hit.hit) {
+        // A tabulated sky is also sampled by next-event estimation; a constant one only
+        // by the BSDF, where it takes full weight.
+        float weight = 1.0f;
+        if (!path.previousDelta && environment_.active())
+            weight = powerHeuristic(path.previousPdf, environmentShare() * environment_.pdf(direction));
+        path.deposit(depth, path.throughput * scene_.sky.radianceAt(direction) * weight);
+        path.done = true;
+        return;
+    }
+    const Material& material = scene_.materials[hit.material];
+    // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
+    // direction in a sun's disc (gi/pathtrace/sampler.h). The albedo's texels are requested
+    // first: they load while the points are computed, the delta lights' shadow rays are traced
+    // (below) and the other paths of the batch enter their surfaces.
+    tracer_.prefetchAlbedo(hit);
+    const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
+    path.uLight = glm::vec3(0.0f);
+    path.uBsdf = glm::vec3(0.0f);
+    path.uDisc = glm::vec2(0.0f);
+    if (depth < maxBounces_) {
+        // Read only by an emitter or sky sample (delta lights take uDisc alone).
+        if (lights_.hasEmitters() || environment_.active()) path.uLight = path.sampler.get3D(decision);
+        if (lights_.hasSunDisc()) path.uDisc = path.sampler.get2D(decision + 4);
+        path.uBsdf = path.sampler.get3D(decision + 1);
+    }
+    if (depth == 0) {
+        out.depth = hit.t;
+        glm::vec3 ng = hit.frontFace ? hit.geometricNormal : -hit.geometricNormal;
+        out.normal = glm::dot(hit.shadingNormal, ng) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
+    }
+    if (hit.frontFace && material.isEmissive()) {
+        float weight = 1.0f;
+        if (!path.previousDelta) {
+            float lightPdf = (1.0f - environmentShare()) *
+                             lights_.emitterPdf(hit.mesh, hit.triangle, path.previousPosition, hit.position,
+                                                -glm::dot(hit.geometricNormal, direction));
+            weight = powerHeuristic(path.previousPdf, lightPdf);
+            const float pointPdf = path.lightVertices ? lights_.emissionPointPdf(hit.mesh, hit.triangle) : 0.0f;
+            if (pointPdf > 0.0f && lightPdf > 0.0f) {
+                // Next-event estimation at the previous surface, and light subpaths from here
+                // joined at any edge, make the same path.
+                const CameraHistory& history = path.history;
+                const int k = history.surfaces;
+                const float longer = longerLightSubpaths(history, emitterLightArea(path.previousCosine, pointPdf, lightPdf),
+                                                         [&] { return history.at(k).reverse; }, 0);
+                weight = 1.0f / (1.0f + mis(lightPdf / path.previousPdf) * (1.0f + longer));
+            }
+        }
+        path.deposit(depth, path.throughput * material.emission * weight);
+    }
+    if (depth >= maxBounces_) {
+        if (depth == 0) out.albedo = tracer_.albedoAt(hit);
+        path.done = true;
+        return;
+    }
+    // The BSDF's frame first, then the delta lights' shadow rays; the albedo is read in the
+    // next stage.
+    path.bsdf.emplace(material, -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
+    path.visibleDeltas = path.bsdf->hasSmoothPart() ? deltaShadows(*path.bsdf, hit, path.uDisc, out.rays) : 0;
+}
+
+void Integrator::leaveSurface(PathState& path) const {
+    PathSample& out = path.out;
+    const int depth = path.depth;
+    const RayHit& hit = path.hit;
+    Bsdf& bsdf = *path.bsdf;
+    CameraHistory& history = path.history;
+    const Material& material = scene_.materials[hit.material];
+    const glm::vec3 albedo = tracer_.albedoAt(hit);
+    if (depth == 0) out.albedo = albedo;
+    bsdf.setAlbedo(material, albedo);
+    if (path.lightVertices) {
+        const int k = depth + 1;
+        const float cosine = std::abs(glm::dot(hit.geometricNormal, path.direction));
+        history.surfaces = k;
+        CameraHistory::Surface& here = history.at(k);
+        here.arrival = k >= 2 && !path.previousDelta ? path.previousPdf * cosine / (hit.t * hit.t) : 0.0f;
+        here.toPreviousArea = k >= 2 ? path.previousCosine / (hit.t * hit.t) : 0.0f;
+        here.reverse = 0.0f;
+    }
+    if (bsdf.hasSmoothPart()) {
+        path.deposit(depth + 1, path.throughput * sampleLights(bsdf, hit, path.uLight, path.uDisc, path.visibleDeltas,
+                                                               path.lightVertices ? &history : nullptr, out.rays));
+        if (path.lightVertices)
+            connect(bsdf, hit, *path.lightVertices, path.uConnect, history,
+                    [&](int scatterings, glm::vec3 c) { path.deposit(scatterings, path.throughput * c); }, out.rays);
+    }
+
+    path.done = true;  // until the path survives this bounce
+    BsdfSample s;
+    if (!bsdf.sample(path.uBsdf, s)) return;
+    path.throughput *= s.weight;
+    out.scatterings = depth + 1;
+    path.previousPdf = s.pdf;
+    path.previousDelta = s.delta;
+    path.previousPosition = hit.position;
+    if (path.lightVertices) {
+        // A light subpath going on from here to the previous surface: what it would sample.
+        // The MIS sums read it from the third surface on (no strategy joins the camera).
+        CameraHistory::Surface& here = history.at(depth + 1);
+        here.reverse = s.delta || depth < 2 ? 0.0f : reverseArea(bsdf, s.direction, history);
+        path.previousCosine = std::abs(glm::dot(hit.geometricNormal, s.direction));
+    }
+    path.radianceScale *= s.radianceScale;
+    if (depth >= 2) {
+        // Russian roulette keeps the estimate unbiased: survivors carry 1 / q. Survival
+        // follows the throughput (without the radiance scaling of refractions, which undoes
+        // itself on the way out), so weights stay at 1 even for albedo 0.99 and paths that
+        // lose no energy are never cut; kBounceGuard ends those. From the third surface on:
+        // from the fourth, Sponza's equal-time RMSE was 16 % higher, the Cornell box's 10 %
+        // and Sibenik's 7 %; from the second, Sponza's relMSE and HDR-FLIP rose
+        // (docs/reference.md, "Roulette from the third surface").
+        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
+        float q = maxComponent(path.throughput) / path.radianceScale;
+        if (q < 1.0f) {
+            if (!(path.sampler.get1D(decision + 2) < q)) return;
+            path.throughput /= q;
+        }
+    }
+    if (maxComponent(path.throughput) <= 0.0f) return;
+    path.origin = leavingPoint(hit, s.direction, sceneScale_);
+    path.direction = s.direction;
+    path.depth = depth + 1;
+    path.done = false;
 }
 
 }  // namespace voxgi::pt

@@ -26,8 +26,20 @@ public:
     // With `lightVertices` (this sample index's, light_paths.h), every vertex of the path is also
     // connected to one of them (kConnections weighed, one traced); without, the path is
     // unidirectional.
+    // `firstHit`: the camera ray's hit when the caller traced it already (a tile's camera rays
+    // go through Embree together, RayTracer::intersectCoherent); counted in the path's rays.
     PathSample trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
-                     const LightVertices* lightVertices = nullptr) const;
+                     const LightVertices* lightVertices = nullptr, const RayHit* firstHit = nullptr) const;
+    // One camera path's start, for traceBatch.
+    struct PathStart {
+        glm::vec3 origin{0.0f}, direction{0.0f};
+        PathSampler sampler;
+        const RayHit* firstHit = nullptr;  // as trace()'s
+    };
+    // trace() of n paths at once, out[i] for starts[i]: the same samples, in less time (the
+    // paths take turns at each stage of a bounce, so one path's cache misses load while the
+    // others work).
+    void traceBatch(const PathStart* starts, int n, const LightVertices* lightVertices, PathSample* out) const;
 
     // Whether any light emits light subpaths (the scene has point or spot lights or emitters)
     // and paths are long enough to use them (two scatterings or more).
@@ -57,6 +69,16 @@ private:
         const Surface& at(int k) const { return ring[std::size_t(k % kMaxLightVertices)]; }
         Surface ring[kMaxLightVertices];
     };
+
+    // A camera path between the stages of traceBatch (integrator.cpp).
+    struct PathState;
+    // The stages of one bounce: Embree's traversal (the hit's records requested), then the hit
+    // record, emission and the delta lights' shadow rays (the albedo's texels requested), then
+    // the albedo, light sampling, connections and the next direction. Each sets path.done when
+    // the path ends.
+    void findSurface(PathState& path) const;
+    void enterSurface(PathState& path) const;
+    void leaveSurface(PathState& path) const;
 
     // The shadow rays towards the first kEarlyDeltaShadows delta lights (uDisc: the direction in
     // a sun's disc), traced before the albedo is known: `bsdf` may hold any albedo (only

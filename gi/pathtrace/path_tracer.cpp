@@ -30,6 +30,9 @@ constexpr int kTile = 16;
 constexpr int kPixelsPerLightPath = 16;
 constexpr int kMinLightPaths = 256;
 constexpr int kMaxLightPaths = 1 << 16;
+// Paths a thread traces at once (Integrator::traceBatch): enough that one path's cache misses
+// load while the others work.
+constexpr int kPathsInFlight = 16;
 // Sample indices rendered together: their light vertices are held at once.
 constexpr int kSamplesPerPass = 8;
 // Light vertices kept for samplePixel() callers.
@@ -138,14 +141,19 @@ struct PathTracer::Impl {
         return kept[index] = traceLightPaths(index);
     }
 
-    PathSample samplePixel(int x, int y, std::uint64_t index, const pt::LightVertices* lightVertices) const {
-        std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
-        const pt::PathSampler sampler(options.seed, pixel, index);
-        // Box filter: a uniform point in the pixel, as the rasterizer's jittered accumulation.
+    pt::PathSampler pixelSampler(int x, int y, std::uint64_t index) const {
+        return pt::PathSampler(options.seed, std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x), index);
+    }
+    // The camera ray through pixel (x, y) for `sampler`'s decision 0. Box filter: a uniform point
+    // in the pixel, as the rasterizer's jittered accumulation.
+    glm::vec3 cameraDirection(int x, int y, const pt::PathSampler& sampler) const {
         const glm::vec2 jitter = sampler.get2D(0);
-        float sx = (float(x) + jitter.x) / float(width);
-        float sy = (float(y) + jitter.y) / float(height);
-        return integrator.trace(camera.eye, glm::normalize(camera.direction(sx, sy)), sampler, lightVertices);
+        return glm::normalize(camera.direction((float(x) + jitter.x) / float(width), (float(y) + jitter.y) / float(height)));
+    }
+
+    PathSample samplePixel(int x, int y, std::uint64_t index, const pt::LightVertices* lightVertices) const {
+        const pt::PathSampler sampler = pixelSampler(x, y, index);
+        return integrator.trace(camera.eye, cameraDirection(x, y, sampler), sampler, lightVertices);
     }
 
     // Samples first .. first + count - 1 of every pixel of `tile`; pools[s] holds sample
@@ -155,13 +163,32 @@ struct PathTracer::Impl {
         int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
         int x1 = std::min(x0 + kTile, width), y1 = std::min(y0 + kTile, height);
         std::uint64_t tileRays = 0, tileDropped = 0;
+        const int pixels = (x1 - x0) * (y1 - y0);
+        std::vector<glm::vec3> origins(static_cast<std::size_t>(pixels), camera.eye), directions(origins.size());
+        std::vector<RayHit> firstHits(origins.size());
+        std::vector<pt::Integrator::PathStart> starts;
+        starts.reserve(origins.size());
+        std::vector<PathSample> samples(origins.size());
         // Sample by sample over the tile: one pool of light vertices (megabytes) is in use at a
         // time, not all of the pass's. Each pixel still sums its samples in order.
-        for (int s = 0; s < count; ++s)
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) {
+        for (int s = 0; s < count; ++s) {
+            const std::uint64_t index = std::uint64_t(first + s);
+            // The tile's camera rays first, through Embree together: neighbouring pixels' rays
+            // share their traversal in SIMD packets.
+            for (int y = y0, i = 0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x, ++i) directions[std::size_t(i)] = cameraDirection(x, y, pixelSampler(x, y, index));
+            tracer.intersectCoherent(origins.data(), directions.data(), pixels, firstHits.data());
+            starts.clear();
+            for (int y = y0, i = 0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x, ++i)
+                    starts.push_back({camera.eye, directions[std::size_t(i)], pixelSampler(x, y, index), &firstHits[std::size_t(i)]});
+            for (int i = 0; i < pixels; i += kPathsInFlight)
+                integrator.traceBatch(&starts[std::size_t(i)], std::min(kPathsInFlight, pixels - i), pools[std::size_t(s)].get(),
+                                      &samples[std::size_t(i)]);
+            for (int y = y0, i = 0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x, ++i) {
                     PixelSum& sum = sums[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-                    PathSample p = samplePixel(x, y, std::uint64_t(first + s), pools[std::size_t(s)].get());
+                    const PathSample& p = samples[std::size_t(i)];
                     tileRays += p.rays;
                     if (!finite(p.direct) || !finite(p.indirect) || !finite(p.albedo) || !finite(p.normal) ||
                         !std::isfinite(p.depth)) {
@@ -175,6 +202,7 @@ struct PathTracer::Impl {
                     sum.depth += double(p.depth);
                     ++sum.count;
                 }
+        }
         rays += tileRays;
         dropped += tileDropped;
     }

@@ -67,7 +67,9 @@ public:
 
     // The path render() traces for pixel (x, y), sample `index` (box filter over the pixel),
     // with the light subpaths of that index (traced again unless one of the last few indices
-    // asked for: callers going through many indices take them one at a time).
+    // asked for: callers going through many indices take them one at a time). Its camera ray
+    // goes through Embree alone, where render() traces a tile's camera rays as one coherent
+    // stream: the same path, unless Embree's SIMD rounding finds another triangle at an edge.
     PathSample samplePixel(int x, int y, std::uint64_t index) const;
     // The Embree scene the paths are traced in (benchmarks log and replay its rays).
     const RayTracer& rayTracer() const;

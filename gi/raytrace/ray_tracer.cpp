@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/raytrace/texture_pyramid.h"
+#include "scenes/large_pages.h"
 #include "scenes/memory_limit.h"
 
 namespace voxgi {
@@ -44,8 +45,9 @@ struct RayTracer::Impl {
     std::size_t allTriangles = 0;        // over all meshes, degenerate ones included
     // Per triangle, from meshFirst: what a hit record reads, one cache line each and no index
     // to follow (built with the scene: every intersect() needs them).
-    std::vector<TriangleSurface> surfaces;
-    std::vector<TriangleCorners> corners;
+    // Read at random by every hit: in large pages (scenes/large_pages.h).
+    LargeVector<TriangleSurface> surfaces;
+    LargeVector<TriangleCorners> corners;
     std::atomic<bool> logging{false};
     tbb::enumerable_thread_specific<std::vector<LoggedRay>> log;
     ~Impl() {
@@ -251,6 +253,46 @@ void RayTracer::intersectFan(glm::vec3 o, const glm::vec3* d, int n, RayHit* hit
         for (int i = 0; i < count; ++i)
             makeHit(scene_, impl_->surfaces.data(), impl_->corners.data(), impl_->meshFirst, raw[i], d[first + i],
                     hits[first + i]);
+    }
+}
+
+RawHit RayTracer::intersectRaw(glm::vec3 o, glm::vec3 d) const {
+    if (impl_->logging.load(std::memory_order_relaxed)) impl_->log.local().push_back({o, 0.0f, d, 1e30f, false});
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    const RawHit raw = toRawHit(nearest(impl_->scene, context, o, d, 0.0f, 1e30f));
+    if (raw.hit()) {
+        const std::size_t index = impl_->meshFirst[raw.mesh] + raw.triangle;
+        __builtin_prefetch(&impl_->corners[index]);
+        __builtin_prefetch(&impl_->surfaces[index]);
+    }
+    return raw;
+}
+
+void RayTracer::hitRecord(const RawHit& raw, glm::vec3 d, RayHit& hit) const {
+    makeHit(scene_, impl_->surfaces.data(), impl_->corners.data(), impl_->meshFirst, raw, d, hit);
+}
+
+void RayTracer::intersectCoherent(const glm::vec3* origins, const glm::vec3* directions, int n, RayHit* hits) const {
+    const bool logging = impl_->logging.load(std::memory_order_relaxed);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    constexpr int kBatch = 64;
+    RTCRayHit batch[kBatch];
+    for (int first = 0; first < n; first += kBatch) {
+        const int count = std::min(kBatch, n - first);
+        for (int i = 0; i < count; ++i) {
+            const glm::vec3 o = origins[first + i], d = directions[first + i];
+            if (logging) impl_->log.local().push_back({o, 0.0f, d, 1e30f, false});
+            batch[i].ray = makeRay(o, d, 0.0f, 1e30f);
+            batch[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            batch[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect1M(impl_->scene, &context, batch, unsigned(count), sizeof(RTCRayHit));
+        for (int i = 0; i < count; ++i)
+            makeHit(scene_, impl_->surfaces.data(), impl_->corners.data(), impl_->meshFirst, toRawHit(batch[i]),
+                    directions[first + i], hits[first + i]);
     }
 }
 

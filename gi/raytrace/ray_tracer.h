@@ -74,6 +74,11 @@ public:
     RayTracer& operator=(const RayTracer&) = delete;
 
     RayHit intersect(glm::vec3 origin, glm::vec3 direction, float tMin = 0.0f, float tMax = 1e30f) const;
+    // intersect() in two steps: Embree's nearest hit (tMin 0, tMax 1e30), with the cache lines
+    // its hit record reads requested; then the record (`direction` the ray's), once other work
+    // has given those lines time to arrive.
+    RawHit intersectRaw(glm::vec3 origin, glm::vec3 direction) const;
+    void hitRecord(const RawHit& raw, glm::vec3 direction, RayHit& hit) const;
     // Embree's nearest hits of n rays from one origin (tMin 0, tMax 1e30). With `surfaces`, also
     // each hit's TriangleSurface (null for a miss), prefetched while the next rays are traced.
     void traceFan(glm::vec3 origin, const glm::vec3* directions, int n, RawHit* hits,
@@ -81,6 +86,11 @@ public:
     // intersect() of n rays from one origin (tMin 0, tMax 1e30), hits[i] for directions[i]:
     // the same records, in less time than n calls (they are built after a batch is traced).
     void intersectFan(glm::vec3 origin, const glm::vec3* directions, int n, RayHit* hits) const;
+    // intersect() of n rays (tMin 0, tMax 1e30), hits[i] for origins[i], directions[i], traced
+    // as one coherent stream: Embree packs neighbouring rays into SIMD packets that share their
+    // traversal. For rays that start close together and point alike (a tile's camera rays);
+    // slower than n intersect() calls for scattered rays.
+    void intersectCoherent(const glm::vec3* origins, const glm::vec3* directions, int n, RayHit* hits) const;
     bool occluded(glm::vec3 origin, glm::vec3 direction, float tMin, float tMax) const;
     // The distance to the nearest hit (infinity for a miss) and nothing else: Embree's own cost
     // of a ray, without the hit record intersect() builds (benchmarks compare against it).
