@@ -95,7 +95,7 @@ void Texture::prefetch(glm::vec2 uv) const {
     if (width <= 0 || height <= 0 || rgba.size() < std::size_t(width) * std::size_t(height) * 4) return;
     const BilinearFootprint f = bilinearFootprint(width, height, uv);
     const std::size_t x = std::size_t(wrapTexel(f.x0, width));
-    for (int row : {f.y0, f.y0 + 1})
+    for (int row : {f.y0 + 1, f.y0})
         __builtin_prefetch(&rgba[(std::size_t(wrapTexel(row, height)) * std::size_t(width) + x) * 4]);
 }
 

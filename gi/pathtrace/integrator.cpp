@@ -113,25 +113,26 @@ bool Integrator::deltaVisible(const RayHit& hit, const LightSample& ls, std::uin
     return !tracer_.occluded(leavingPoint(hit, ls.direction, sceneScale_), ls.direction, 0.0f, shadowRayEnd(ls.distance));
 }
 
-std::uint64_t Integrator::deltaShadows(const Bsdf& bsdf, const RayHit& hit, glm::vec2 uDisc, std::uint32_t& rays) const {
-    std::uint64_t visible = 0;
+void Integrator::deltaShadows(const Bsdf& bsdf, const RayHit& hit, glm::vec2 uDisc, EarlyDeltas& out,
+                              std::uint32_t& rays) const {
+    out.visible = 0;
     const std::size_t count = std::min(lights_.deltaCount(), kEarlyDeltaShadows);
     for (std::size_t i = 0; i < count; ++i) {
         const LightSample ls = lights_.sampleDelta(i, hit.position, uDisc);
+        if (i < kKeptDeltaSamples) out.kept[i] = ls;
         if (maxComponent(ls.radiance) > 0.0f && bsdf.mayReflect(ls.direction) && deltaVisible(hit, ls, rays))
-            visible |= std::uint64_t(1) << i;
+            out.visible |= std::uint64_t(1) << i;
     }
-    return visible;
 }
 
 glm::vec3 Integrator::sampleLights(const Bsdf& bsdf, const RayHit& hit, glm::vec3 u, glm::vec2 uDisc,
-                                   std::uint64_t visibleDeltas, const CameraHistory* history, std::uint32_t& rays) const {
+                                   const EarlyDeltas& earlyDeltas, const CameraHistory* history, std::uint32_t& rays) const {
     const glm::vec3 p = hit.position;
     glm::vec3 sum(0.0f);
     for (std::size_t i = 0; i < lights_.deltaCount(); ++i) {
         const bool early = i < kEarlyDeltaShadows;  // its shadow ray traced by deltaShadows
-        if (early && !(visibleDeltas >> i & 1u)) continue;
-        LightSample ls = lights_.sampleDelta(i, p, uDisc);
+        if (early && !(earlyDeltas.visible >> i & 1u)) continue;
+        const LightSample ls = i < kKeptDeltaSamples ? earlyDeltas.kept[i] : lights_.sampleDelta(i, p, uDisc);
         if (maxComponent(ls.radiance) <= 0.0f) continue;
         glm::vec3 f = bsdf.eval(ls.direction);
         if (maxComponent(f) <= 0.0f) continue;
@@ -377,7 +378,7 @@ struct Integrator::PathState {
     glm::vec3 uLight{0.0f}, uBsdf{0.0f};
     glm::vec2 uDisc{0.0f};
     std::optional<Bsdf> bsdf;
-    std::uint64_t visibleDeltas = 0;
+    EarlyDeltas deltas;
 };
 
 PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSampler& sampler,
@@ -389,11 +390,13 @@ PathSample Integrator::trace(glm::vec3 origin, glm::vec3 direction, const PathSa
 }
 
 void Integrator::traceBatch(const PathStart* starts, int n, const LightVertices* lightVertices, PathSample* out) const {
-    // Each bounce of every path in three stages, each stage over all paths before the next: a
-    // path's loads (its hit's triangle records after Embree's traversal, then its albedo's
-    // texels) are requested in one stage and read in the next, after the other paths' work.
-    // One path at a time, those loads were cache misses the core sat out (a fifth of Sponza's
-    // time); the paths' arithmetic is the same either way, so the image is too.
+    // Each bounce of every path in stages, each stage over all paths before the next. The hits'
+    // triangle records, then their albedos' texels, are cache misses (a fifth of Sponza's time,
+    // one path at a time): here each is requested for all paths in one tight loop, so the misses
+    // overlap, and read a stage later. (On the AMD VM a prefetch holds up retirement until its
+    // line arrives, so prefetches spread between other work stalled as loads did; issued back
+    // to back they wait once for all.) The paths' arithmetic is the same either way, and so is
+    // the image.
     const bool connecting = lightVertices && !lightVertices->vertices.empty();
     std::vector<PathState> paths;
     paths.reserve(std::size_t(n));
@@ -401,6 +404,17 @@ void Integrator::traceBatch(const PathStart* starts, int n, const LightVertices*
     for (bool active = true; active;) {
         for (PathState& path : paths)
             if (!path.done) findSurface(path);
+        for (const PathState& path : paths)
+            if (!path.done && !(path.depth == 0 && path.firstHit)) tracer_.prefetchRecord(path.raw);
+        for (PathState& path : paths) {
+            if (path.done) continue;
+            if (path.depth == 0 && path.firstHit)
+                path.hit = *path.firstHit;
+            else
+                tracer_.hitRecord(path.raw, path.direction, path.hit);
+        }
+        for (const PathState& path : paths)
+            if (!path.done && path.hit.hit) tracer_.prefetchAlbedo(path.hit);
         for (PathState& path : paths)
             if (!path.done) enterSurface(path);
         active = false;
@@ -434,10 +448,6 @@ void Integrator::enterSurface(PathState& path) const {
     PathSample& out = path.out;
     const int depth = path.depth;
     const glm::vec3 direction = path.direction;
-    if (depth == 0 && path.firstHit)
-        path.hit = *path.firstHit;
-    else
-        tracer_.hitRecord(path.raw, direction, path.hit);
     const RayHit& hit = path.hit;
     ++out.rays;
     if (!hit.hit) {
@@ -452,10 +462,7 @@ void Integrator::enterSurface(PathState& path) const {
     }
     const Material& material = scene_.materials[hit.material];
     // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
-    // direction in a sun's disc (gi/pathtrace/sampler.h). The albedo's texels are requested
-    // first: they load while the points are computed, the delta lights' shadow rays are traced
-    // (below) and the other paths of the batch enter their surfaces.
-    tracer_.prefetchAlbedo(hit);
+    // direction in a sun's disc (gi/pathtrace/sampler.h).
     const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
     path.uLight = glm::vec3(0.0f);
     path.uBsdf = glm::vec3(0.0f);
@@ -499,7 +506,8 @@ void Integrator::enterSurface(PathState& path) const {
     // The BSDF's frame first, then the delta lights' shadow rays; the albedo is read in the
     // next stage.
     path.bsdf.emplace(material, -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
-    path.visibleDeltas = path.bsdf->hasSmoothPart() ? deltaShadows(*path.bsdf, hit, path.uDisc, out.rays) : 0;
+    path.deltas.visible = 0;
+    if (path.bsdf->hasSmoothPart()) deltaShadows(*path.bsdf, hit, path.uDisc, path.deltas, out.rays);
 }
 
 void Integrator::leaveSurface(PathState& path) const {
@@ -522,7 +530,7 @@ void Integrator::leaveSurface(PathState& path) const {
         here.reverse = 0.0f;
     }
     if (bsdf.hasSmoothPart()) {
-        path.deposit(depth + 1, path.throughput * sampleLights(bsdf, hit, path.uLight, path.uDisc, path.visibleDeltas,
+        path.deposit(depth + 1, path.throughput * sampleLights(bsdf, hit, path.uLight, path.uDisc, path.deltas,
                                                                path.lightVertices ? &history : nullptr, out.rays));
         if (path.lightVertices)
             connect(bsdf, hit, *path.lightVertices, path.uConnect, history,

@@ -72,10 +72,9 @@ private:
 
     // A camera path between the stages of traceBatch (integrator.cpp).
     struct PathState;
-    // The stages of one bounce: Embree's traversal (the hit's records requested), then the hit
-    // record, emission and the delta lights' shadow rays (the albedo's texels requested), then
-    // the albedo, light sampling, connections and the next direction. Each sets path.done when
-    // the path ends.
+    // The stages of one bounce that traceBatch does not do itself: Embree's traversal; emission
+    // and the delta lights' shadow rays (path.hit built); the albedo, light sampling,
+    // connections and the next direction. Each sets path.done when the path ends.
     void findSurface(PathState& path) const;
     void enterSurface(PathState& path) const;
     void leaveSurface(PathState& path) const;
@@ -85,16 +84,23 @@ private:
     // Bsdf::mayReflect is read), and the albedo's texels load while Embree traces. Bit i of
     // the result: light i is visible (and was traced).
     static constexpr std::size_t kEarlyDeltaShadows = 64;
+    // The samples of the first kKeptDeltaSamples delta lights, kept for sampleLights (a sun's
+    // disc sample costs a sine and a cosine; most scenes have one or two delta lights).
+    static constexpr std::size_t kKeptDeltaSamples = 2;
+    struct EarlyDeltas {
+        std::uint64_t visible = 0;  // bit i: light i is visible (and was traced)
+        LightSample kept[kKeptDeltaSamples];
+    };
     // The shadow ray of delta-light sample `ls` at the hit: true when nothing blocks it.
     bool deltaVisible(const RayHit& hit, const LightSample& ls, std::uint32_t& rays) const;
-    std::uint64_t deltaShadows(const class Bsdf& bsdf, const RayHit& hit, glm::vec2 uDisc, std::uint32_t& rays) const;
+    void deltaShadows(const class Bsdf& bsdf, const RayHit& hit, glm::vec2 uDisc, EarlyDeltas& out, std::uint32_t& rays) const;
     // Light after one more scattering at the hit, sampled from the lights (NEE) with MIS.
     // u: the emitter point or sky direction (x, y) and the choice between them (z); uDisc: the
-    // direction in a sun's disc; visibleDeltas: deltaShadows' answer at this hit. `history`
+    // direction in a sun's disc; early: deltaShadows' answer at this hit. `history`
     // (null: no light subpaths) weighs delta-light samples against the light-vertex
     // connections that make the same paths.
     glm::vec3 sampleLights(const class Bsdf& bsdf, const RayHit& hit, glm::vec3 u, glm::vec2 uDisc,
-                           std::uint64_t visibleDeltas, const CameraHistory* history, std::uint32_t& rays) const;
+                           const EarlyDeltas& early, const CameraHistory* history, std::uint32_t& rays) const;
     // A connection of the hit (the camera subpath's newest surface) to light vertex u * size of
     // `pool`, before its shadow ray: the joined path's contribution, MIS-weighted over every
     // strategy that makes it, if unoccluded. False when it carries nothing.

@@ -260,13 +260,14 @@ RawHit RayTracer::intersectRaw(glm::vec3 o, glm::vec3 d) const {
     if (impl_->logging.load(std::memory_order_relaxed)) impl_->log.local().push_back({o, 0.0f, d, 1e30f, false});
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    const RawHit raw = toRawHit(nearest(impl_->scene, context, o, d, 0.0f, 1e30f));
-    if (raw.hit()) {
-        const std::size_t index = impl_->meshFirst[raw.mesh] + raw.triangle;
-        __builtin_prefetch(&impl_->corners[index]);
-        __builtin_prefetch(&impl_->surfaces[index]);
-    }
-    return raw;
+    return toRawHit(nearest(impl_->scene, context, o, d, 0.0f, 1e30f));
+}
+
+void RayTracer::prefetchRecord(const RawHit& raw) const {
+    if (!raw.hit()) return;
+    const std::size_t index = impl_->meshFirst[raw.mesh] + raw.triangle;
+    __builtin_prefetch(&impl_->corners[index]);
+    __builtin_prefetch(&impl_->surfaces[index]);
 }
 
 void RayTracer::hitRecord(const RawHit& raw, glm::vec3 d, RayHit& hit) const {

@@ -74,10 +74,11 @@ public:
     RayTracer& operator=(const RayTracer&) = delete;
 
     RayHit intersect(glm::vec3 origin, glm::vec3 direction, float tMin = 0.0f, float tMax = 1e30f) const;
-    // intersect() in two steps: Embree's nearest hit (tMin 0, tMax 1e30), with the cache lines
-    // its hit record reads requested; then the record (`direction` the ray's), once other work
-    // has given those lines time to arrive.
+    // intersect() in steps: Embree's nearest hit (tMin 0, tMax 1e30); a request for the cache
+    // lines its hit record reads; the record (`direction` the ray's). Callers with many rays
+    // request the lines of all their hits in one go, so the misses overlap.
     RawHit intersectRaw(glm::vec3 origin, glm::vec3 direction) const;
+    void prefetchRecord(const RawHit& raw) const;
     void hitRecord(const RawHit& raw, glm::vec3 direction, RayHit& hit) const;
     // Embree's nearest hits of n rays from one origin (tMin 0, tMax 1e30). With `surfaces`, also
     // each hit's TriangleSurface (null for a miss), prefetched while the next rays are traced.
