@@ -84,6 +84,35 @@ TEST(LpvOrdinates, BinsTileTheSphereAndNoneStraddlesAnAxisPlane) {
 }
 
 // The cause this transport removes: a lit floor with nothing above it receives nothing.
+TEST(LpvOrdinates, BundlesHoldEveryBinOnceAndOnlyBinsWhoseMovesAreAlike) {
+    for (int perFace : {2, 4, 6}) {
+        const OrdinatesTransport t(gridOf(8), perFace, kSweepMargin);
+        const std::vector<OrdinateBin>& bins = t.bins();
+        std::vector<int> seen(bins.size(), 0);
+        std::size_t full = 0;
+        for (const std::vector<std::size_t>& bundle : t.sweepBundles()) {
+            ASSERT_FALSE(bundle.empty());
+            ASSERT_LE(bundle.size(), kSweepLanes);
+            full += bundle.size() == kSweepLanes;
+            for (std::size_t k : bundle) {
+                ++seen[k];
+                EXPECT_EQ(bins[k].axis, bins[bundle.front()].axis);
+                EXPECT_EQ(bins[k].sign, bins[bundle.front()].sign);
+                EXPECT_EQ(bins[k].lateralStep, bins[bundle.front()].lateralStep);
+            }
+        }
+        for (int count : seen) EXPECT_EQ(count, 1);
+        // A quadrant of a face holds (perFace / 2)^2 bins: lpv's 2 per face one bin a bundle,
+        // clpv's 4 exactly one full bundle per quadrant.
+        if (perFace == 2) {
+            EXPECT_EQ(t.sweepBundles().size(), bins.size());
+        }
+        if (perFace == 4) {
+            EXPECT_EQ(full * kSweepLanes, bins.size());
+        }
+    }
+}
+
 TEST(LpvOrdinates, ALitFloorAloneReceivesNoneOfItsOwnLight) {
     OrdinatesTransport t(gridOf(16), 2);
     addFloor(t, 2, 0, 16, 0.8f);

@@ -15,7 +15,8 @@
 namespace voxgi {
 
 namespace {
-// Bins are swept in this many groups, each summing into its own irradiance and reflections.
+// Bundles of bins are swept in this many groups, each summing into its own irradiance and
+// reflections.
 constexpr std::size_t kBinGroups = 4;
 }  // namespace
 
@@ -198,15 +199,97 @@ void OrdinatesTransport::addSurfels(const SurfelSource& source, float normalOffs
     }
 }
 
-// One bin over `box` (the cells that can hold light a receiver reads: sweepBox): slab by slab
-// along its axis, each slab's incoming power from the previous slab's outgoing power through the
-// four landing taps.
-void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, bool occlusion, const IndexBox& box,
-                               IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const {
-    const OrdinateBin& b = bins_[k];
+namespace {
+// One value per lane (bin) of a bundle: a SIMD vector (GCC's and Clang's vector extension), or
+// a plain float for bundles of one bin (lpv's 24 bins: one per quadrant of a face), where four
+// lanes would carry three of zeros through the slab buffers.
+typedef float Lanes __attribute__((vector_size(sizeof(float) * kSweepLanes)));
+template <class V>
+constexpr std::size_t kWidth = sizeof(V) / sizeof(float);
+float& lane(float& v, std::size_t) { return v; }
+float lane(const float& v, std::size_t) { return v; }
+float& lane(Lanes& v, std::size_t l) { return reinterpret_cast<float*>(&v)[l]; }
+float lane(const Lanes& v, std::size_t l) { return v[l]; }
+
+// One colour triple per lane, colour-major: each colour is one vector.
+template <class V>
+struct LaneRgb {
+    V c[3] = {};
+
+    bool any() const {
+        for (std::size_t l = 0; l < kWidth<V>; ++l)
+            if (lane(c[0], l) != 0.0f || lane(c[1], l) != 0.0f || lane(c[2], l) != 0.0f) return true;
+        return false;
+    }
+    // Summed over the lanes: what every bin together leaves in a cell.
+    glm::vec3 total() const {
+        glm::vec3 t(0.0f);
+        for (int k = 0; k < 3; ++k)
+            for (std::size_t l = 0; l < kWidth<V>; ++l) t[k] += lane(c[k], l);
+        return t;
+    }
+    LaneRgb& operator+=(const LaneRgb& o) {
+        for (int k = 0; k < 3; ++k) c[k] += o.c[k];
+        return *this;
+    }
+    LaneRgb& operator-=(const LaneRgb& o) {
+        for (int k = 0; k < 3; ++k) c[k] -= o.c[k];
+        return *this;
+    }
+    LaneRgb& operator*=(float s) {
+        for (int k = 0; k < 3; ++k) c[k] *= s;
+        return *this;
+    }
+    LaneRgb operator*(float s) const { return LaneRgb(*this) *= s; }
+    // Each lane times its own factor (a tap's weight in that lane's bin).
+    LaneRgb perLane(V s) const {
+        LaneRgb r;
+        for (int k = 0; k < 3; ++k) r.c[k] = c[k] * s;
+        return r;
+    }
+};
+}  // namespace
+
+std::vector<std::vector<std::size_t>> OrdinatesTransport::sweepBundles() const {
+    std::vector<std::vector<std::size_t>> bundles;
+    for (std::size_t k = 0; k < bins_.size(); ++k) {
+        const OrdinateBin& b = bins_[k];
+        auto alike = std::find_if(bundles.begin(), bundles.end(), [&](const std::vector<std::size_t>& bundle) {
+            const OrdinateBin& o = bins_[bundle.front()];
+            return bundle.size() < kSweepLanes && o.axis == b.axis && o.sign == b.sign && o.lateralStep == b.lateralStep;
+        });
+        if (alike == bundles.end())
+            bundles.push_back({k});
+        else
+            alike->push_back(k);
+    }
+    return bundles;
+}
+
+// The bins of one bundle over `box` (the cells that can hold light a receiver reads: sweepBox):
+// slab by slab along their axis, each slab's incoming power from the previous slab's outgoing
+// power through the four landing taps. The bins share every move and every surface's stopping
+// fraction; only the taps' weights and the sources differ, lane by lane.
+void OrdinatesTransport::sweep(const std::vector<std::size_t>& bundle, const std::vector<float>& source, bool occlusion,
+                               const IndexBox& box, IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const {
+    if (bundle.size() == 1)
+        sweepLanes<float>(bundle, source, occlusion, box, irradiance, reflected);
+    else
+        sweepLanes<Lanes>(bundle, source, occlusion, box, irradiance, reflected);
+}
+
+template <class V>
+void OrdinatesTransport::sweepLanes(const std::vector<std::size_t>& bundle, const std::vector<float>& source,
+                                    bool occlusion, const IndexBox& box, IrradianceBricks& irradiance,
+                                    std::vector<glm::vec3>& reflected) const {
+    const OrdinateBin& b = bins_[bundle.front()];
     const int n = grid_.resolution;
     const int axis = b.axis, u = (axis + 1) % 3, v = (axis + 2) % 3;
     const int su = b.lateralStep.x, sv = b.lateralStep.y;
+    // Per tap, each lane's weight (zero in unused lanes: they carry nothing).
+    V taps[4] = {};
+    for (std::size_t l = 0; l < bundle.size(); ++l)
+        for (int j = 0; j < 4; ++j) lane(taps[j], l) = bins_[bundle[l]].taps[std::size_t(j)];
     // Receivers: the power entering a cell through its faces of axis a, over h^2, is the
     // irradiance on a surface facing against the move (moving along +e_a, light arrives on faces
     // facing -e_a: face 2a + 1). In free space this equals radiance x the bin's cosine moment; in a
@@ -219,7 +302,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                       vFace = std::size_t(2 * v + (sv > 0 ? 1 : 0)) * faceStride;
     // Per lateral cell of the previous slab, the power leaving along each tap.
     // A border of zeros around each slab: taps that reach past the edge read nothing.
-    using Parts = std::array<glm::vec3, 4>;
+    using Parts = std::array<LaneRgb<V>, 4>;
     const std::size_t row = std::size_t(n) + 2;
     std::vector<Parts> prev(row * row, Parts{}), cur(prev.size(), Parts{});
     // The taps' moves, in world axes: each crosses the slab face and, for taps 1-3, a side face.
@@ -232,11 +315,11 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
         if (j & 2) move[j][v] = float(sv);
     }
     auto crossedBy = [&](int j, glm::vec3 perAxis) { return shading::crossedBy(j, perAxis, axis, u, v); };
-    // Reflects `hit` (stopped by the surfaces of `s` on tap j's move) from the axis faces the
-    // light arrives on, each crossed axis by its part of the stopping area `parts`.
-    // With `cell`, the stopped light is also irradiance on those faces there: light that moved
-    // inside the cell (along a floor's layer, or from another surface of the cell) before meeting
-    // a surface, which no crossing into the cell counted.
+    // Reflects `hit` (stopped by the surfaces of `s` on tap j's move, summed over the lanes) from
+    // the axis faces the light arrives on, each crossed axis by its part of the stopping area
+    // `parts`. With `cell`, the stopped light is also irradiance on those faces there: light that
+    // moved inside the cell (along a floor's layer, or from another surface of the cell) before
+    // meeting a surface, which no crossing into the cell counted.
     auto reflect = [&](int s, int j, glm::vec3 hit, const glm::vec3& parts, std::size_t cell = SIZE_MAX) {  // cell: brickCell
         const float total = parts.x + parts.y + parts.z;
         const glm::vec3 r = albedo_[std::size_t(s)] * hit;
@@ -267,6 +350,7 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
     const int* table = bricks_.table().data();
     const int lo = box.min[innerAxis], hi = box.max[innerAxis];
     const int first = box.min[axis], last = box.max[axis];
+    const std::size_t surfaces = coverage_.size();
     for (int t = 0; t <= last - first; ++t) {
         const int a = b.sign > 0 ? first + t : last - t;
         const int slabOffset = (a & 7) << shift[axis], slabTable = (a >> 3) * tableStride[axis];
@@ -281,23 +365,25 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                     slot < 0 ? 0 : std::size_t(slot) * std::size_t(shading::kBrickCells) + std::size_t(rowOffset);
                 for (int inner = run; inner <= runEnd; ++inner) {
                     const std::size_t here = (std::size_t(outer) + 1) * row + std::size_t(inner) + 1;
-                    glm::vec3 part[4];
+                    LaneRgb<V> part[4];
                     for (int j = 0; j < 4; ++j) part[j] = prev[std::size_t(std::ptrdiff_t(here) + from[j])][std::size_t(j)];
-                    const glm::vec3 in = part[0] + part[1] + part[2] + part[3];
+                    LaneRgb<V> out = part[0];
+                    out += part[1];
+                    out += part[2];
+                    out += part[3];
                     // Outside the bricks no receiver reads and no surface is: the light only moves on.
                     const std::size_t brickCell = runBase + (std::size_t(inner & 7) << innerShift);
                     const std::size_t cell = slot < 0 ? SIZE_MAX : brickCell;
-                    glm::vec3 out = in;
-                    const bool lit = in != glm::vec3(0.0f);
+                    const bool lit = out.any();
                     if (lit && slot >= 0) {
-                        irradiance[cell + slabFace] += glm::vec4(in * perArea, 0.0f);
-                        irradiance[cell + uFace] += glm::vec4((part[1] + part[3]) * perArea, 0.0f);
-                        irradiance[cell + vFace] += glm::vec4((part[2] + part[3]) * perArea, 0.0f);
+                        irradiance[cell + slabFace] += glm::vec4(out.total() * perArea, 0.0f);
+                        irradiance[cell + uFace] += glm::vec4((part[1].total() + part[3].total()) * perArea, 0.0f);
+                        irradiance[cell + vFace] += glm::vec4((part[2].total() + part[3].total()) * perArea, 0.0f);
                     }
                     Parts& leaving = cur[here];
                     const int s = slot < 0 ? -1 : surfaceOf_[brickCell];
                     if (s < 0) {
-                        for (int j = 0; j < 4; ++j) leaving[std::size_t(j)] = b.taps[std::size_t(j)] * out;
+                        for (int j = 0; j < 4; ++j) leaving[std::size_t(j)] = out.perLane(taps[j]);
                         continue;
                     }
                     const glm::vec3 m = vectorCoverage_[std::size_t(s)];
@@ -307,26 +393,28 @@ void OrdinatesTransport::sweep(std::size_t k, const std::vector<float>& source, 
                         // slides along it.
                         const glm::vec3 shadow = clutterShadow(std::size_t(s));
                         for (int j = 0; j < 4; ++j) {
-                            if (part[j] == glm::vec3(0.0f)) continue;
+                            if (!part[j].any()) continue;
                             const glm::vec3 crossed = shading::enteringStop(j, glm::abs(m), shadow, axis, u, v);
                             const float stopped = std::min(crossed.x + crossed.y + crossed.z, 1.0f);
                             if (stopped <= 0.0f) continue;
-                            const glm::vec3 hit = part[j] * stopped;
+                            const LaneRgb<V> hit = part[j] * stopped;
                             out -= hit;
-                            reflect(s, j, hit, crossed);
+                            reflect(s, j, hit.total(), crossed);
                         }
                     }
-                    const float* p = source.data() + (k * coverage_.size() + std::size_t(s)) * 3;
-                    out += glm::vec3(p[0], p[1], p[2]);
+                    for (std::size_t l = 0; l < bundle.size(); ++l) {
+                        const float* p = source.data() + (bundle[l] * surfaces + std::size_t(s)) * 3;
+                        for (int c = 0; c < 3; ++c) lane(out.c[c], l) += p[c];
+                    }
                     for (int j = 0; j < 4; ++j) {
-                        glm::vec3 go = b.taps[std::size_t(j)] * out;
-                        if (occlusion && go != glm::vec3(0.0f)) {
+                        LaneRgb<V> go = out.perLane(taps[j]);
+                        if (occlusion && go.any()) {
                             // Leaving a cell, a move meets the surfaces there that face against it (a
                             // corner cell's wall, for the light its floor reflects towards the wall).
                             const glm::vec3 facing = crossedBy(j, glm::max(-m * move[j], glm::vec3(0.0f)));
                             const float stopped = std::min(facing.x + facing.y + facing.z, 1.0f);
                             if (stopped > 0.0f) {
-                                reflect(s, j, go * stopped, facing, cell);
+                                reflect(s, j, go.total() * stopped, facing, cell);
                                 go *= 1.0f - stopped;
                             }
                         }
@@ -422,13 +510,14 @@ IrradianceBricks OrdinatesTransport::solve(const Sources& sources, bool occlusio
     double carried = sources.watts;
     // The reflections an earlier solve left to carry start this one's bounces.
     if (carry && carry->size() == kOrdinateFaces * surfaces) carried += reflectionSources(*carry, source);
-    // Bins in a fixed number of groups, each summing into its own buffers, added in group order:
-    // the same image whichever thread sweeps which bin.
+    // Bundles in a fixed number of groups, each summing into its own buffers, added in group
+    // order: the same image whichever thread sweeps which bundle.
     struct Local {
         IrradianceBricks irradiance;
         std::vector<glm::vec3> reflected;
     };
-    const std::size_t groups = std::min<std::size_t>(nb, kBinGroups);
+    const std::vector<std::vector<std::size_t>> bundles = sweepBundles();
+    const std::size_t groups = std::min<std::size_t>(bundles.size(), kBinGroups);
     std::vector<Local> locals(groups);
     std::vector<glm::vec3> reflected(kOrdinateFaces * surfaces, glm::vec3(0.0f));
     for (int bounce = 0; bounce < maxBounces && carried > 0.0 && !box.empty(); ++bounce) {
@@ -442,7 +531,7 @@ IrradianceBricks OrdinatesTransport::solve(const Sources& sources, bool occlusio
                 std::fill(l.reflected.begin(), l.reflected.end(), glm::vec3(0.0f));
             }
             const detail::SubnormalsFlushed flushed;
-            for (std::size_t k = g; k < nb; k += groups) sweep(k, source, occlusion, box, l.irradiance, l.reflected);
+            for (std::size_t k = g; k < bundles.size(); k += groups) sweep(bundles[k], source, occlusion, box, l.irradiance, l.reflected);
         });
         std::fill(reflected.begin(), reflected.end(), glm::vec3(0.0f));
         for (const Local& l : locals)

@@ -105,6 +105,8 @@ constexpr double kOrdinatesConverged = 1e-3;
 // sweeps cover the surface cells' bounds this much wider and the bricks are allocated this far
 // around every surface cell (ordinatesReach: more for a larger apply_normal_offset).
 constexpr int kSweepMargin = 2;
+// Bins one CPU sweep carries at once (OrdinatesTransport::sweepBundles).
+constexpr std::size_t kSweepLanes = 4;
 
 // The cells stored around each surface cell for a lookup `applyNormalOffsetCells` along the
 // normal: the offset rounded up, plus one for the trilinear taps, at least kSweepMargin.
@@ -203,14 +205,21 @@ public:
     std::array<std::vector<float>, kOrdinateFaces> faceReflectionShares() const;
     // Sources bin-major ([bin][surface][rgb]), as the sweeps read them.
     std::vector<float> binMajor(const Sources& sources) const;
+    // Bins that share their axis, sign and lateral steps (one quadrant of a face) make every
+    // move alike: the cpu sweeps up to kSweepLanes of them at once, one SIMD lane each.
+    std::vector<std::vector<std::size_t>> sweepBundles() const;
 
 private:
     int surfaceFor(glm::ivec3 cell);
     // A surface whose normals share one orientation (|m| at least 0.9 of its coverage) reflects
     // along its mean normal: that normal, else zero.
     glm::vec3 planeNormal(std::size_t s) const;
-    void sweep(std::size_t bin, const std::vector<float>& source, bool occlusion, const IndexBox& box,
+    void sweep(const std::vector<std::size_t>& bundle, const std::vector<float>& source, bool occlusion, const IndexBox& box,
                IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const;
+    // sweep with V a float per lane: one bin as a float, several as a SIMD vector (ordinates.cpp).
+    template <class V>
+    void sweepLanes(const std::vector<std::size_t>& bundle, const std::vector<float>& source, bool occlusion,
+                    const IndexBox& box, IrradianceBricks& irradiance, std::vector<glm::vec3>& reflected) const;
     // Runs `add` (which adds bricks); new slots get no surfaces and a new geometry revision.
     template <typename Add>
     void allocate(Add add) {
