@@ -288,8 +288,12 @@ void OrdinatesTransport::sweepLanes(const std::vector<std::size_t>& bundle, cons
     const int su = b.lateralStep.x, sv = b.lateralStep.y;
     // Per tap, each lane's weight (zero in unused lanes: they carry nothing).
     V taps[4] = {};
-    for (std::size_t l = 0; l < bundle.size(); ++l)
+    const std::size_t lanes = std::min(bundle.size(), kWidth<V>);
+    const float* laneSources[kSweepLanes] = {};  // each lane's bin's sources, per surface
+    for (std::size_t l = 0; l < lanes; ++l) {
         for (int j = 0; j < 4; ++j) lane(taps[j], l) = bins_[bundle[l]].taps[std::size_t(j)];
+        laneSources[l] = source.data() + bundle[l] * coverage_.size() * 3;
+    }
     // Receivers: the power entering a cell through its faces of axis a, over h^2, is the
     // irradiance on a surface facing against the move (moving along +e_a, light arrives on faces
     // facing -e_a: face 2a + 1). In free space this equals radiance x the bin's cosine moment; in a
@@ -350,7 +354,6 @@ void OrdinatesTransport::sweepLanes(const std::vector<std::size_t>& bundle, cons
     const int* table = bricks_.table().data();
     const int lo = box.min[innerAxis], hi = box.max[innerAxis];
     const int first = box.min[axis], last = box.max[axis];
-    const std::size_t surfaces = coverage_.size();
     for (int t = 0; t <= last - first; ++t) {
         const int a = b.sign > 0 ? first + t : last - t;
         const int slabOffset = (a & 7) << shift[axis], slabTable = (a >> 3) * tableStride[axis];
@@ -402,8 +405,8 @@ void OrdinatesTransport::sweepLanes(const std::vector<std::size_t>& bundle, cons
                             reflect(s, j, hit.total(), crossed);
                         }
                     }
-                    for (std::size_t l = 0; l < bundle.size(); ++l) {
-                        const float* p = source.data() + (bundle[l] * surfaces + std::size_t(s)) * 3;
+                    for (std::size_t l = 0; l < lanes; ++l) {
+                        const float* p = laneSources[l] + std::size_t(s) * 3;
                         for (int c = 0; c < 3; ++c) lane(out.c[c], l) += p[c];
                     }
                     for (int j = 0; j < 4; ++j) {
