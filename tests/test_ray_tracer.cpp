@@ -43,6 +43,18 @@ Scene triangleSoup(std::uint32_t seed) {
     return scene;
 }
 
+// Every field of two hit records equal, bit for bit.
+void expectSameRecord(const RayHit& a, const RayHit& b, int ray) {
+    EXPECT_EQ(a.t, b.t) << "ray " << ray;
+    EXPECT_EQ(a.position, b.position) << "ray " << ray;
+    EXPECT_EQ(a.geometricNormal, b.geometricNormal) << "ray " << ray;
+    EXPECT_EQ(a.shadingNormal, b.shadingNormal) << "ray " << ray;
+    EXPECT_EQ(a.smoothPosition, b.smoothPosition) << "ray " << ray;
+    EXPECT_EQ(a.uv, b.uv) << "ray " << ray;
+    EXPECT_EQ(a.frontFace, b.frontFace) << "ray " << ray;
+    EXPECT_EQ(a.material, b.material) << "ray " << ray;
+}
+
 }  // namespace
 
 TEST(RayTracer, FansFindTheHitsOfSingleRays) {
@@ -88,13 +100,7 @@ TEST(RayTracer, FansFindTheHitsOfSingleRays) {
                 EXPECT_GT(glm::dot(n, one.shadingNormal), 0.99999f) << "ray " << i;
             }
             // The batched records are the one-ray records, bit for bit.
-            EXPECT_EQ(fan.t, one.t);
-            EXPECT_EQ(fan.position, one.position);
-            EXPECT_EQ(fan.geometricNormal, one.geometricNormal);
-            EXPECT_EQ(fan.shadingNormal, one.shadingNormal);
-            EXPECT_EQ(fan.uv, one.uv);
-            EXPECT_EQ(fan.frontFace, one.frontFace);
-            EXPECT_EQ(fan.material, one.material);
+            expectSameRecord(fan, one, i);
         }
         // The soup is dense enough that both sides of triangles are hit from inside it.
         if (origin.x < 4.0f) {
@@ -125,12 +131,7 @@ TEST(RayTracer, RecordsBuiltLaterAndCoherentStreamsFindTheHitsOfSingleRays) {
                          later);
         // Built later, the record is the same bit for bit.
         ASSERT_EQ(later.hit, one.hit) << "ray " << i;
-        EXPECT_EQ(later.t, one.t);
-        EXPECT_EQ(later.position, one.position);
-        EXPECT_EQ(later.shadingNormal, one.shadingNormal);
-        EXPECT_EQ(later.smoothPosition, one.smoothPosition);
-        EXPECT_EQ(later.uv, one.uv);
-        EXPECT_EQ(later.material, one.material);
+        expectSameRecord(later, one, i);
         // Traced in packets: the same triangle; Embree's SIMD tests may round differently.
         const RayHit& c = coherent[std::size_t(i)];
         ASSERT_EQ(c.hit, one.hit) << "ray " << i;
