@@ -95,6 +95,9 @@ void Texture::prefetch(glm::vec2 uv) const {
     if (width <= 0 || height <= 0 || rgba.size() < std::size_t(width) * std::size_t(height) * 4) return;
     const BilinearFootprint f = bilinearFootprint(width, height, uv);
     const std::size_t x = std::size_t(wrapTexel(f.x0, width));
+    // The lower row first: of two prefetches issued back to back the second was the one still
+    // missing when the lookup read it (Sponza's profile, docs/reference.md), and the lookup
+    // reads row y0 first, so by then its line has had longest.
     for (int row : {f.y0 + 1, f.y0})
         __builtin_prefetch(&rgba[(std::size_t(wrapTexel(row, height)) * std::size_t(width) + x) * 4]);
 }
