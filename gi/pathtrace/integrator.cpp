@@ -32,6 +32,8 @@ float emitterLightArea(float cosAtSurface, float pointPdf, float neePdf) {
 }
 // The power heuristic's form of a pdf (or of a ratio of pdfs) in the recursive MIS quantities.
 float mis(float pdf) { return pdf * pdf; }
+// The first of bounce `depth`'s decisions (integrator.h: bounce k uses 1 + 5k .. 5 + 5k).
+std::uint32_t bounceDecision(int depth) { return 1 + 5 * std::uint32_t(std::min(depth, 1 << 20)); }
 }  // namespace
 
 glm::vec3 offsetOrigin(glm::vec3 p, glm::vec3 geometric, glm::vec3 direction, float sceneScale) {
@@ -436,7 +438,7 @@ void Integrator::findSurface(PathState& path) const {
     // The light vertices this bounce connects to are picked now and their cache lines
     // requested, so that they load while Embree traces (a pool of light subpaths is
     // megabytes, and each pick a random miss).
-    const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(path.depth, 1 << 20));
+    const std::uint32_t decision = bounceDecision(path.depth);
     path.uConnect = path.lightVertices ? path.sampler.get2D(decision + 3) : glm::vec2(0.0f);
     if (path.lightVertices)
         for (int m = 0; m < kConnections; ++m) prefetchLightVertex(*path.lightVertices, connectionPick(path.uConnect.x, m));
@@ -463,7 +465,7 @@ void Integrator::enterSurface(PathState& path) const {
     const Material& material = scene_.materials[hit.material];
     // The bounce's decisions: light sample, BSDF sample, roulette, light-vertex choice, the
     // direction in a sun's disc (gi/pathtrace/sampler.h).
-    const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
+    const std::uint32_t decision = bounceDecision(depth);
     path.uLight = glm::vec3(0.0f);
     path.uBsdf = glm::vec3(0.0f);
     path.uDisc = glm::vec2(0.0f);
@@ -561,7 +563,7 @@ void Integrator::leaveSurface(PathState& path) const {
         // from the fourth, Sponza's equal-time RMSE was 16 % higher, the Cornell box's 10 %
         // and Sibenik's 7 %; from the second, Sponza's relMSE and HDR-FLIP rose
         // (docs/reference.md, "Roulette from the third surface").
-        const std::uint32_t decision = 1 + 5 * std::uint32_t(std::min(depth, 1 << 20));
+        const std::uint32_t decision = bounceDecision(depth);
         float q = maxComponent(path.throughput) / path.radianceScale;
         if (q < 1.0f) {
             if (!(path.sampler.get1D(decision + 2) < q)) return;

@@ -175,13 +175,14 @@ struct PathTracer::Impl {
             const std::uint64_t index = std::uint64_t(first + s);
             // The tile's camera rays first, through Embree together: neighbouring pixels' rays
             // share their traversal in SIMD packets.
-            for (int y = y0, i = 0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x, ++i) directions[std::size_t(i)] = cameraDirection(x, y, pixelSampler(x, y, index));
-            tracer.intersectCoherent(origins.data(), directions.data(), pixels, firstHits.data());
             starts.clear();
             for (int y = y0, i = 0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x, ++i)
-                    starts.push_back({camera.eye, directions[std::size_t(i)], pixelSampler(x, y, index), &firstHits[std::size_t(i)]});
+                for (int x = x0; x < x1; ++x, ++i) {
+                    const pt::PathSampler sampler = pixelSampler(x, y, index);
+                    directions[std::size_t(i)] = cameraDirection(x, y, sampler);
+                    starts.push_back({camera.eye, directions[std::size_t(i)], sampler, &firstHits[std::size_t(i)]});
+                }
+            tracer.intersectCoherent(origins.data(), directions.data(), pixels, firstHits.data());
             for (int i = 0; i < pixels; i += kPathsInFlight)
                 integrator.traceBatch(&starts[std::size_t(i)], std::min(kPathsInFlight, pixels - i), pools[std::size_t(s)].get(),
                                       &samples[std::size_t(i)]);
