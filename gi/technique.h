@@ -38,6 +38,10 @@ struct GBufferView {
     int height = 0;
     glm::vec3 eye{0.0f};
     glm::mat4 viewProjection{1.0f};
+    // The vertical field of view of the camera that drew these pixels: the scene camera's, wider
+    // when the frame draws a guard band (TechniquePlan::guardBand). A pixel's edge on the image
+    // plane at unit distance is 2 tan(fovYDegrees / 2) / height.
+    float fovYDegrees = 0.0f;
     // For applyIndirect only: the direct layer summed over `directFrames` frames, this one
     // included (RGBA32F; radiance toward the camera, W/(m^2 sr), times directFrames).
     GLuint directSum = 0;

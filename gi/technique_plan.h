@@ -19,6 +19,11 @@ struct TechniquePlan {
     std::vector<PlannedPass> apply;    // run by GiTechnique::applyIndirect (after direct light)
     std::vector<PlannedPass> skipped;  // passes the method has that this scene does not need
     std::vector<std::string> notes;    // when the passes repeat, what they reuse
+    // For screen-space techniques that gather light from the surfaces on screen: the frame draws
+    // this fraction of the picture's width and height beyond each edge as well (G-buffer, direct
+    // light, the technique's passes; the camera's field widened to match, so the picture's pixels
+    // are the same), and the picture is cropped from it. 0: none.
+    float guardBand = 0.0f;
 
     bool runs(const std::string& pass) const {
         for (const auto* list : {&update, &apply})

@@ -54,10 +54,9 @@ fi
 # stands in, each view against its own reference (64^2, 256 spp): direct light, the ambient
 # (fitted, and held out) and ISR (views/). Then the Cornell box's views with LPV, CLPV and DDGI
 # at their medium presets (views-methods/, three frames a view; DDGI settles at the first view
-# and keeps its field, about 20 min in all), Sibenik's with the same methods
-# (views-methods-sibenik/, about 30 min; Sponza is left out for time on 2 cores, about 20 s a
-# view and method), and the Cornell box's with CLPV and ISR with CLPV as its far field
-# (views-far-field/).
+# and keeps its field, about 20 min in all), Sibenik's and Sponza's with the same methods
+# (views-methods-sibenik/ and views-methods-sponza/, about 20 and 40 min), and the Cornell box's
+# with CLPV and ISR with CLPV as its far field (views-far-field/).
 views_scenes=(cornell-box)
 for scene in "${big[@]}"; do
   case "$scene" in *sibenik.json | *sponza.json) views_scenes+=("$scene") ;; esac
@@ -69,9 +68,10 @@ views_methods=(--methods "${VOXGI_EVAL_METHODS:-direct,ambient,isr}")
   --presets medium --width 64 --height 64 --spp 256 --frames 3 --warmup 1 --cache "$cache" -o "$out/views-methods"
 for scene in "${big[@]}"; do
   case "$scene" in
-    *sibenik.json)
+    *sibenik.json | *sponza.json)
+      name=$(basename "$scene" .json)
       "$voxgi" eval "$scene" --methods "${VOXGI_EVAL_METHODS:-direct,ambient,lpv,clpv,ddgi}" --views 100 --presets medium \
-        --width 64 --height 64 --spp 256 --frames 3 --warmup 1 --cache "$cache" -o "$out/views-methods-sibenik" ;;
+        --width 64 --height 64 --spp 256 --frames 3 --warmup 1 --cache "$cache" -o "$out/views-methods-$name" ;;
   esac
 done
 "$voxgi" eval cornell-box --methods direct,clpv,isr --views 100 --presets medium --width 64 --height 64 --spp 256 \
@@ -97,6 +97,7 @@ elapsed=$(( $(date +%s) - start ))
   echo "- [Cornell box, Sibenik and Sponza over 100 views each (direct light, ambient, ISR): spread, share of views beating direct light and the fitted ambient, worst views](views/views.md)"
   echo "- [Cornell box over the same 100 views: LPV, CLPV and DDGI (medium)](views-methods/views.md)"
   [ -d "$out/views-methods-sibenik" ] && echo "- [Sibenik over the same 100 views: LPV, CLPV and DDGI (medium)](views-methods-sibenik/views.md)"
+  [ -d "$out/views-methods-sponza" ] && echo "- [Sponza over the same 100 views: LPV, CLPV and DDGI (medium)](views-methods-sponza/views.md)"
   echo "- [Cornell box over 100 views: CLPV, and ISR with CLPV as its far field](views-far-field/views.md)"
   echo "- [Stability suite](stability/stability.md)"
 } > "$out/README.md"

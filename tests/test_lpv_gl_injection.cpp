@@ -107,6 +107,8 @@ struct SyntheticGBuffer {
         view.width = width;
         view.height = height;
         view.eye = scene.camera.eye;
+        view.viewProjection = scene.camera.projection() * scene.camera.view();
+        view.fovYDegrees = scene.camera.fovYDegrees;
     }
 };
 
@@ -150,9 +152,9 @@ void expectGpuInjectionMatchesCpu(const Scene& scene, std::size_t expectedFaces,
     auto placements = cornellCascades(scene, n);
     ASSERT_EQ(placements.size(), 3u);
     SyntheticGBuffer gbuffer(scene, placements[0].grid, 75, 52);
-    const GBufferSampling sampling = GBufferSampling::of(gbuffer.view, scene.camera, 32);
+    const GBufferSampling sampling = GBufferSampling::of(gbuffer.view, 32);
     ASSERT_EQ(sampling.stride, 4);
-    const SurfelSource camera = gbufferSurfels(gbuffer.view, scene.camera, 32);
+    const SurfelSource camera = gbufferSurfels(gbuffer.view, 32);
     ASSERT_GT(camera.surfels.size(), 200u);
 
     // CPU reference.

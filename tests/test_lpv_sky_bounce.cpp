@@ -87,11 +87,12 @@ TEST(LpvSkyBounce, FaceFluxIsAlbedoTimesSkyIrradianceTimesFootprint) {
     g.height = height;
     g.eye = scene.camera.eye;
     g.viewProjection = scene.camera.projection() * scene.camera.view();
+    g.fovYDegrees = scene.camera.fovYDegrees;
 
     // A face as wide as the G-buffer: texel (x, y) reads pixel (x, y) of the wide G-buffer's
     // columns 0..7 only when size = 8 maps rows 0..7 onto its 4 rows (two texels a row).
     SkyBounceFace bounce(8);
-    const SurfelSource surfels = readSurfels(bounce.render(g, scene.camera, texture));
+    const SurfelSource surfels = readSurfels(bounce.render(g, texture));
     ASSERT_EQ(surfels.surfels.size(), 2u * (width * height - 1));  // every hit pixel twice, the miss never
     const glm::vec3 forward = glm::normalize(scene.camera.target - scene.camera.eye);
     const float pixelEdge = 2.0f * std::tan(0.5f * glm::radians(scene.camera.fovYDegrees)) / float(height);

@@ -17,6 +17,8 @@ const SettingsTable<IsrDesc>& isrSettings() {
         t.choice("far_field", &D::farField,
                  std::vector<std::pair<std::string, std::string>>{{"none", ""}, {"lpv", "lpv"}, {"clpv", "clpv"}, {"ddgi", "ddgi"}},
                  "volume method for the light from off screen, weighted by the hemisphere the screen leaves open");
+        t.number("guard_band", &D::guardBand, 0.0, 1.0,
+                 "fraction of the picture's width and height also drawn beyond each edge, as senders (0: none)");
         return t;
     }();
     return table;

@@ -29,6 +29,11 @@ struct IsrDesc {
     // Its own settings stay in its section (gi.ddgi.*, gi.lpv.*). The method's name, empty for
     // none (docs/isr.md, "Far field").
     std::string farField;
+    // The frame's guard band (TechniquePlan::guardBand): this fraction of the picture's width and
+    // height is drawn beyond each edge too, so surfaces just off screen send light. A view filled
+    // by one wall, or looking out of the Cornell box, has no lit sender on screen (docs/isr.md).
+    // The frame draws (1 + 2 x band)^2 times the pixels.
+    float guardBand = 0.0f;
 };
 
 const SettingsTable<IsrDesc>& isrSettings();

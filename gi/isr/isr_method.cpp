@@ -1,4 +1,5 @@
 // The `isr` method as the tools see it: settings, plan and presets (seed 003, docs/isr.md).
+#include <cmath>
 #include <string>
 
 #include "gi/isr/isr_desc.h"
@@ -32,7 +33,7 @@ MethodInfo isrMethod() {
         const IsrDesc d = readIsrDesc(s.gi);
         std::unique_ptr<GiTechnique> far;
         if (const MethodInfo* info = farFieldInfo(d)) far = createTechnique(info->name, s);
-        return std::make_unique<IsrTechnique>(s, d, std::move(far));
+        return std::make_unique<IsrTechnique>(d, std::move(far));
     };
     m.plan = [](const Scene& s) {
         const IsrDesc d = readIsrDesc(s.gi);
@@ -59,6 +60,10 @@ MethodInfo isrMethod() {
         if (d.blur > 0) p.apply.push_back({"isr.blur", "separable depth-aware blur, radius " + std::to_string(d.blur)});
         else p.skipped.push_back({"isr.blur", "isr.blur=0"});
         p.apply.push_back({"isr.apply", "bilateral upsample into the indirect layer"});
+        p.guardBand = d.guardBand;
+        if (d.guardBand > 0.0f)
+            p.notes.push_back("isr: the frame is drawn " + std::to_string(int(std::lround(100.0 * d.guardBand))) +
+                              " % of its size beyond each edge (isr.guard_band); surfaces there send light too");
         p.notes.push_back("isr: only surfaces on screen send light, with no visibility between them (seed 003)");
         return p;
     };

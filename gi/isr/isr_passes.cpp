@@ -64,7 +64,7 @@ void bindOutputs(const gl::Program& program, std::initializer_list<std::pair<con
 
 }  // namespace
 
-void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers, GLuint farLight) {
+void IsrPasses::compute(const GBufferView& g, int frame, gl::StageTimers& timers, GLuint farLight) {
     const int f = desc_.downsample;
     resize({(g.width + f - 1) / f, (g.height + f - 1) / f});
     forward_ = viewForward(g.viewProjection);
@@ -83,7 +83,7 @@ void IsrPasses::compute(const GBufferView& g, float fovYDegrees, int frame, gl::
     }
     bindFarLight(downsample_, 5, farLight, g.position);
     // A full-resolution pixel's edge on the image plane at unit distance, times the factor.
-    const float edge = 2.0f * std::tan(0.5f * glm::radians(fovYDegrees)) / float(g.height) * float(f);
+    const float edge = 2.0f * std::tan(0.5f * glm::radians(g.fovYDegrees)) / float(g.height) * float(f);
     downsample_.set("uDirectFrames", float(std::max(g.directFrames, 1)));
     downsample_.set("uFactor", f);
     downsample_.set("uEye", g.eye);

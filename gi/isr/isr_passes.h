@@ -18,11 +18,11 @@ public:
     // Needs a current GL context.
     explicit IsrPasses(const IsrDesc& desc);
 
-    // Downsample, gather and blur for G-buffer `g` (with its direct light: g.directSum) seen
-    // by a camera of vertical field of view `fovYDegrees`, kernels turned for `frame`. With a
+    // Downsample, gather and blur for G-buffer `g` (with its direct light: g.directSum, and the
+    // field of view it was drawn with: g.fovYDegrees), kernels turned for `frame`. With a
     // far field (`farLight`, its indirect radiance per G-buffer pixel; 0: none) the patches send
     // that light on with their direct light.
-    void compute(const GBufferView& g, float fovYDegrees, int frame, gl::StageTimers& timers, GLuint farLight = 0);
+    void compute(const GBufferView& g, int frame, gl::StageTimers& timers, GLuint farLight = 0);
     // Adds the indirect radiance of every G-buffer pixel to the framebuffer bound now (the
     // renderer's additive target, gl::addToBoundTarget), and the far field's where the patches
     // leave the hemisphere open (1 - occlusion).

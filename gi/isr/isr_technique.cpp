@@ -2,8 +2,8 @@
 
 namespace voxgi {
 
-IsrTechnique::IsrTechnique(const Scene& scene, const IsrDesc& desc, std::unique_ptr<GiTechnique> farField)
-    : scene_(scene), passes_(desc), farField_(std::move(farField)) {}
+IsrTechnique::IsrTechnique(const IsrDesc& desc, std::unique_ptr<GiTechnique> farField)
+    : passes_(desc), farField_(std::move(farField)) {}
 
 void IsrTechnique::update(const FrameInput& input, const GBufferView& g) {
     if (farField_) farField_->update(input, g);
@@ -39,7 +39,7 @@ void IsrTechnique::applyIndirect(const FrameInput& input, const GBufferView& g) 
     // With history the kernels keep turning while the camera moves, which restarts frameIndex
     // every frame: the history would otherwise average the same patches again.
     const int turn = passes_.desc().temporalFrames > 1 ? turns_++ : input.frameIndex;
-    passes_.compute(g, scene_.camera.fovYDegrees, turn, input.timers, farFieldLight());
+    passes_.compute(g, turn, input.timers, farFieldLight());
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glEnable(GL_BLEND);

@@ -16,7 +16,7 @@ namespace voxgi {
 class IsrTechnique final : public GiTechnique {
 public:
     // Needs a current GL context. `farField`: the technique of desc.farField, or null for none.
-    IsrTechnique(const Scene& scene, const IsrDesc& desc, std::unique_ptr<GiTechnique> farField = nullptr);
+    explicit IsrTechnique(const IsrDesc& desc, std::unique_ptr<GiTechnique> farField = nullptr);
     std::string name() const override { return "isr"; }
     void update(const FrameInput& input, const GBufferView& g) override;
     void applyIndirect(const FrameInput& input, const GBufferView& g) override;
@@ -31,7 +31,6 @@ public:
 private:
     void drawFarField(const FrameInput& input, const GBufferView& g);
 
-    const Scene& scene_;
     IsrPasses passes_;
     std::unique_ptr<GiTechnique> farField_;
     gl::Handle farLight_, farFbo_;

@@ -11,15 +11,15 @@
 
 namespace voxgi {
 
-GBufferSampling GBufferSampling::of(const GBufferView& g, const Camera& camera, int target) {
+GBufferSampling GBufferSampling::of(const GBufferView& g, int target) {
     GBufferSampling s;
     if (target <= 0 || g.width <= 0 || g.height <= 0) return s;
     while (std::max(g.width, g.height) / s.stride > target) s.stride *= 2;
     const int first = s.stride / 2;
     s.columns = first < g.width ? (g.width - first + s.stride - 1) / s.stride : 0;
     s.rows = first < g.height ? (g.height - first + s.stride - 1) / s.stride : 0;
-    s.pixel = 2.0f * std::tan(glm::radians(camera.fovYDegrees) * 0.5f) / float(g.height);
-    s.forward = glm::normalize(camera.target - camera.eye);
+    s.pixel = 2.0f * std::tan(glm::radians(g.fovYDegrees) * 0.5f) / float(g.height);
+    s.forward = viewForward(g.viewProjection);
     return s;
 }
 

@@ -41,7 +41,7 @@ struct GBufferSampling {
     float pixel = 0.0f;         // a pixel's edge on the unit-distance image plane
     glm::vec3 forward{0.0f, 0.0f, -1.0f};
 
-    static GBufferSampling of(const GBufferView& g, const Camera& camera, int target);
+    static GBufferSampling of(const GBufferView& g, int target);
     int count() const { return columns * rows; }
 };
 

@@ -37,9 +37,9 @@ double millisecondsSince(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
-SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int target) {
+SurfelSource gbufferSurfels(const GBufferView& g, int target) {
     SurfelSource source;
-    const GBufferSampling sampling = GBufferSampling::of(g, camera, target);
+    const GBufferSampling sampling = GBufferSampling::of(g, target);
     if (sampling.count() <= 0) return source;
     std::vector<float> pos = gl::readTexture(g.position, g.width, g.height, 4);
     std::vector<float> nrm = gl::readTexture(g.normal, g.width, g.height, 4);
@@ -209,7 +209,7 @@ public:
         });
         if (bounceSky) {
             const auto t0 = std::chrono::steady_clock::now();
-            const SurfelSource surfels = readSurfels(skyBounceFace().render(g, scene.camera, *input.sky));
+            const SurfelSource surfels = readSurfels(skyBounceFace().render(g, *input.sky));
             tbb::parallel_for(std::size_t(0), placements.size(), [&](std::size_t c) {
                 injectLight(surfels, offsets, placements, c, injected[c], injectedInner[c]);
             });
@@ -219,7 +219,7 @@ public:
         SurfelSource camera;
         if (desc.surfelBlockers && input.plan.runs("lpv.gbuffer_readback")) {
             const auto t0 = std::chrono::steady_clock::now();
-            camera = gbufferSurfels(g, scene.camera, desc.gbufferBlockerSize);
+            camera = gbufferSurfels(g, desc.gbufferBlockerSize);
             input.timers.addCpu("lpv.gbuffer_readback", millisecondsSince(t0));
         }
         input.timers.addCpu("lpv.inject", injectMs);
@@ -392,7 +392,7 @@ public:
             const RsmFace* skyFace = nullptr;
             if (bounceSky && lastBatch) {
                 input.timers.begin("lpv.sky_bounce");
-                skyFace = &skyBounceFace().render(g, scene.camera, *input.sky);
+                skyFace = &skyBounceFace().render(g, *input.sky);
                 input.timers.end();
             }
 
@@ -408,7 +408,7 @@ public:
 
             // Sources merge in the CPU back end's order: RSM faces, the camera, static blockers.
             input.timers.begin("lpv.blockers");
-            GBufferSampling sampling = GBufferSampling::of(g, scene.camera, desc.gbufferBlockerSize);
+            GBufferSampling sampling = GBufferSampling::of(g, desc.gbufferBlockerSize);
             for (std::size_t c = 0; c < placements.size(); ++c) {
                 GlCascadeTargets t = glTargets(c);
                 const bool surfels = desc.surfelBlockers;

@@ -18,6 +18,6 @@ std::unique_ptr<GiTechnique> createLpvTechnique(const Scene& scene, const LpvDes
 
 // The camera's blocker source on the CPU back end: the G-buffer read back and sampled as
 // GBufferSampling (gi/lpv/gl_injection.h) says, each pixel a surfel of its footprint's area.
-SurfelSource gbufferSurfels(const GBufferView& g, const Camera& camera, int target);
+SurfelSource gbufferSurfels(const GBufferView& g, int target);
 
 }  // namespace voxgi

@@ -17,7 +17,7 @@ SkyBounceFace::SkyBounceFace(int size)
     vao_ = gl::createVertexArray();
 }
 
-const RsmFace& SkyBounceFace::render(const GBufferView& g, const Camera& camera, const SkyVolumeTexture& sky) {
+const RsmFace& SkyBounceFace::render(const GBufferView& g, const SkyVolumeTexture& sky) {
     glBindFramebuffer(GL_FRAMEBUFFER, targets_.fbo.id());
     glViewport(0, 0, size_, size_);
     glDisable(GL_DEPTH_TEST);
@@ -27,7 +27,7 @@ const RsmFace& SkyBounceFace::render(const GBufferView& g, const Camera& camera,
     sky.bind(program_, 4);
     // One texel covers (width / size) x (height / size) pixels of pixelEdge^2 each on the image
     // plane at unit distance.
-    const float pixelEdge = 2.0f * std::tan(0.5f * glm::radians(camera.fovYDegrees)) / float(g.height);
+    const float pixelEdge = 2.0f * std::tan(0.5f * glm::radians(g.fovYDegrees)) / float(g.height);
     program_.set("uTexelSolidAngle", pixelEdge * pixelEdge * float(g.width) * float(g.height) / float(size_ * size_));
     program_.set("uEye", g.eye);
     program_.set("uForward", viewForward(g.viewProjection));

@@ -17,8 +17,8 @@ class SkyBounceFace {
 public:
     // A face of size^2 texels over the whole G-buffer. Needs a current GL context.
     explicit SkyBounceFace(int size);
-    // The face for G-buffer `g` of `camera`, lit by `sky`; valid until the next call.
-    const RsmFace& render(const GBufferView& g, const Camera& camera, const SkyVolumeTexture& sky);
+    // The face for G-buffer `g`, lit by `sky`; valid until the next call.
+    const RsmFace& render(const GBufferView& g, const SkyVolumeTexture& sky);
 
 private:
     int size_;

@@ -48,7 +48,12 @@ int defaultFrameCount(const Scene& scene) {
 struct FrameRenderer::Impl {
     const Scene& scene;
     FrameOptions options;
-    int width, height;
+    int width, height;  // the picture
+    // The guard band the plan asks for, in pixels beyond each edge: the frame's targets are
+    // larger by it, and resolve() crops the picture from their middle.
+    int bandX = 0, bandY = 0;
+    int targetWidth() const { return width + 2 * bandX; }
+    int targetHeight() const { return height + 2 * bandY; }
     int frames = 0;
     float sceneRadius;
     glm::vec3 sceneCenter;
@@ -90,26 +95,7 @@ struct FrameRenderer::Impl {
         skyLightProgram = gl::Program::compute("frame/sky_light.comp");
         emptyVao = gl::createVertexArray();
 
-        gPosition = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        gNormal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
-        gAlbedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
-        gEmission = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        gDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, width, height);
-        gbufferFbo = gl::createFramebuffer({gPosition.id(), gNormal.id(), gAlbedo.id(), gEmission.id()}, gDepth.id(),
-                                           "G-buffer");
-        // Cleared once: a plan without the gbuffer pass (no triangles) sees the sky everywhere.
-        for (int i = 0; i < 4; ++i) {
-            const float zero[4] = {0, 0, 0, 0};
-            glClearNamedFramebufferfv(gbufferFbo.id(), GL_COLOR, i, zero);
-        }
-
-        accum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        accumFbo = gl::createFramebuffer({accum.id()}, 0, "accumulation");
-        indirectAccum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-        indirectFbo = gl::createFramebuffer({indirectAccum.id()}, 0, "indirect accumulation");
-        const float zero[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferfv(accumFbo.id(), GL_COLOR, 0, zero);
-        glClearNamedFramebufferfv(indirectFbo.id(), GL_COLOR, 0, zero);
+        createTargets();
 
         shadowDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, options.shadowMapSize,
                                         options.shadowMapSize);
@@ -158,6 +144,43 @@ struct FrameRenderer::Impl {
         gl::checkFramebuffer(cubeFbo.id(), "cube shadow map");
     }
 
+    // The G-buffer and accumulation targets, at the picture's size plus the plan's guard band;
+    // made again when a new method's band differs.
+    void createTargets() {
+        const float band = options.guardBand ? plan.technique.guardBand : 0.0f;
+        bandX = int(std::lround(double(band) * width));
+        bandY = int(std::lround(double(band) * height));
+        const int w = targetWidth(), h = targetHeight();
+        gPosition = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
+        gNormal = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, w, h);
+        gAlbedo = gl::createTexture(GL_TEXTURE_2D, GL_RGBA16F, w, h);
+        gEmission = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
+        gDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, w, h);
+        gbufferFbo = gl::createFramebuffer({gPosition.id(), gNormal.id(), gAlbedo.id(), gEmission.id()}, gDepth.id(),
+                                           "G-buffer");
+        const float zero[4] = {0, 0, 0, 0};
+        // Cleared once: a plan without the gbuffer pass (no triangles) sees the sky everywhere.
+        for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(gbufferFbo.id(), GL_COLOR, i, zero);
+        accum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
+        accumFbo = gl::createFramebuffer({accum.id()}, 0, "accumulation");
+        indirectAccum = gl::createTexture(GL_TEXTURE_2D, GL_RGBA32F, w, h);
+        indirectFbo = gl::createFramebuffer({indirectAccum.id()}, 0, "indirect accumulation");
+        glClearNamedFramebufferfv(accumFbo.id(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(indirectFbo.id(), GL_COLOR, 0, zero);
+    }
+
+    // The scene's camera over the targets: the picture's pixels with the band's around them, at
+    // the same angle per pixel (the vertical field widened by the band; the aspect follows).
+    Camera targetCamera() const {
+        Camera cam = scene.camera;
+        cam.width = targetWidth();
+        cam.height = targetHeight();
+        if (bandY > 0)
+            cam.fovYDegrees = glm::degrees(2.0f * std::atan(std::tan(0.5f * glm::radians(cam.fovYDegrees)) *
+                                                            float(cam.height) / float(height)));
+        return cam;
+    }
+
     glm::mat4 lastViewProjection{1.0f};
     bool viewProjectionSet = false;  // by a G-buffer pass; without one the sky pass makes its own
 
@@ -167,8 +190,9 @@ struct FrameRenderer::Impl {
         v.normal = gNormal.id();
         v.albedo = gAlbedo.id();
         v.emission = gEmission.id();
-        v.width = width;
-        v.height = height;
+        v.width = targetWidth();
+        v.height = targetHeight();
+        v.fovYDegrees = targetCamera().fovYDegrees;
         v.eye = scene.camera.eye;
         v.viewProjection = lastViewProjection;
         v.tracedRoughness = technique && plan.runs("hybrid.trace") ? technique->tracedRoughness() : -1.0f;
@@ -176,12 +200,10 @@ struct FrameRenderer::Impl {
     }
 
     glm::mat4 cameraViewProjection(glm::vec2 jitterPixels) const {
-        Camera cam = scene.camera;
-        cam.width = width;
-        cam.height = height;
+        const Camera cam = targetCamera();
         glm::mat4 proj = cam.projection();
-        proj[2][0] += 2.0f * jitterPixels.x / float(width);
-        proj[2][1] += 2.0f * jitterPixels.y / float(height);
+        proj[2][0] += 2.0f * jitterPixels.x / float(cam.width);
+        proj[2][1] += 2.0f * jitterPixels.y / float(cam.height);
         return proj * cam.view();
     }
 
@@ -189,7 +211,7 @@ struct FrameRenderer::Impl {
         glm::vec2 jitter = (options.jitter && frames > 0) ? r2Sequence(frames, glm::vec2(0.5f)) - glm::vec2(0.5f) : glm::vec2(0.0f);
         timers.begin("gbuffer");
         glBindFramebuffer(GL_FRAMEBUFFER, gbufferFbo.id());
-        glViewport(0, 0, width, height);
+        glViewport(0, 0, targetWidth(), targetHeight());
         const float zero[4] = {0, 0, 0, 0};
         for (int i = 0; i < 4; ++i) glClearBufferfv(GL_COLOR, i, zero);
         glClear(GL_DEPTH_BUFFER_BIT);
@@ -262,10 +284,8 @@ struct FrameRenderer::Impl {
     // The cascades of the sun travelling along `direction`, drawn into their layers.
     SunCascades renderSunCascades(glm::vec3 direction) {
         timers.begin("shadow_sun");
-        Camera camera = scene.camera;
-        camera.width = width;
-        camera.height = height;
-        SunCascades fit = fitSunCascades(camera, direction, scene.bounds(), options.sunMapSize, options.sunCascades);
+        // Fitted to the targets' view: the band's surfaces are lit (and shadowed) like the picture's.
+        SunCascades fit = fitSunCascades(targetCamera(), direction, scene.bounds(), options.sunMapSize, options.sunCascades);
         std::vector<float> key = {direction.x, direction.y, direction.z};
         for (const SunCascade& c : fit.cascades) key.insert(key.end(), &c.worldToMap[0][0], &c.worldToMap[0][0] + 16);
         if (options.keepSunMaps && key == sunMapsKey) {
@@ -299,7 +319,7 @@ struct FrameRenderer::Impl {
     // A full-screen pass that adds into `framebuffer` (an accumulation target).
     void beginAdditivePass(GLuint framebuffer) {
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-        glViewport(0, 0, width, height);
+        glViewport(0, 0, targetWidth(), targetHeight());
         glDisable(GL_DEPTH_TEST);
         glEnable(GL_BLEND);
         glBlendFunc(GL_ONE, GL_ONE);
@@ -423,7 +443,7 @@ struct FrameRenderer::Impl {
         const glm::mat4 viewProjection = viewProjectionSet ? lastViewProjection : cameraViewProjection(glm::vec2(0.0f));
         emissionProgram.set("uInverseViewProjection", glm::inverse(viewProjection));
         emissionProgram.set("uEye", scene.camera.eye);
-        emissionProgram.set("uViewport", glm::vec2(float(width), float(height)));
+        emissionProgram.set("uViewport", glm::vec2(float(targetWidth()), float(targetHeight())));
         gl::addToBoundTarget(emissionProgram);
         timers.end();
     }
@@ -488,20 +508,22 @@ struct FrameRenderer::Impl {
 
     Image resolve() {
         Image image(width, height);
-        // GL rows run bottom to top; images are stored top row first.
+        const int tw = targetWidth(), th = targetHeight();
+        // The picture is the targets' middle; GL rows run bottom to top, images top row first.
+        auto targetTexel = [&](int x, int y) {
+            return std::size_t(th - 1 - (y + bandY)) * std::size_t(tw) + std::size_t(x + bandX);
+        };
         auto copyFlipped = [&](const std::vector<float>& src, int srcChannels, ImageLayer& dst, float scale) {
             for (int y = 0; y < height; ++y)
                 for (int x = 0; x < width; ++x)
                     for (int c = 0; c < dst.channels; ++c)
                         dst.data[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * std::size_t(dst.channels) +
-                                 std::size_t(c)] =
-                            scale * src[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) *
-                                            std::size_t(srcChannels) + std::size_t(c)];
+                                 std::size_t(c)] = scale * src[targetTexel(x, y) * std::size_t(srcChannels) + std::size_t(c)];
         };
         float inv = frames > 0 ? 1.0f / float(frames) : 0.0f;
         image.layer("beauty");  // first, so tools that read only RGB get the full image
-        copyFlipped(gl::readTexture(accum.id(), width, height, 4), 4, image.layer("direct"), inv);
-        copyFlipped(gl::readTexture(indirectAccum.id(), width, height, 4), 4, image.layer("indirect"), inv);
+        copyFlipped(gl::readTexture(accum.id(), tw, th, 4), 4, image.layer("direct"), inv);
+        copyFlipped(gl::readTexture(indirectAccum.id(), tw, th, 4), 4, image.layer("indirect"), inv);
         {
             // Layers are all created above: the references below stay valid.
             const ImageLayer& d = *image.find("direct");
@@ -509,14 +531,14 @@ struct FrameRenderer::Impl {
             ImageLayer& b = image.layer("beauty");
             for (std::size_t k = 0; k < b.data.size(); ++k) b.data[k] = d.data[k] + i.data[k];
         }
-        copyFlipped(gl::readTexture(gAlbedo.id(), width, height, 4), 4, image.layer("albedo"), 1.0f);
-        copyFlipped(gl::readTexture(gNormal.id(), width, height, 4), 4, image.layer("normal"), 1.0f);
+        copyFlipped(gl::readTexture(gAlbedo.id(), tw, th, 4), 4, image.layer("albedo"), 1.0f);
+        copyFlipped(gl::readTexture(gNormal.id(), tw, th, 4), 4, image.layer("normal"), 1.0f);
         // Depth as distance from the eye along the ray (0 for background).
-        std::vector<float> pos = gl::readTexture(gPosition.id(), width, height, 4);
+        std::vector<float> pos = gl::readTexture(gPosition.id(), tw, th, 4);
         ImageLayer& depth = image.layer("depth", 1);
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
-                const float* p = &pos[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) * 4];
+                const float* p = &pos[targetTexel(x, y) * 4];
                 depth.data[std::size_t(y) * std::size_t(width) + std::size_t(x)] =
                     p[3] > 0.0f ? glm::length(glm::vec3(p[0], p[1], p[2]) - scene.camera.eye) : 0.0f;
             }
@@ -545,8 +567,10 @@ void FrameRenderer::resetAccumulation() {
 void FrameRenderer::setMethod(const std::string& method) {
     FramePlan plan = planFrame(impl_->scene, method, 1);
     std::unique_ptr<GiTechnique> technique = createTechnique(method, impl_->scene);
+    const bool newBand = plan.technique.guardBand != impl_->plan.technique.guardBand;
     impl_->plan = std::move(plan);
     impl_->technique = std::move(technique);
+    if (newBand) impl_->createTargets();
     resetAccumulation();
 }
 const FramePlan& FrameRenderer::plan() const { return impl_->plan; }

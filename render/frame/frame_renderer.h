@@ -24,6 +24,9 @@ struct FrameOptions {
     bool keepSunMaps = true;
     int cubeShadowSize = 512;     // point lights and quad-light samples, per face
     bool jitter = true;           // sub-pixel jitter from the second frame on (antialiasing)
+    // Draw the guard band a method's plan asks for (TechniquePlan::guardBand). The viewer turns
+    // it off: its display and debug drawings read the frame's textures whole.
+    bool guardBand = true;
 };
 
 class FrameRenderer {
@@ -41,6 +44,7 @@ public:
     // Renders one frame (one sample of every light) and adds it to the accumulation.
     void renderFrame();
     int framesAccumulated() const;
+    // The picture's size; textures() are larger by the guard band when one is drawn.
     int width() const;
     int height() const;
 

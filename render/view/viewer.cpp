@@ -32,6 +32,14 @@ namespace {
 // Auto exposure's time constant: a new view's exposure is 86 % there after two of them.
 constexpr float kEyeAdaptationSeconds = 0.5f;
 
+// The display and the debug drawings read the frame's textures whole, so the viewer draws no
+// guard band (FrameOptions::guardBand): a method that asks for one gathers from the screen alone.
+FrameOptions viewerFrameOptions() {
+    FrameOptions o;
+    o.guardBand = false;
+    return o;
+}
+
 float radiusOf(const Scene& scene) {
     Bounds b = scene.bounds();
     return b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
@@ -114,7 +122,7 @@ void serveRequests(ViewerState& s) {
         s.reloadShaders = false;
         try {
             // Shaders are compiled in the constructors: rebuilding them re-reads shaders/.
-            auto renderer = std::make_unique<FrameRenderer>(s.scene, FrameOptions{}, s.method);
+            auto renderer = std::make_unique<FrameRenderer>(s.scene, viewerFrameOptions(), s.method);
             auto display = std::make_unique<DisplayPass>();
             auto overlay = std::make_unique<DebugOverlay>();
             s.renderer = std::move(renderer);
@@ -310,7 +318,7 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
 
     ViewerState s(scene, options);
     // A setting the method refuses at start is an input error (exit 2), as in `voxgi render`.
-    s.renderer = std::make_unique<FrameRenderer>(scene, FrameOptions{}, s.method);
+    s.renderer = std::make_unique<FrameRenderer>(scene, viewerFrameOptions(), s.method);
     s.display = std::make_unique<DisplayPass>();
     s.overlay = std::make_unique<DebugOverlay>();
 
