@@ -4,6 +4,7 @@
 // to .vdb. What a method is before it runs (settings, presets, plan, views) is gi/method.h.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -39,8 +40,7 @@ struct GBufferView {
     glm::vec3 eye{0.0f};
     glm::mat4 viewProjection{1.0f};
     // The vertical field of view of the camera that drew these pixels: the scene camera's, wider
-    // when the frame draws a guard band (TechniquePlan::guardBand). A pixel's edge on the image
-    // plane at unit distance is 2 tan(fovYDegrees / 2) / height.
+    // when the frame draws a guard band (TechniquePlan::guardBand); see pixelEdge.
     float fovYDegrees = 0.0f;
     // For applyIndirect only: the direct layer summed over `directFrames` frames, this one
     // included (RGBA32F; radiance toward the camera, W/(m^2 sr), times directFrames).
@@ -74,6 +74,11 @@ inline glm::vec3 viewForward(const glm::mat4& viewProjection) {
     const glm::vec3 f(viewProjection[0][3], viewProjection[1][3], viewProjection[2][3]);
     const float length = glm::length(f);
     return length > 0.0f ? f / length : glm::vec3(0.0f);
+}
+
+// A pixel's edge on the image plane at unit distance from the eye, for the camera that drew `g`.
+inline float pixelEdge(const GBufferView& g) {
+    return 2.0f * std::tan(0.5f * glm::radians(g.fovYDegrees)) / float(g.height);
 }
 
 struct FrameInput {

@@ -83,7 +83,7 @@ void IsrPasses::compute(const GBufferView& g, int frame, gl::StageTimers& timers
     }
     bindFarLight(downsample_, 5, farLight, g.position);
     // A full-resolution pixel's edge on the image plane at unit distance, times the factor.
-    const float edge = 2.0f * std::tan(0.5f * glm::radians(g.fovYDegrees)) / float(g.height) * float(f);
+    const float edge = pixelEdge(g) * float(f);
     downsample_.set("uDirectFrames", float(std::max(g.directFrames, 1)));
     downsample_.set("uFactor", f);
     downsample_.set("uEye", g.eye);

@@ -18,7 +18,7 @@ GBufferSampling GBufferSampling::of(const GBufferView& g, int target) {
     const int first = s.stride / 2;
     s.columns = first < g.width ? (g.width - first + s.stride - 1) / s.stride : 0;
     s.rows = first < g.height ? (g.height - first + s.stride - 1) / s.stride : 0;
-    s.pixel = 2.0f * std::tan(glm::radians(g.fovYDegrees) * 0.5f) / float(g.height);
+    s.pixel = pixelEdge(g);
     s.forward = viewForward(g.viewProjection);
     return s;
 }

@@ -27,8 +27,8 @@ const RsmFace& SkyBounceFace::render(const GBufferView& g, const SkyVolumeTextur
     sky.bind(program_, 4);
     // One texel covers (width / size) x (height / size) pixels of pixelEdge^2 each on the image
     // plane at unit distance.
-    const float pixelEdge = 2.0f * std::tan(0.5f * glm::radians(g.fovYDegrees)) / float(g.height);
-    program_.set("uTexelSolidAngle", pixelEdge * pixelEdge * float(g.width) * float(g.height) / float(size_ * size_));
+    const float edge = pixelEdge(g);
+    program_.set("uTexelSolidAngle", edge * edge * float(g.width) * float(g.height) / float(size_ * size_));
     program_.set("uEye", g.eye);
     program_.set("uForward", viewForward(g.viewProjection));
     program_.set("uSize", size_);
