@@ -201,6 +201,17 @@ TEST_F(IsrTest, GuardBandLeavesThePicturesPixelsAsTheyWere) {
         ASSERT_EQ(x.size(), y.size()) << layer;
         for (std::size_t i = 0; i < x.size(); ++i) ASSERT_NEAR(x[i], y[i], 1e-5f * (1.0f + std::fabs(x[i]))) << layer << " " << i;
     }
+    // The gather's disc stays a fraction of the picture: the band adds the senders beyond its
+    // edges, not a wider disc around every pixel (which at 0.25 cost Sponza's views more than
+    // the band's senders gave).
+    auto stat = [](FrameRenderer& r, const std::string& name) {
+        for (const TechniqueStat& s : r.technique()->stats())
+            if (s.name == name) return s.value;
+        return -1.0;
+    };
+    EXPECT_GT(stat(a, "isr.radius"), 1.0);
+    EXPECT_NEAR(stat(b, "isr.radius"), stat(a, "isr.radius"), 1e-6);
+    EXPECT_NEAR(stat(b, "isr.coarse_pixels"), 4.0 * stat(a, "isr.coarse_pixels"), 1e-6);
 }
 
 // A view up at the ceiling beside the light, out of the box's open front (view 35 of the

@@ -3,10 +3,12 @@
 // shadow in a big scene against the path tracer, which samples the same sun disc.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gi/pathtrace/path_tracer.h"
 #include "gl/context.h"
+#include "gl/resources.h"
 #include "render/frame/frame_renderer.h"
 #include "render/frame/sun_cascades.h"
 #include "scenes/scene_loader.h"
@@ -176,4 +178,63 @@ TEST(SunShadows, ThinPoleShadowMatchesThePathTracer) {
     // disc still seen through the middle of it near the far end.
     EXPECT_LT(profile(reference, 4, 60).darkest, 0.1);
     EXPECT_GT(profile(reference, 196, 252).darkest, 0.2);
+}
+
+// A guard band (a method's plan draws surfaces beyond the picture's edges, docs/isr.md) leaves
+// the picture's sun shadows as they were: its cascades are fitted to the picture, not to the
+// wider targets, and the soft shadows' noise follows the picture's pixels.
+TEST(SunShadows, GuardBandLeavesThePicturesShadowsAsTheyWere) {
+    test::useHeadlessContext();
+    FrameOptions options;
+    options.jitter = false;
+    auto direct = [&](const char* band) {
+        Scene scene = poleShadowScene();
+        scene.gi.set("isr.guard_band", band);
+        FrameRenderer r(scene, options, "isr");
+        r.renderFrame();
+        return r.resolve().find("direct")->data;
+    };
+    const std::vector<float> plain = direct("0"), banded = direct("0.5");
+    ASSERT_EQ(plain.size(), banded.size());
+    const float lit = *std::max_element(plain.begin(), plain.end());
+    double shadowed = 0.0, maxDifference = 0.0;
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+        maxDifference = std::max(maxDifference, std::fabs(double(banded[i]) - double(plain[i])));
+        shadowed += plain[i] < 0.1f * lit;
+    }
+    EXPECT_GT(shadowed, 0.0);  // the pole's umbra is in the picture
+    EXPECT_LT(maxDifference, 1e-4) << "max difference";
+}
+
+// The band's own surfaces are shadowed too. Under a roof over the whole ground nothing the
+// targets see is lit; from this camera (a 20 degree field 6 m up, looking down at 30 degrees)
+// some of the band's ground lies outside every map fitted to the picture (267 pixels lit
+// without it): one more map over the targets' whole view shadows them.
+TEST(SunShadows, GuardBandSurfacesAreShadowed) {
+    test::useHeadlessContext();
+    Scene scene = parseSceneJson(R"({
+      "camera": {"eye": [0, 6, 0], "target": [0.612, 5.5, 0.612], "fov": 20, "resolution": [64, 64], "near": 0.05, "far": 600},
+      "materials": {"grey": {"albedo": [0.5, 0.5, 0.5]}},
+      "lights": [{"type": "directional", "direction": [-0.6, -0.8, 0.0], "irradiance": [3, 3, 3]}],
+      "meshes": [
+        {"type": "quad", "material": "grey", "corners": [[-200, 0, 200], [200, 0, 200], [200, 0, -200], [-200, 0, -200]]},
+        {"type": "quad", "material": "grey", "corners": [[-300, 10, 300], [300, 10, 300], [300, 10, -300], [-300, 10, -300]]}
+      ]
+    })", "roofed-ground.json");
+    scene.gi.set("isr.guard_band", "0.5");
+    FrameOptions options;
+    options.jitter = false;
+    FrameRenderer r(scene, options, "isr");
+    r.renderFrame();
+    const int w = 128, h = 128;  // 64 x 64 and half of each beyond every edge
+    const std::vector<float> direct = gl::readTexture(r.textures().direct, w, h, 4);
+    const std::vector<float> position = gl::readTexture(r.textures().position, w, h, 4);
+    int ground = 0, lit = 0;
+    for (int i = 0; i < w * h; ++i) {
+        if (position[4 * i + 3] <= 0.0f || position[4 * i + 1] > 1.0f) continue;  // sky or roof
+        ++ground;
+        lit += direct[4 * i + 1] > 1e-4f;
+    }
+    EXPECT_GT(ground, w * h / 4);
+    EXPECT_EQ(lit, 0);
 }

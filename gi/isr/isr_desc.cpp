@@ -7,7 +7,8 @@ const SettingsTable<IsrDesc>& isrSettings() {
         using D = IsrDesc;
         SettingsTable<D> t("isr");
         t.integer("patches", &D::patches, 1, 1024, "sender patches gathered per coarse pixel").main();
-        t.number("radius", &D::radius, 0.001, 2.0, "gather disc radius, a fraction of the image height");
+        t.number("radius", &D::radius, 0.001, 2.0,
+                 "gather disc radius, a fraction of the picture's height (a guard band does not widen it)");
         t.integer("downsample", &D::downsample, 1, 8, "coarse pixels are this many pixels square");
         t.integer("blur", &D::blur, 0, 16, "depth-aware blur radius of the coarse result, in coarse pixels (0: none)");
         t.number("ao_strength", &D::aoStrength, 0.0, 1.0,

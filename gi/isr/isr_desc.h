@@ -9,8 +9,9 @@ namespace voxgi {
 
 struct IsrDesc {
     int patches = 48;          // sender patches gathered per coarse pixel (the seed: 48 timed, 80 for quality)
-    // The gather disc's radius, a fraction of the image height. The whole screen (1) measured
-    // best on every scene (docs/isr.md): one bounce from the surfaces on screen is already short.
+    // The gather disc's radius, a fraction of the picture's height (a guard band does not widen
+    // it). The whole screen (1) measured best on every scene (docs/isr.md): one bounce from the
+    // surfaces on screen is already short.
     float radius = 1.0f;
     int downsample = 2;        // coarse pixels are this many pixels square (the seed: 2)
     int blur = 2;              // depth-aware blur radius of the coarse result, coarse pixels (0: none)

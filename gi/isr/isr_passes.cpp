@@ -14,7 +14,11 @@ IsrPasses::IsrPasses(const IsrDesc& desc)
       blur_(gl::Program::compute("isr/blur.comp")),
       apply_(gl::Program::compute("isr/apply.comp")) {}
 
-float IsrPasses::radiusPixels() const { return std::max(desc_.radius * float(size_.y), 1.0f); }
+// A fraction of the picture's height: a guard band (whose coarse targets are larger) adds the
+// senders beyond the picture's edges without widening every pixel's disc.
+float IsrPasses::radiusPixels() const {
+    return std::max(desc_.radius * float(size_.y) / (1.0f + 2.0f * desc_.guardBand), 1.0f);
+}
 
 void IsrPasses::resize(glm::ivec2 size) {
     if (size == size_) return;

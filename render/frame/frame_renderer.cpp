@@ -61,6 +61,7 @@ struct FrameRenderer::Impl {
     gl::StageTimers timers;
     FramePlan plan;
     std::unique_ptr<GiTechnique> technique;
+    const bool hasSun;  // a directional light: cascaded maps (renderSunCascades)
 
     gl::Program gbufferProgram, shadowDepthProgram, shadowDistanceProgram, lightProgram, emissionProgram, skyLightProgram;
     // The sky-lighting volume, built the first time a plan has the sky_volume pass: Embree
@@ -82,7 +83,8 @@ struct FrameRenderer::Impl {
     Impl(const Scene& s, const FrameOptions& o, FramePlan p)
         : scene(s), options(o), width(o.width > 0 ? o.width : s.camera.width),
           height(o.height > 0 ? o.height : s.camera.height), gpu(s), plan(std::move(p)),
-          technique(createTechnique(plan.method, s)) {
+          technique(createTechnique(plan.method, s)),
+          hasSun(std::any_of(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.type == LightType::Directional; })) {
         Bounds b = s.bounds();
         sceneCenter = b.valid() ? b.center() : glm::vec3(0.0f);
         sceneRadius = b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
@@ -95,7 +97,12 @@ struct FrameRenderer::Impl {
         skyLightProgram = gl::Program::compute("frame/sky_light.comp");
         emptyVao = gl::createVertexArray();
 
-        createTargets();
+        if (options.sunCascades < 1 || options.sunCascades > shading::kMaxSunCascades)
+            throw InputError("sun cascades: " + std::to_string(options.sunCascades) + " is outside [1, " +
+                             std::to_string(shading::kMaxSunCascades) + "]");
+        if (options.sunMapSize < shading::kSunTileTexels || options.sunMapSize % shading::kSunTileTexels != 0)
+            throw InputError("sun map size: " + std::to_string(options.sunMapSize) + " is not a multiple of " +
+                             std::to_string(shading::kSunTileTexels));
 
         shadowDepth = gl::createTexture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, options.shadowMapSize,
                                         options.shadowMapSize);
@@ -103,20 +110,8 @@ struct FrameRenderer::Impl {
         glTextureParameteri(shadowDepth.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
         shadowFbo = gl::createFramebuffer({}, shadowDepth.id(), "shadow map");
 
-        if (options.sunCascades < 1 || options.sunCascades > shading::kMaxSunCascades)
-            throw InputError("sun cascades: " + std::to_string(options.sunCascades) + " is outside [1, " +
-                             std::to_string(shading::kMaxSunCascades) + "]");
-        if (options.sunMapSize < shading::kSunTileTexels || options.sunMapSize % shading::kSunTileTexels != 0)
-            throw InputError("sun map size: " + std::to_string(options.sunMapSize) + " is not a multiple of " +
-                             std::to_string(shading::kSunTileTexels));
-        if (std::any_of(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.type == LightType::Directional; })) {
-            const int tiles = options.sunMapSize / shading::kSunTileTexels;
-            sunTileDepth = gl::createTexture(GL_TEXTURE_2D_ARRAY, GL_R32F, tiles, tiles, options.sunCascades);
-            glTextureParameteri(sunTileDepth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTextureParameteri(sunTileDepth.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        if (hasSun) {
             sunTileProgram = gl::Program::compute("frame/sun_tile_depth.comp");
-            sunDepth = gl::createTexture(GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, options.sunMapSize, options.sunMapSize,
-                                         options.sunCascades);
             sunFbo = gl::createFramebuffer();
             sunCompareSampler = gl::createSampler();
             sunDepthSampler = gl::createSampler();
@@ -132,6 +127,7 @@ struct FrameRenderer::Impl {
             glSamplerParameteri(sunDepthSampler.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
             glSamplerParameteri(sunDepthSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
         }
+        createTargets();
 
         cubeDistance = gl::createTexture(GL_TEXTURE_CUBE_MAP, GL_R32F, options.cubeShadowSize, options.cubeShadowSize);
         glTextureParameteri(cubeDistance.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -167,12 +163,31 @@ struct FrameRenderer::Impl {
         indirectFbo = gl::createFramebuffer({indirectAccum.id()}, 0, "indirect accumulation");
         glClearNamedFramebufferfv(accumFbo.id(), GL_COLOR, 0, zero);
         glClearNamedFramebufferfv(indirectFbo.id(), GL_COLOR, 0, zero);
+        if (hasSun) {
+            // The picture's cascades, and one more over the band's surfaces (renderSunCascades).
+            const int layers = options.sunCascades + (bandX > 0 || bandY > 0 ? 1 : 0);
+            const int tiles = options.sunMapSize / shading::kSunTileTexels;
+            sunTileDepth = gl::createTexture(GL_TEXTURE_2D_ARRAY, GL_R32F, tiles, tiles, layers);
+            glTextureParameteri(sunTileDepth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(sunTileDepth.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            sunDepth = gl::createTexture(GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, options.sunMapSize, options.sunMapSize,
+                                         layers);
+            sunMapsKey.clear();
+        }
+    }
+
+    // The scene's camera over the picture.
+    Camera pictureCamera() const {
+        Camera cam = scene.camera;
+        cam.width = width;
+        cam.height = height;
+        return cam;
     }
 
     // The scene's camera over the targets: the picture's pixels with the band's around them, at
     // the same angle per pixel (the vertical field widened by the band; the aspect follows).
     Camera targetCamera() const {
-        Camera cam = scene.camera;
+        Camera cam = pictureCamera();
         cam.width = targetWidth();
         cam.height = targetHeight();
         if (bandY > 0)
@@ -284,8 +299,13 @@ struct FrameRenderer::Impl {
     // The cascades of the sun travelling along `direction`, drawn into their layers.
     SunCascades renderSunCascades(glm::vec3 direction) {
         timers.begin("shadow_sun");
-        // Fitted to the targets' view: the band's surfaces are lit (and shadowed) like the picture's.
-        SunCascades fit = fitSunCascades(targetCamera(), direction, scene.bounds(), options.sunMapSize, options.sunCascades);
+        // Fitted to the picture's view, so that its shadows are the same with a guard band as
+        // without (cascades fitted to the wider view have coarser texels); one more, coarse, over
+        // the whole targets' view shadows the band's surfaces that the picture's leave out (the
+        // shader takes the first map that holds a point).
+        SunCascades fit = fitSunCascades(pictureCamera(), direction, scene.bounds(), options.sunMapSize, options.sunCascades);
+        if (bandX > 0 || bandY > 0)
+            fit.cascades.push_back(fitSunCascades(targetCamera(), direction, scene.bounds(), options.sunMapSize, 1).cascades[0]);
         std::vector<float> key = {direction.x, direction.y, direction.z};
         for (const SunCascade& c : fit.cascades) key.insert(key.end(), &c.worldToMap[0][0], &c.worldToMap[0][0] + 16);
         if (options.keepSunMaps && key == sunMapsKey) {
@@ -355,6 +375,7 @@ struct FrameRenderer::Impl {
         lightProgram.set("uViewOrigin", 9);
         lightProgram.set("uViewOriginPerPixel", 0);
         lightProgram.set("uFrame", frames);
+        lightProgram.set("uPictureOrigin", glm::ivec2(bandX, bandY));
         lightProgram.set("uEye", scene.camera.eye);
         gpu.bindLights();
     }

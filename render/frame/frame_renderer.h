@@ -18,7 +18,7 @@ struct FrameOptions {
     int height = 0;
     int shadowMapSize = 2048;     // spot maps
     int sunMapSize = 2048;        // each cascade of a directional light (render/frame/sun_cascades.h)
-    int sunCascades = 4;          // 1..shading::kMaxSunCascades
+    int sunCascades = 4;          // 1..shading::kMaxSunCascades over the picture (one more over a guard band)
     // Keep the sun's maps while the camera and the sun stand still (frames that accumulate);
     // false draws them every frame, what a moving camera costs (eval times frames so).
     bool keepSunMaps = true;

@@ -26,6 +26,9 @@ uniform float uTracedRoughness;
 uniform vec3 uShadowEye;        // the cube map's centre (point light; quad sample lifted off the quad)
 uniform mat4 uShadowMatrix;     // world -> shadow texture space (spot maps)
 uniform float uShadowTexel;     // world size of one shadow texel at unit distance (normal offset)
+// The picture's first pixel in the targets (a guard band's width): soft shadows' noise follows
+// the picture's pixels, so a band leaves them as they were.
+uniform ivec2 uPictureOrigin;
 
 float cubeVisibility(vec3 p, vec3 n) {
     vec3 d = p - uShadowEye;
@@ -78,7 +81,7 @@ void main() {
     bool lit = incident.falloff > 0.0 && nl > 0.0;
     float vis = 1.0;
     if (lit || mirrorSeesQuad) {
-        if (kind == kLightDirectional) vis = sunVisibility(p, n, pixel);
+        if (kind == kLightDirectional) vis = sunVisibility(p, n, pixel - uPictureOrigin);
         else if (kind == kLightSpot) vis = mapVisibility(p, n, incident.distance);
         else if (lit) vis = cubeVisibility(p, n);  // else the quad is behind p: a mirror sees it unshadowed
     }

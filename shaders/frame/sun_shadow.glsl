@@ -13,8 +13,8 @@
 uniform sampler2DArrayShadow uSunShadow;  // the cascades, compared with depth (bilinear PCF)
 uniform sampler2DArray uSunDepth;         // the same texture's depths, for the blocker search
 uniform sampler2DArray uSunTileDepth;     // the nearest depth of each kSunTileTexels tile
-uniform mat4 uCascadeMatrix[kMaxSunCascades];  // world -> map xy, depth in [0, 1]
-uniform float uCascadeTexel[kMaxSunCascades];  // world size of a texel (m)
+uniform mat4 uCascadeMatrix[kMaxSunMaps];  // world -> map xy, depth in [0, 1]
+uniform float uCascadeTexel[kMaxSunMaps];  // world size of a texel (m)
 uniform int uCascadeCount;
 uniform mat3 uWorldToLight;  // x, y across the maps, z the way sunlight travels
 uniform float uDepthRange;   // world length of map depth 0..1 (m)

@@ -9,8 +9,11 @@
 namespace voxgi::shading {
 #endif
 
-// Cascades per directional light at most (the shader's uniform arrays).
+// Cascades over the picture per directional light at most, and the maps in all: one more covers
+// a guard band's surfaces beyond the picture (render/frame/frame_renderer.cpp), so that the
+// picture's own cascades, and its shadows, are the same with a band as without.
 constexpr int kMaxSunCascades = 4;
+constexpr int kMaxSunMaps = kMaxSunCascades + 1;
 // The side (texels) of the tiles whose nearest depth bounds the blocker search, and the widest
 // soft-shadow kernel's radius: a kernel around any texel stays within its tile's 3 x 3
 // neighbours. Cascade maps are a whole number of tiles.
