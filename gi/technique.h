@@ -42,6 +42,9 @@ struct GBufferView {
     // The vertical field of view of the camera that drew these pixels: the scene camera's, wider
     // when the frame draws a guard band (TechniquePlan::guardBand); see pixelEdge.
     float fovYDegrees = 0.0f;
+    // The picture's first pixel in these targets: the guard band's width and height in pixels
+    // (0 without one). The picture is the middle (width - 2x) x (height - 2y).
+    glm::ivec2 pictureOrigin{0};
     // For applyIndirect only: the direct layer summed over `directFrames` frames, this one
     // included (RGBA32F; radiance toward the camera, W/(m^2 sr), times directFrames).
     GLuint directSum = 0;

@@ -212,6 +212,13 @@ TEST_F(IsrTest, GuardBandLeavesThePicturesPixelsAsTheyWere) {
     EXPECT_GT(stat(a, "isr.radius"), 1.0);
     EXPECT_NEAR(stat(b, "isr.radius"), stat(a, "isr.radius"), 1e-6);
     EXPECT_NEAR(stat(b, "isr.coarse_pixels"), 4.0 * stat(a, "isr.coarse_pixels"), 1e-6);
+    // A frame that draws no band (the viewer's) keeps the same disc whatever the setting says.
+    FrameOptions noBand = unjittered();
+    noBand.guardBand = false;
+    FrameRenderer c(banded, noBand, "isr");
+    c.renderFrame();
+    EXPECT_NEAR(stat(c, "isr.radius"), stat(a, "isr.radius"), 1e-6);
+    EXPECT_NEAR(stat(c, "isr.coarse_pixels"), stat(a, "isr.coarse_pixels"), 1e-6);
 }
 
 // A view up at the ceiling beside the light, out of the box's open front (view 35 of the

@@ -14,11 +14,7 @@ IsrPasses::IsrPasses(const IsrDesc& desc)
       blur_(gl::Program::compute("isr/blur.comp")),
       apply_(gl::Program::compute("isr/apply.comp")) {}
 
-// A fraction of the picture's height: a guard band (whose coarse targets are larger) adds the
-// senders beyond the picture's edges without widening every pixel's disc.
-float IsrPasses::radiusPixels() const {
-    return std::max(desc_.radius * float(size_.y) / (1.0f + 2.0f * desc_.guardBand), 1.0f);
-}
+float IsrPasses::radiusPixels() const { return std::max(desc_.radius * pictureHeight_, 1.0f); }
 
 void IsrPasses::resize(glm::ivec2 size) {
     if (size == size_) return;
@@ -71,6 +67,9 @@ void bindOutputs(const gl::Program& program, std::initializer_list<std::pair<con
 void IsrPasses::compute(const GBufferView& g, int frame, gl::StageTimers& timers, GLuint farLight) {
     const int f = desc_.downsample;
     resize({(g.width + f - 1) / f, (g.height + f - 1) / f});
+    // The disc is a fraction of the picture: a guard band (a larger G-buffer around it) adds the
+    // senders beyond the picture's edges without widening every pixel's disc.
+    pictureHeight_ = float((g.height - 2 * g.pictureOrigin.y + f - 1) / f);
     forward_ = viewForward(g.viewProjection);
     const gl::ScreenRect coarse{0, 0, size_.x, size_.y};
     // The direct layer (and a far field) were drawn just now; the passes below fetch them.

@@ -51,6 +51,7 @@ private:
     IsrDesc desc_;
     gl::Program downsample_, gather_program_, temporal_, blur_, apply_;
     glm::ivec2 size_{0};
+    float pictureHeight_ = 0.0f;  // coarse pixels: the picture's, without a guard band
     gl::Handle position_, normal_, radiance_, albedo_, gather_, half_, blurred_;
     glm::vec3 forward_{0.0f, 0.0f, -1.0f};
     // The temporal mean, its surface points and their normals, written and read in turn

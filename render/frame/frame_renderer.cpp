@@ -54,6 +54,7 @@ struct FrameRenderer::Impl {
     int bandX = 0, bandY = 0;
     int targetWidth() const { return width + 2 * bandX; }
     int targetHeight() const { return height + 2 * bandY; }
+    bool drawsBand() const { return bandX > 0 || bandY > 0; }
     int frames = 0;
     float sceneRadius;
     glm::vec3 sceneCenter;
@@ -165,7 +166,7 @@ struct FrameRenderer::Impl {
         glClearNamedFramebufferfv(indirectFbo.id(), GL_COLOR, 0, zero);
         if (hasSun) {
             // The picture's cascades, and one more over the band's surfaces (renderSunCascades).
-            const int layers = options.sunCascades + (bandX > 0 || bandY > 0 ? 1 : 0);
+            const int layers = options.sunCascades + (drawsBand() ? 1 : 0);
             const int tiles = options.sunMapSize / shading::kSunTileTexels;
             sunTileDepth = gl::createTexture(GL_TEXTURE_2D_ARRAY, GL_R32F, tiles, tiles, layers);
             glTextureParameteri(sunTileDepth.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -208,6 +209,7 @@ struct FrameRenderer::Impl {
         v.width = targetWidth();
         v.height = targetHeight();
         v.fovYDegrees = targetCamera().fovYDegrees;
+        v.pictureOrigin = {bandX, bandY};
         v.eye = scene.camera.eye;
         v.viewProjection = lastViewProjection;
         v.tracedRoughness = technique && plan.runs("hybrid.trace") ? technique->tracedRoughness() : -1.0f;
@@ -304,7 +306,7 @@ struct FrameRenderer::Impl {
         // the whole targets' view shadows the band's surfaces that the picture's leave out (the
         // shader takes the first map that holds a point).
         SunCascades fit = fitSunCascades(pictureCamera(), direction, scene.bounds(), options.sunMapSize, options.sunCascades);
-        if (bandX > 0 || bandY > 0)
+        if (drawsBand())
             fit.cascades.push_back(fitSunCascades(targetCamera(), direction, scene.bounds(), options.sunMapSize, 1).cascades[0]);
         std::vector<float> key = {direction.x, direction.y, direction.z};
         for (const SunCascade& c : fit.cascades) key.insert(key.end(), &c.worldToMap[0][0], &c.worldToMap[0][0] + 16);
@@ -375,7 +377,7 @@ struct FrameRenderer::Impl {
         lightProgram.set("uViewOrigin", 9);
         lightProgram.set("uViewOriginPerPixel", 0);
         lightProgram.set("uFrame", frames);
-        lightProgram.set("uPictureOrigin", glm::ivec2(bandX, bandY));
+        lightProgram.set("uPictureOrigin", glm::ivec2(bandX, bandY));  // as GBufferView::pictureOrigin
         lightProgram.set("uEye", scene.camera.eye);
         gpu.bindLights();
     }
