@@ -1,5 +1,6 @@
 #include "gi/ddgi/ddgi_gpu.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -7,6 +8,7 @@
 #include "gl/context.h"
 #include "gl/screen_pass.h"
 #include "shaders/ddgi/limits.h"
+#include "shaders/shared/probe_schedule.h"
 
 namespace voxgi {
 
@@ -48,6 +50,7 @@ DdgiGpu::DdgiGpu(const ProbeField& field) {
     blendQuery_ = gl::createTimerQuery();
     borderQuery_ = gl::createTimerQuery();
     shadeQuery_ = gl::createTimerQuery();
+    classifyQuery_ = gl::createTimerQuery();
     upload(field);
 }
 
@@ -55,12 +58,10 @@ DdgiGpu::~DdgiGpu() = default;
 
 void DdgiGpu::traceInVolume(const NanoGeometry& geometry, const Scene& scene) {
     volume_ = std::make_unique<VolumeShadeGl>(geometry, scene);
-}
-
-void DdgiGpu::shadeRays(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
-                        std::uint32_t frame) {
-    volume_->prepare(rays, trace, jobs, frame);
-    shadePending_ = true;
+    schedule_ = gl::Program::compute("ddgi/schedule.comp");
+    classify_ = gl::Program::compute("ddgi/classify.comp");
+    dispatches_ = gl::createBuffer(3 * shading::kDdgiDispatches * sizeof(GLuint));
+    counters_ = gl::createBuffer(shading::kDdgiCounters * sizeof(GLuint));
 }
 
 void DdgiGpu::upload(const ProbeField& field) {
@@ -88,11 +89,36 @@ void DdgiGpu::uploadProbeData(const ProbeField& field) {
     for (const ProbeRecord& r : field.probes) data.emplace_back(r.offset, float(int(r.state)));
     gl::ensureBuffer(probeData_, probeDataBytes_, data.size() * sizeof(glm::vec4));
     glNamedBufferSubData(probeData_.id(), 0, GLsizeiptr(data.size() * sizeof(glm::vec4)), data.data());
+    if (!volume_) return;
+    std::vector<GLint> blends;
+    blends.reserve(field.probes.size());
+    for (const ProbeRecord& r : field.probes) blends.push_back(r.blends);
+    gl::ensureBuffer(blends_, blendsBytes_, blends.size() * sizeof(GLint));
+    glNamedBufferSubData(blends_.id(), 0, GLsizeiptr(blends.size() * sizeof(GLint)), blends.data());
+}
+
+std::vector<BlendJob> DdgiGpu::readJobs(std::size_t count) const {
+    std::vector<BlendJob> jobs(std::min(count, jobsBytes_ / sizeof(BlendJob)));
+    if (!jobs.empty())
+        glGetNamedBufferSubData(jobs_.id(), 0, GLsizeiptr(jobs.size() * sizeof(BlendJob)), jobs.data());
+    return jobs;
 }
 
 void DdgiGpu::readBack(ProbeField& field) {
     downloadAtlas(irradiance_.id(), field.irradiance, staging_);
     downloadAtlas(distance_.id(), field.distance, staging_);
+    if (volume_) {  // the records too: the GPU relocates and classifies
+        const std::size_t n = field.probes.size();
+        std::vector<glm::vec4> data(n);
+        std::vector<GLint> blends(n);
+        glGetNamedBufferSubData(probeData_.id(), 0, GLsizeiptr(n * sizeof(glm::vec4)), data.data());
+        glGetNamedBufferSubData(blends_.id(), 0, GLsizeiptr(n * sizeof(GLint)), blends.data());
+        for (std::size_t p = 0; p < n; ++p) {
+            field.probes[p].offset = glm::vec3(data[p]);
+            field.probes[p].state = ProbeState(int(data[p].w));
+            field.probes[p].blends = blends[p];
+        }
+    }
     synced_ = &field;  // the CPU copy is the GPU's again
     syncedVersion_ = field.atlasVersion();
 }
@@ -107,84 +133,191 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
         uploadAtlases(field);
         times_.atlasesUploaded = true;
     }
-    if (jobs.empty()) {
-        shadePending_ = false;
-        return;
-    }
+    if (jobs.empty()) return;
     std::vector<glm::vec4> dirs;
     dirs.reserve(std::size_t(rays.blendRays));
     for (int i = 0; i < rays.blendRays; ++i) dirs.emplace_back(rays.blendDirection(i), 0.0f);
     gl::ensureBuffer(jobs_, jobsBytes_, jobs.size() * sizeof(BlendJob));
     gl::ensureBuffer(directions_, directionsBytes_, dirs.size() * sizeof(glm::vec4));
-    const bool shadeHere = volume_ && shadePending_;
-    shadePending_ = false;
-    const std::size_t rayCount = shadeHere ? jobs.size() * std::size_t(rays.blendRays) : shaded.values.size();
-    gl::ensureBuffer(rays_, raysBytes_, rayCount * sizeof(glm::vec4));
+    gl::ensureBuffer(rays_, raysBytes_, shaded.values.size() * sizeof(glm::vec4));
     glNamedBufferSubData(jobs_.id(), 0, GLsizeiptr(jobs.size() * sizeof(BlendJob)), jobs.data());
     glNamedBufferSubData(directions_.id(), 0, GLsizeiptr(dirs.size() * sizeof(glm::vec4)), dirs.data());
-    if (!shadeHere)
-        glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(shaded.values.size() * sizeof(glm::vec4)), shaded.values.data());
+    glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(shaded.values.size() * sizeof(glm::vec4)), shaded.values.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
     glFinish();  // the transfers end here, so the kernels' timing holds only the kernels
     times_.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (shadeHere) {
-        // Reads the previous field before the blend below overwrites it.
-        glBeginQuery(GL_TIME_ELAPSED, shadeQuery_.id());
-        volume_->dispatch(field, rays.blendRays, jobs.size(), irradiance_.id(), distance_.id(), probeData_.id());
-        glEndQuery(GL_TIME_ELAPSED);
-    }
+    blendKernels(field, rays.blendRays, int(jobs.size()));
+}
 
+void DdgiGpu::blendKernels(const ProbeField& field, int blendRays, int jobs) {
     const BlendParams bp = BlendParams::from(field.desc());
-    auto run = [&](gl::Program& program, GLuint atlas, int texels) {
+    auto run = [&](gl::Program& program, GLuint atlas, int texels, int dispatch) {
         program.use();
         program.set("uTexels", texels);
-        program.set("uRays", rays.blendRays);
+        program.set("uRays", blendRays);
         program.set("uGamma", bp.irradianceGamma);
         program.set("uIrradianceThreshold", bp.irradianceThreshold);
         program.set("uBrightnessThreshold", bp.brightnessThreshold);
         program.set("uBackfaceScale", kBackfaceDistanceScale);
         glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-        GLuint groups = GLuint((texels + 7) / 8);
-        glDispatchCompute(groups, groups, GLuint(jobs.size()));
+        const GLuint groups = GLuint((texels + 7) / 8);
+        if (jobs >= 0) glDispatchCompute(groups, groups, GLuint(jobs));
+        else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
     };
     glBeginQuery(GL_TIME_ELAPSED, blendQuery_.id());
-    run(blendIrradiance_, irradiance_.id(), bp.irradianceTexels);
-    run(blendDistance_, distance_.id(), bp.distanceTexels);
+    run(blendIrradiance_, irradiance_.id(), bp.irradianceTexels, shading::kDdgiDispatchBlendIrradiance);
+    run(blendDistance_, distance_.id(), bp.distanceTexels, shading::kDdgiDispatchBlendDistance);
     glEndQuery(GL_TIME_ELAPSED);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glFinish();
     times_.blendGpuMs = gl::timerQueryMs(blendQuery_.id());
-    if (shadeHere) times_.shadeGpuMs = gl::timerQueryMs(shadeQuery_.id());
 }
 
 void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
     if (!jobs.empty()) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
-        border_.use();
-        auto run = [&](GLuint atlas, int texels, int isDistance) {
-            border_.set("uTexels", texels);
-            border_.set("uDistance", isDistance);
-            glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-            GLuint groups = GLuint((texels + 2 + 7) / 8);
-            glDispatchCompute(groups, groups, GLuint(jobs.size()));
-        };
-        glBeginQuery(GL_TIME_ELAPSED, borderQuery_.id());
-        run(irradiance_.id(), field.desc().irradianceTexels, 0);
-        run(distance_.id(), field.desc().distanceTexels, 1);
-        glEndQuery(GL_TIME_ELAPSED);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-        glFinish();
-        times_.borderGpuMs = gl::timerQueryMs(borderQuery_.id());
-    }
-    if (volume_) {
-        cpuStale_ = true;
-        return;
+        borderKernels(field, int(jobs.size()));
     }
     const auto start = std::chrono::steady_clock::now();
     readBack(field);
     times_.readbackMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void DdgiGpu::borderKernels(const ProbeField& field, int jobs) {
+    border_.use();
+    auto run = [&](GLuint atlas, int texels, int isDistance, int dispatch) {
+        border_.set("uTexels", texels);
+        border_.set("uDistance", isDistance);
+        glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        const GLuint groups = GLuint((texels + 2 + 7) / 8);
+        if (jobs >= 0) glDispatchCompute(groups, groups, GLuint(jobs));
+        else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
+    };
+    glBeginQuery(GL_TIME_ELAPSED, borderQuery_.id());
+    run(irradiance_.id(), field.desc().irradianceTexels, 0, shading::kDdgiDispatchBorderIrradiance);
+    run(distance_.id(), field.desc().distanceTexels, 1, shading::kDdgiDispatchBorderDistance);
+    glEndQuery(GL_TIME_ELAPSED);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glFinish();
+    times_.borderGpuMs = gl::timerQueryMs(borderQuery_.id());
+}
+
+BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet& rays, std::uint32_t frame) {
+    using Clock = std::chrono::steady_clock;
+    auto msSince = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    times_ = Times{};
+    UpdateReport report;
+    auto start = Clock::now();
+    const DdgiDesc& desc = field.desc();
+    const std::size_t probes = field.probes.size();
+    if (synced_ != &field || syncedVersion_ != field.atlasVersion() || blendsBytes_ < probes * sizeof(GLint)) {
+        // A scroll reset probes on the CPU (it read everything back first): both go up.
+        uploadAtlases(field);
+        uploadProbeData(field);
+        times_.atlasesUploaded = true;
+    }
+    // Per frame: the rotated blend directions (the fixed ones never change, but are a few
+    // hundred bytes), the dispatches' fixed sizes with their job counts at zero, the counters.
+    std::vector<glm::vec4> blendDirs, fixedDirs;
+    for (int i = 0; i < rays.blendRays; ++i) blendDirs.emplace_back(rays.blendDirection(i), 0.0f);
+    for (int i = 0; i < rays.fixedRays; ++i) fixedDirs.emplace_back(rays.directions[std::size_t(i)], 0.0f);
+    gl::ensureBuffer(directions_, directionsBytes_, blendDirs.size() * sizeof(glm::vec4));
+    glNamedBufferSubData(directions_.id(), 0, GLsizeiptr(blendDirs.size() * sizeof(glm::vec4)), blendDirs.data());
+    gl::ensureBuffer(fixedDirections_, fixedBytes_, std::max<std::size_t>(fixedDirs.size(), 1) * sizeof(glm::vec4));
+    if (!fixedDirs.empty())
+        glNamedBufferSubData(fixedDirections_.id(), 0, GLsizeiptr(fixedDirs.size() * sizeof(glm::vec4)), fixedDirs.data());
+    const GLuint irradianceGroups = GLuint((desc.irradianceTexels + 7) / 8), distanceGroups = GLuint((desc.distanceTexels + 7) / 8);
+    const GLuint irradianceBorder = GLuint((desc.irradianceTexels + 2 + 7) / 8),
+                 distanceBorder = GLuint((desc.distanceTexels + 2 + 7) / 8);
+    const GLuint dispatches[3 * shading::kDdgiDispatches] = {
+        GLuint((rays.blendRays + 63) / 64), 0, 1,        irradianceGroups, irradianceGroups, 0,
+        distanceGroups,                     distanceGroups, 0, irradianceBorder, irradianceBorder, 0,
+        distanceBorder,                     distanceBorder, 0};
+    glNamedBufferSubData(dispatches_.id(), 0, sizeof(dispatches), dispatches);
+    const GLuint zeros[shading::kDdgiCounters] = {};
+    glNamedBufferSubData(counters_.id(), 0, sizeof(zeros), zeros);
+    gl::ensureBuffer(jobs_, jobsBytes_, probes * sizeof(BlendJob));
+    gl::ensureBuffer(rays_, raysBytes_, probes * std::size_t(rays.blendRays) * sizeof(glm::vec4));
+    gl::ensureBuffer(origins_, originsBytes_, probes * sizeof(glm::vec4));
+    gl::ensureBuffer(works_, worksBytes_, probes * sizeof(GLint));
+    volume_->prepare(rays, frame);
+
+    const GLuint probeGroups = GLuint((probes + 63) / 64);
+    auto bindUpdate = [&](const gl::Program& program) {
+        bindProbeField(program, field, irradiance_.id(), distance_.id(), probeData_.id());
+        program.set("uProbeCount", int(probes));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, blends_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, works_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, counters_.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, dispatches_.id());
+    };
+    schedule_.use();
+    bindUpdate(schedule_);
+    schedule_.set("uFrame", int(frame));
+    schedule_.set("uRays", rays.blendRays);
+    schedule_.set("uClassify", desc.classify ? 1 : 0);
+    schedule_.set("uSleepInterval", desc.sleepInterval);
+    schedule_.set("uHysteresis", desc.hysteresis);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins_.id());
+    glDispatchCompute(probeGroups, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glFinish();
+    report.classifyMs = msSince(start);
+
+    start = Clock::now();
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatches_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
+    // Reads the previous field before the blend below overwrites it.
+    glBeginQuery(GL_TIME_ELAPSED, shadeQuery_.id());
+    volume_->dispatch(field, rays.blendRays, origins_.id(), GLintptr(3 * shading::kDdgiDispatchShade * sizeof(GLuint)),
+                      irradiance_.id(), distance_.id(), probeData_.id());
+    glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    report.traceMs = msSince(start);
+    times_.shadeGpuMs = gl::timerQueryMs(shadeQuery_.id());
+
+    start = Clock::now();
+    blendKernels(field, rays.blendRays, -1);
+    report.blendMs = msSince(start);
+    start = Clock::now();
+    borderKernels(field, -1);
+    report.borderMs = msSince(start);
+
+    start = Clock::now();
+    classify_.use();
+    bindUpdate(classify_);
+    volume_->geometry().bind(classify_, 3);
+    classify_.set("uFixedRays", rays.fixedRays);
+    classify_.set("uClassify", desc.classify ? 1 : 0);
+    classify_.set("uRelocate", desc.relocate ? 1 : 0);
+    classify_.set("uMissDistance", kMissDistance);
+    classify_.set("uBackfaceThreshold", desc.backfaceThreshold);
+    classify_.set("uRelocationBackfaceThreshold", desc.relocationBackfaceThreshold);
+    classify_.set("uMinFrontfaceDistance", desc.minFrontfaceDistance);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, fixedDirections_.id());
+    glBeginQuery(GL_TIME_ELAPSED, classifyQuery_.id());
+    glDispatchCompute(probeGroups, 1, 1);
+    glEndQuery(GL_TIME_ELAPSED);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    // What the frame counted, 20 bytes: the only read-back of the update.
+    GLuint counters[shading::kDdgiCounters], jobCount = 0;
+    glGetNamedBufferSubData(counters_.id(), 0, sizeof(counters), counters);
+    glGetNamedBufferSubData(dispatches_.id(), GLintptr((3 * shading::kDdgiDispatchShade + 1) * sizeof(GLuint)),
+                            sizeof(GLuint), &jobCount);
+    report.classifyMs += msSince(start);
+    times_.classifyGpuMs = gl::timerQueryMs(classifyQuery_.id());
+    report.blended = int(jobCount);
+    report.fixedOnly = int(counters[shading::kDdgiCountFixedOnly]);
+    report.active = int(counters[shading::kDdgiCountStates + shading::kProbeActive]);
+    report.sleeping = int(counters[shading::kDdgiCountStates + shading::kProbeSleeping]);
+    report.off = int(counters[shading::kDdgiCountStates + shading::kProbeOff]);
+    cpuStale_ = true;
+    return report;
 }
 
 void DdgiGpu::syncToCpu(ProbeField& field) {

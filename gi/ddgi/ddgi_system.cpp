@@ -65,15 +65,15 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
 
     auto t0 = std::chrono::steady_clock::now();
     rays_ = makeRaySet(desc, std::uint32_t(desc.seed), frame_);
+    if (backend && backend->updatesProbes()) {
+        updateElsewhere(stats, *backend);
+        return stats;
+    }
     trace_.work = scheduleProbes(field, frame_, bool(query_.distanceToGeometry));
     std::vector<int> blendProbes;
     for (int p = 0; p < field.probeCount(); ++p)
         if (trace_.work[std::size_t(p)] == ProbeWork::Full) blendProbes.push_back(p);
     stats.probesBlended = int(blendProbes.size());
-    if (backend && backend->shadesRays()) {
-        updateShadedElsewhere(stats, *backend, blendProbes, t0);
-        return stats;
-    }
 
     // Hits are grouped for the hit cache while they are traced.
     const bool grouping = hitCacheUsed(desc, tracer_.scene());
@@ -112,18 +112,21 @@ DdgiFrameStats DdgiSystem::update(glm::vec3 eye, BlendBackend* backend, glm::vec
     return stats;
 }
 
-void DdgiSystem::updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend, const std::vector<int>& blendProbes,
-                                       std::chrono::steady_clock::time_point start) {
-    // Only the classification rays here.
+void DdgiSystem::updateElsewhere(DdgiFrameStats& stats, BlendBackend& backend) {
     ProbeField& field = *field_;
-    traceProbes(tracer_, field, rays_, trace_, nullptr, false);
-    stats.raysTraced = trace_.raysTraced + std::int64_t(blendProbes.size()) * rays_.blendRays;
-    stats.traceMs = msSince(start);
-    std::vector<BlendJob> jobs = makeBlendJobs(field, blendProbes, rays_.blendRays);
-    backend.shadeRays(rays_, trace_, jobs, frame_);
-    shaded_.raysPerJob = rays_.blendRays;
-    shaded_.values.clear();
-    blendAndClassify(stats, backend, blendProbes, jobs);
+    const BlendBackend::UpdateReport counts = backend.updateProbes(field, rays_, frame_);
+    stats.traceMs = counts.traceMs;
+    stats.blendMs = counts.blendMs;
+    stats.borderMs = counts.borderMs;
+    stats.classifyMs = counts.classifyMs;
+    stats.probesBlended = counts.blended;
+    stats.raysTraced = std::int64_t(counts.blended) * rays_.stride() + std::int64_t(counts.fixedOnly) * rays_.fixedRays;
+    stats.states = {counts.active, counts.sleeping, counts.off};
+    if (trackChange_) {
+        backend.syncToCpu(field);
+        measureChange();
+    }
+    ++frame_;
 }
 
 void DdgiSystem::blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, const std::vector<int>& blendProbes,

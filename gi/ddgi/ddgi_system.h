@@ -78,9 +78,8 @@ public:
     void trackChange() { trackChange_ = true; }
 
 private:
-    // The rest of update() when the backend traces and shades the blend rays (shadesRays()).
-    void updateShadedElsewhere(DdgiFrameStats& stats, BlendBackend& backend, const std::vector<int>& blendProbes,
-                               std::chrono::steady_clock::time_point start);
+    // The rest of update() when the backend runs the whole update (updatesProbes()).
+    void updateElsewhere(DdgiFrameStats& stats, BlendBackend& backend);
     void blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, const std::vector<int>& blendProbes,
                           const std::vector<BlendJob>& jobs);
     void measureChange();

@@ -43,6 +43,7 @@ void DdgiTechnique::update(const FrameInput& input, const GBufferView& gbuffer) 
                                                      {"ddgi.classify", lastStats_.classifyMs}};
     for (const auto& [stage, ms] : stages)
         if (input.plan.runs(stage)) input.timers.addCpu(stage, ms);
+    if (gpu_->updatesProbes()) return;  // the GPU relocated and classified: its records are the newest
     if (backend) gpu_->uploadProbeData(system_->field());
     else gpu_->upload(system_->field());
 }
@@ -56,7 +57,7 @@ void DdgiTechnique::applyIndirect(const FrameInput& input, const GBufferView& gb
 
 void DdgiTechnique::dumpVdb(const std::string& path) const {
     gpu_->syncToCpu(system_->field());
-    if (!gpu_->shadesRays()) return writeProbeVdb(system_->field(), path);
+    if (!gpu_->updatesProbes()) return writeProbeVdb(system_->field(), path);
     // The volume the GPU traces, built again (it lives only on the GPU).
     const NanoGeometry trace = voxelizeForTracing(*tracer_, system_->field());
     writeProbeVdb(system_->field(), path, &trace);

@@ -1,5 +1,7 @@
 #include "gi/ddgi/probe_blend.h"
 
+#include "shaders/shared/probe_schedule.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -191,11 +193,7 @@ BlendParams BlendParams::from(const DdgiDesc& d) {
     return p;
 }
 
-float probeHysteresis(float hysteresis, int blends) {
-    if (hysteresis >= 1.0f) return blends > 0 ? 1.0f : 0.0f;  // frozen after the first data
-    const float n = float(std::max(blends, 0));
-    return std::min(hysteresis, n / (n + 1.0f));
-}
+float probeHysteresis(float hysteresis, int blends) { return shading::probeHysteresis(hysteresis, blends); }
 
 std::vector<BlendJob> makeBlendJobs(const ProbeField& field, const std::vector<int>& probes, int raysPerJob) {
     std::vector<BlendJob> jobs;

@@ -58,14 +58,22 @@ public:
                        const std::vector<BlendJob>& jobs) = 0;
     virtual void border(ProbeField& field, const std::vector<BlendJob>& jobs) = 0;
 
-    // A backend that traces and shades the blend rays itself (DDGI's ddgi.trace = volume):
-    // the system then traces only the fixed rays and calls shadeRays() (the jobs' origins and
-    // the frame) before blend(), whose `shaded` is empty.
-    virtual bool shadesRays() const { return false; }
-    virtual void shadeRays(const RaySet&, const ProbeTrace&, const std::vector<BlendJob>&, std::uint32_t /*frame*/) {}
-    // A backend that keeps the newest atlases to itself (no read-back each frame) brings
-    // field.irradiance and field.distance up to date here; callers do so before any CPU read
-    // or write of them.
+    // A backend that runs the whole update itself, the probe states included (DDGI's
+    // ddgi.trace = volume on the GPU): it schedules the probes, traces and shades their rays,
+    // blends, borders, relocates and classifies them, with `rays`' directions for `frame`, and
+    // returns what it counted and timed. field.probes and the atlases are then its own until
+    // syncToCpu.
+    virtual bool updatesProbes() const { return false; }
+    struct UpdateReport {
+        int blended = 0, fixedOnly = 0;  // probes that traced every ray / only the fixed ones
+        int active = 0, sleeping = 0, off = 0;
+        // Wall time of each stage, the schedule counted with classification.
+        double traceMs = 0.0, blendMs = 0.0, borderMs = 0.0, classifyMs = 0.0;
+    };
+    virtual UpdateReport updateProbes(ProbeField&, const RaySet&, std::uint32_t /*frame*/) { return {}; }
+    // A backend that keeps the newest atlases (and, with updatesProbes, the probe records) to
+    // itself brings field.irradiance, field.distance and field.probes up to date here; callers
+    // do so before any CPU read or write of them.
     virtual void syncToCpu(ProbeField&) {}
 };
 

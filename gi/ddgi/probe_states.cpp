@@ -6,21 +6,22 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "shaders/shared/probe_schedule.h"
+
 namespace voxgi {
+
+static_assert(int(ProbeState::Active) == shading::kProbeActive && int(ProbeState::Sleeping) == shading::kProbeSleeping &&
+              int(ProbeState::Off) == shading::kProbeOff);
+static_assert(int(ProbeWork::None) == shading::kProbeWorkNone && int(ProbeWork::FixedOnly) == shading::kProbeWorkFixedOnly &&
+              int(ProbeWork::Full) == shading::kProbeWorkFull);
 
 std::vector<ProbeWork> scheduleProbes(const ProbeField& field, std::uint32_t frame, bool occupancyKnown) {
     const DdgiDesc& desc = field.desc();
     std::vector<ProbeWork> work(std::size_t(field.probeCount()), ProbeWork::Full);
-    if (!desc.classify) return work;
     for (int p = 0; p < field.probeCount(); ++p) {
         const ProbeRecord& rec = field.probes[std::size_t(p)];
-        if (rec.fresh() && rec.state != ProbeState::Off) continue;  // first data as soon as possible
-        if (rec.state == ProbeState::Off) work[std::size_t(p)] = ProbeWork::FixedOnly;
-        if (rec.state == ProbeState::Sleeping)
-            work[std::size_t(p)] = (frame + std::uint32_t(p)) % std::uint32_t(desc.sleepInterval) == 0
-                                       ? ProbeWork::Full
-                                   : occupancyKnown ? ProbeWork::None
-                                                    : ProbeWork::FixedOnly;
+        work[std::size_t(p)] = ProbeWork(shading::probeWork(desc.classify, int(rec.state), rec.blends, int(frame), p,
+                                                            desc.sleepInterval, occupancyKnown));
     }
     return work;
 }

@@ -21,12 +21,7 @@ VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene)
       geometry_(geometry),
       sky_(uploadSkyTexture(scene.sky)) {}
 
-void VolumeShadeGl::prepare(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
-                            std::uint32_t frame) {
-    std::vector<glm::vec4> origins;
-    origins.reserve(jobs.size());
-    for (const BlendJob& j : jobs) origins.emplace_back(trace.origins[std::size_t(j.probe)], 0.0f);
-    upload(origins_, originsBytes_, origins.data(), origins.size() * sizeof(glm::vec4));
+void VolumeShadeGl::prepare(const RaySet& rays, std::uint32_t frame) {
     // Lights may move between frames: a few hundred bytes each time.
     std::vector<shading::PackedLight> lights;
     for (const Light& l : scene_.lights) lights.push_back(shading::packLight(l));
@@ -37,9 +32,8 @@ void VolumeShadeGl::prepare(const RaySet& rays, const ProbeTrace& trace, const s
     upload(quadSamples_, quadBytes_, quad.data(), quad.size() * sizeof(glm::vec2));
 }
 
-void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance,
-                             GLuint distance, GLuint probeData) {
-    if (jobs == 0) return;
+void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, GLuint origins, GLintptr indirectOffset,
+                             GLuint irradiance, GLuint distance, GLuint probeData) {
     program_.use();
     bindProbeField(program_, field, irradiance, distance, probeData);
     geometry_.bind(program_, 3);
@@ -58,10 +52,10 @@ void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, std::size_t
         program_.set("uSkyVolume", kSkyVolumeUnit);
         program_.set("uSkyBricks", kSkyVolumeUnit + 1);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, lights_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, quadSamples_.id());
-    glDispatchCompute(GLuint((blendRays + 63) / 64), GLuint(jobs), 1);
+    glDispatchComputeIndirect(indirectOffset);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

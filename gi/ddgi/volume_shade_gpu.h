@@ -24,32 +24,32 @@ public:
     // Uploads the grids; `scene` (its lights and sky) must outlive this. Needs a GL 4.5 context.
     VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene);
 
-    // Per frame, before dispatch(): the jobs' probe positions (the trace's origins, relocation
-    // included), this frame's quad-light points and the scene's lights.
-    void prepare(const RaySet& rays, const ProbeTrace& trace, const std::vector<BlendJob>& jobs,
-                 std::uint32_t frame);
+    // Per frame, before dispatch(): this frame's quad-light points and the scene's lights.
+    void prepare(const RaySet& rays, std::uint32_t frame);
     // Where the rays find the sky (hit_shading.h's ProbeSky; `volume` is its GPU copy, bound
     // while it lives).
     void setSky(bool atMisses, const SkyVolumeTexture* volume) {
         skyAtMisses_ = atMisses;
         skyVolume_ = volume;
     }
-    // Shades every job's blend rays into the ray buffer bound at 2, with the jobs bound at 0
-    // and the blend directions at 1; reads the previous field from the atlases and probe data.
-    void dispatch(const ProbeField& field, int blendRays, std::size_t jobs, GLuint irradiance, GLuint distance,
-                  GLuint probeData);
-
+    // Shades every job's blend rays into the ray buffer bound at 2, with the jobs bound at 0,
+    // the blend directions at 1 and the jobs' probe positions in `origins`; reads the previous
+    // field from the atlases and probe data. The job count is the y of the indirect dispatch at
+    // `indirectOffset` in the buffer bound to GL_DISPATCH_INDIRECT_BUFFER.
+    void dispatch(const ProbeField& field, int blendRays, GLuint origins, GLintptr indirectOffset, GLuint irradiance,
+                  GLuint distance, GLuint probeData);
+    const NanoGeometryGl& geometry() const { return geometry_; }
 
 private:
     const Scene& scene_;
     gl::Program program_;
     NanoGeometryGl geometry_;
-    gl::Handle origins_, lights_, quadSamples_, sky_;
+    gl::Handle lights_, quadSamples_, sky_;
     static constexpr GLuint kSkyTextureUnit = 6;  // 4 and 5: the probe atlases (bindProbeField)
     static constexpr int kSkyVolumeUnit = 7;      // and 8: its brick index
     bool skyAtMisses_ = true;
     const SkyVolumeTexture* skyVolume_ = nullptr;
-    std::size_t originsBytes_ = 0, lightsBytes_ = 0, quadBytes_ = 0;
+    std::size_t lightsBytes_ = 0, quadBytes_ = 0;
     int lightCount_ = 0;
     bool quadLights_ = false;
 };

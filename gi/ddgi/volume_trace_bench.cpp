@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <utility>
 
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/ddgi_system.h"
@@ -55,29 +56,36 @@ void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 ey
         std::sort(v.begin(), v.end());
         return v.empty() ? 0.0 : v[v.size() / 2];
     };
-    for (int perSpacing : {4, 8, 16}) {
+    // The last row without classification: every probe traces and blends every frame.
+    const std::pair<int, bool> runs[] = {{4, true}, {8, true}, {16, true}, {16, false}};
+    for (const auto& [perSpacing, classify] : runs) {
         desc.traceVoxels = perSpacing;
+        desc.classify = classify;
         DdgiSystem system(tracer, desc);
         DdgiGpu gpu(system.field());
         const auto t0 = std::chrono::steady_clock::now();
         gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), tracer.scene());
         const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        std::vector<double> total, trace, blend, border, shadeGpu, blendGpu;
+        std::vector<double> total, trace, blend, border, classes, gpuTrace, gpuBlend, gpuBorder, gpuClassify, rays;
         for (int f = 0; f < frames + 2; ++f) {
             const DdgiFrameStats s = system.update(eye, &gpu);
-            gpu.uploadProbeData(system.field());
             if (f < 2) continue;
             total.push_back(s.traceMs + s.shadeMs + s.blendMs + s.borderMs + s.classifyMs);
             trace.push_back(s.traceMs);
             blend.push_back(s.blendMs);
             border.push_back(s.borderMs);
-            shadeGpu.push_back(gpu.lastTimes().shadeGpuMs);
-            blendGpu.push_back(gpu.lastTimes().blendGpuMs);
+            classes.push_back(s.classifyMs);
+            rays.push_back(double(s.raysTraced));
+            const DdgiGpu::Times& t = gpu.lastTimes();
+            gpuTrace.push_back(t.shadeGpuMs);
+            gpuBlend.push_back(t.blendGpuMs);
+            gpuBorder.push_back(t.borderGpuMs);
+            gpuClassify.push_back(t.classifyGpuMs);
         }
-        std::printf("  trace_voxels %-2d: volume built in %.0f ms; update %.2f: fixed rays (Embree) %.2f, trace + shade + "
-                    "blend %.2f (GPU %.3f + %.3f), border + readback %.2f\n",
-                    perSpacing, buildMs, median(total), median(trace), median(blend), median(shadeGpu),
-                    median(blendGpu), median(border));
+        std::printf("  trace_voxels %-2d%s: volume built in %.0f ms; update %.2f: trace + shade %.2f, blend %.2f, "
+                    "border %.2f, schedule + classify %.2f (GPU %.3f / %.3f / %.3f / %.3f); %.0f rays\n",
+                    perSpacing, classify ? "" : ", classify off", buildMs, median(total), median(trace), median(blend), median(border), median(classes),
+                    median(gpuTrace), median(gpuBlend), median(gpuBorder), median(gpuClassify), median(rays));
     }
 }
 

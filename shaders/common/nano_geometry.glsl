@@ -115,3 +115,27 @@ bool nanoFirstHit(vec3 origin, vec3 dir, float tMin, float tMax, out float tHit,
     }
     return false;
 }
+
+// Whether any occupied voxel overlaps the world box [lo, hi]: leaf-sized blocks the tree holds
+// no leaf for are skipped whole, so the cost follows the occupied leaves the box meets.
+bool nanoOccupiedInBox(vec3 lo, vec3 hi) {
+    pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
+    pnanovdb_readaccessor_t acc = nanoAccessor(uNanoNormalGrid);
+    ivec3 treeLo = pnanovdb_root_get_bbox_min(buf, acc.root), treeHi = pnanovdb_root_get_bbox_max(buf, acc.root);
+    ivec3 a = max(ivec3(floor(lo / uNanoVoxelSize)), treeLo);
+    ivec3 b = min(ivec3(floor(hi / uNanoVoxelSize)), treeHi);
+    if (any(greaterThan(a, b))) return false;
+    for (int bx = a.x & ~7; bx <= b.x; bx += 8)
+        for (int by = a.y & ~7; by <= b.y; by += 8)
+            for (int bz = a.z & ~7; bz <= b.z; bz += 8) {
+                ivec3 block = ivec3(bx, by, bz);
+                if (pnanovdb_readaccessor_get_dim(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, block) != 1u) continue;
+                ivec3 from = max(block, a), to = min(block + 7, b);
+                for (int x = from.x; x <= to.x; ++x)
+                    for (int y = from.y; y <= to.y; ++y)
+                        for (int z = from.z; z <= to.z; ++z)
+                            if (pnanovdb_readaccessor_is_active(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ivec3(x, y, z)))
+                                return true;
+            }
+    return false;
+}

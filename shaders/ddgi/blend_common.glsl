@@ -1,4 +1,5 @@
-// Shared by the DDGI update kernels; layouts match gi/ddgi/probe_blend.h.
+// Shared by the DDGI update kernels; layouts match gi/ddgi/probe_blend.h. Define
+// DDGI_JOBS_ACCESS (empty) before including to write the jobs.
 #ifndef VOXGI_DDGI_BLEND_COMMON_GLSL
 #define VOXGI_DDGI_BLEND_COMMON_GLSL
 struct BlendJob {
@@ -11,5 +12,8 @@ struct BlendJob {
     float hysteresis;
     float maxDistance;
 };
-layout(std430, binding = 0) readonly buffer Jobs { BlendJob jobs[]; };
+#ifndef DDGI_JOBS_ACCESS
+#define DDGI_JOBS_ACCESS readonly
+#endif
+layout(std430, binding = 0) DDGI_JOBS_ACCESS buffer Jobs { BlendJob jobs[]; };
 #endif

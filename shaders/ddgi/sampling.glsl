@@ -2,23 +2,13 @@
 #ifndef VOXGI_DDGI_SAMPLING_GLSL
 #define VOXGI_DDGI_SAMPLING_GLSL
 #include "common/octahedral.glsl"
-#include "ddgi/limits.h"
+#include "ddgi/probe_layout.glsl"
 
-uniform int uVolumeCount;
-uniform ivec3 uCounts[kDdgiMaxVolumes];
-uniform vec3 uSpacing[kDdgiMaxVolumes];
-uniform vec3 uOrigin[kDdgiMaxVolumes];
-uniform ivec3 uScroll[kDdgiMaxVolumes];
-uniform int uProbeBase[kDdgiMaxVolumes];
-uniform int uTileRow[kDdgiMaxVolumes];
-uniform int uIrradianceTexels;
-uniform int uDistanceTexels;
 uniform float uNormalBias;
 uniform float uViewBias;
 uniform float uGamma;
 uniform sampler2D uIrradianceAtlas;
 uniform sampler2D uDistanceAtlas;
-layout(std430, binding = 5) readonly buffer ProbeData { vec4 probeData[]; };  // xyz offset, w state
 
 // Manual bilinear with texelFetch inside one probe tile: the same arithmetic as
 // Atlas::bilinearInTile on the CPU (fractions from the tile-local coordinate).
@@ -51,8 +41,6 @@ float ddgiVolumeBlendWeight(int v, vec3 p) {
     }
     return w;
 }
-
-ivec3 ddgiPositiveMod(ivec3 a, ivec3 n) { return ((a % n) + n) % n; }
 
 vec3 ddgiSampleVolume(int v, vec3 p, vec3 n, vec3 toViewer) {
     ivec3 counts = uCounts[v];

@@ -1,0 +1,83 @@
+#version 450 core
+// Relocation and classification on the GPU (ddgi.trace = volume), one thread per probe that the
+// schedule gave work: the CPU's relocateProbes and classifyProbes (gi/ddgi/probe_states.cpp)
+// with the fixed rays cast through the NanoVDB geometry volume instead of by Embree, and
+// "geometry near" read from that volume's occupancy (an occupied voxel within one cell on
+// every axis) instead of from the rays' hits. Writes each probe's offset, state and blends
+// where the next frame's schedule and every sampling pass read them, and counts the states.
+#define NANO_GEOMETRY_BINDING 3
+#define DDGI_PROBE_DATA_ACCESS
+#include "common/nano_geometry.glsl"
+#include "ddgi/probe_layout.glsl"
+#include "ddgi/probe_update.glsl"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 13) readonly buffer FixedDirections { vec4 fixedDirections[]; };
+
+uniform int uFixedRays;  // 0: neither classification nor relocation
+uniform bool uClassify;
+uniform bool uRelocate;
+uniform float uMissDistance;
+uniform float uBackfaceThreshold;
+uniform float uRelocationBackfaceThreshold;
+uniform float uMinFrontfaceDistance;  // in cells of the probe's volume
+
+void main() {
+    int p = int(gl_GlobalInvocationID.x);
+    if (p >= uProbeCount) return;
+    vec4 data = probeData[p];
+    int state = int(data.w);
+    int work = probeWorks[p];
+    if (work == kProbeWorkFixedOnly) atomicAdd(updateCounters[kDdgiCountFixedOnly], 1u);
+    if (work != kProbeWorkNone && uFixedRays > 0) {
+        int v = ddgiVolumeOf(p);
+        vec3 spacing = uSpacing[v];
+        vec3 base = ddgiProbeBasePosition(p);
+        vec3 offset = data.xyz;
+        int backfaces = 0;
+        float closestBack = uMissDistance, closestFront = uMissDistance;
+        vec3 closestBackDir = vec3(0.0), closestFrontDir = vec3(0.0);
+        pnanovdb_readaccessor_t normals = nanoAccessor(uNanoNormalGrid);
+        for (int i = 0; i < uFixedRays; ++i) {
+            vec3 dir = fixedDirections[i].xyz;
+            float t;
+            ivec3 voxel;
+            if (!nanoFirstHit(base + offset, dir, 0.0, uMissDistance, t, voxel)) continue;
+            vec3 n;
+            if (nanoBackFace(nanoReadVec3(normals, voxel), dir, n)) {
+                ++backfaces;
+                if (t < closestBack) {
+                    closestBack = t;
+                    closestBackDir = dir;
+                }
+            } else if (t < closestFront) {
+                closestFront = t;
+                closestFrontDir = dir;
+            }
+        }
+        if (work == kProbeWorkFull && uRelocate) {
+            float minFront = uMinFrontfaceDistance * min(spacing.x, min(spacing.y, spacing.z));
+            vec3 moved = offset;
+            if (float(backfaces) / float(uFixedRays) > uRelocationBackfaceThreshold)
+                moved += closestBackDir * (closestBack + 0.5 * minFront);  // inside: through the nearest back face
+            else if (closestFront < minFront)
+                moved -= closestFrontDir * (minFront - closestFront);
+            offset = clamp(moved, -0.45 * spacing, 0.45 * spacing);
+        }
+        int blends = probeBlends[p];
+        if (work == kProbeWorkFull) ++blends;
+        if (uClassify) {
+            vec3 at = base + offset;
+            bool inside = float(backfaces) / float(uFixedRays) > uBackfaceThreshold;
+            bool near = nanoOccupiedInBox(at - spacing, at + spacing);
+            int next = inside ? kProbeOff : near ? kProbeActive : kProbeSleeping;
+            if (state == kProbeOff && next != kProbeOff) blends = 0;
+            state = next;
+        }
+        probeBlends[p] = blends;
+        probeData[p] = vec4(offset, float(state));
+    } else if (work == kProbeWorkFull) {
+        probeBlends[p] += 1;
+    }
+    atomicAdd(updateCounters[kDdgiCountStates + state], 1u);
+}
