@@ -116,15 +116,18 @@ bool nanoFirstHit(vec3 origin, vec3 dir, float tMin, float tMax, out float tHit,
     return false;
 }
 
-// Whether any occupied voxel overlaps the world box [lo, hi]: leaf-sized blocks the tree holds
-// no leaf for are skipped whole, so the cost follows the occupied leaves the box meets.
-bool nanoOccupiedInBox(vec3 lo, vec3 hi) {
+// The occupied voxel nearest to `centre` among those overlapping the world box centre +-
+// halfExtent, and the point of it (as a box) nearest to `centre`; with `anyWillDo` the first
+// one found. False when the box holds none. Leaf-sized blocks the tree holds no leaf for are
+// skipped whole, so the cost follows the occupied leaves the box meets.
+bool nanoNearestOccupied(vec3 centre, vec3 halfExtent, bool anyWillDo, out vec3 nearest) {
     pnanovdb_buf_t buf = pnanovdb_buf_t(0u);
     pnanovdb_readaccessor_t acc = nanoAccessor(uNanoNormalGrid);
-    ivec3 treeLo = pnanovdb_root_get_bbox_min(buf, acc.root), treeHi = pnanovdb_root_get_bbox_max(buf, acc.root);
-    ivec3 a = max(ivec3(floor(lo / uNanoVoxelSize)), treeLo);
-    ivec3 b = min(ivec3(floor(hi / uNanoVoxelSize)), treeHi);
-    if (any(greaterThan(a, b))) return false;
+    const float h = uNanoVoxelSize;
+    ivec3 a = max(ivec3(floor((centre - halfExtent) / h)), pnanovdb_root_get_bbox_min(buf, acc.root));
+    ivec3 b = min(ivec3(floor((centre + halfExtent) / h)), pnanovdb_root_get_bbox_max(buf, acc.root));
+    float best = 1e30;
+    nearest = centre;
     for (int bx = a.x & ~7; bx <= b.x; bx += 8)
         for (int by = a.y & ~7; by <= b.y; by += 8)
             for (int bz = a.z & ~7; bz <= b.z; bz += 8) {
@@ -133,9 +136,17 @@ bool nanoOccupiedInBox(vec3 lo, vec3 hi) {
                 ivec3 from = max(block, a), to = min(block + 7, b);
                 for (int x = from.x; x <= to.x; ++x)
                     for (int y = from.y; y <= to.y; ++y)
-                        for (int z = from.z; z <= to.z; ++z)
-                            if (pnanovdb_readaccessor_is_active(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, ivec3(x, y, z)))
-                                return true;
+                        for (int z = from.z; z <= to.z; ++z) {
+                            ivec3 voxel = ivec3(x, y, z);
+                            if (!pnanovdb_readaccessor_is_active(PNANOVDB_GRID_TYPE_VEC3F, buf, acc, voxel)) continue;
+                            vec3 q = clamp(centre, vec3(voxel) * h, vec3(voxel + 1) * h);
+                            float d = length(q - centre);
+                            if (d < best) {
+                                best = d;
+                                nearest = q;
+                                if (anyWillDo) return true;
+                            }
+                        }
             }
-    return false;
+    return best < 1e30;
 }

@@ -1,10 +1,12 @@
 #version 450 core
 // Relocation and classification on the GPU (ddgi.trace = volume), one thread per probe that the
 // schedule gave work: the CPU's relocateProbes and classifyProbes (gi/ddgi/probe_states.cpp)
-// with the fixed rays cast through the NanoVDB geometry volume instead of by Embree, and
-// "geometry near" read from that volume's occupancy (an occupied voxel within one cell on
-// every axis) instead of from the rays' hits. Writes each probe's offset, state and blends
-// where the next frame's schedule and every sampling pass read them, and counts the states.
+// with the fixed rays cast through the NanoVDB geometry volume instead of by Embree, and the
+// volume's occupancy read where the CPU reads the rays' hits: "geometry near" is an occupied
+// voxel within one cell on every axis, and relocation keeps the probe min_frontface_distance
+// from the nearest occupied voxel (the fixed rays may pass beside a small object). Writes each
+// probe's offset, state and blends where the next frame's schedule and every sampling pass read
+// them, and counts the states.
 #define NANO_GEOMETRY_BINDING 3
 #define DDGI_PROBE_DATA_ACCESS
 #include "common/nano_geometry.glsl"
@@ -58,10 +60,17 @@ void main() {
         if (work == kProbeWorkFull && uRelocate) {
             float minFront = uMinFrontfaceDistance * min(spacing.x, min(spacing.y, spacing.z));
             vec3 moved = offset;
-            if (float(backfaces) / float(uFixedRays) > uRelocationBackfaceThreshold)
+            vec3 surface;
+            if (float(backfaces) / float(uFixedRays) > uRelocationBackfaceThreshold) {
                 moved += closestBackDir * (closestBack + 0.5 * minFront);  // inside: through the nearest back face
-            else if (closestFront < minFront)
+            } else if (nanoNearestOccupied(base + offset, vec3(minFront), false, surface) &&
+                       distance(surface, base + offset) < minFront && distance(surface, base + offset) > 0.0) {
+                // Away from the nearest occupied voxel, which the fixed rays may pass between.
+                vec3 away = base + offset - surface;
+                moved += normalize(away) * (minFront - length(away));
+            } else if (closestFront < minFront) {
                 moved -= closestFrontDir * (minFront - closestFront);
+            }
             offset = clamp(moved, -0.45 * spacing, 0.45 * spacing);
         }
         int blends = probeBlends[p];
@@ -69,7 +78,8 @@ void main() {
         if (uClassify) {
             vec3 at = base + offset;
             bool inside = float(backfaces) / float(uFixedRays) > uBackfaceThreshold;
-            bool near = nanoOccupiedInBox(at - spacing, at + spacing);
+            vec3 unused;
+            bool near = nanoNearestOccupied(at, spacing, true, unused);
             int next = inside ? kProbeOff : near ? kProbeActive : kProbeSleeping;
             if (state == kProbeOff && next != kProbeOff) blends = 0;
             state = next;
