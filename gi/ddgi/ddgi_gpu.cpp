@@ -7,6 +7,7 @@
 
 #include "gl/context.h"
 #include "gl/screen_pass.h"
+#include "gi/sampling/sequences.h"
 #include "shaders/ddgi/limits.h"
 #include "shaders/shared/probe_schedule.h"
 
@@ -134,29 +135,39 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
         times_.atlasesUploaded = true;
     }
     if (jobs.empty()) return;
-    std::vector<glm::vec4> dirs;
-    dirs.reserve(std::size_t(rays.blendRays));
-    for (int i = 0; i < rays.blendRays; ++i) dirs.emplace_back(rays.blendDirection(i), 0.0f);
+    uploadDirections(rays);
     gl::ensureBuffer(jobs_, jobsBytes_, jobs.size() * sizeof(BlendJob));
-    gl::ensureBuffer(directions_, directionsBytes_, dirs.size() * sizeof(glm::vec4));
     gl::ensureBuffer(rays_, raysBytes_, shaded.values.size() * sizeof(glm::vec4));
     glNamedBufferSubData(jobs_.id(), 0, GLsizeiptr(jobs.size() * sizeof(BlendJob)), jobs.data());
-    glNamedBufferSubData(directions_.id(), 0, GLsizeiptr(dirs.size() * sizeof(glm::vec4)), dirs.data());
     glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(shaded.values.size() * sizeof(glm::vec4)), shaded.values.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
     glFinish();  // the transfers end here, so the kernels' timing holds only the kernels
     times_.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    blendKernels(field, rays.blendRays, int(jobs.size()));
+    blendKernels(field, rays, int(jobs.size()));
 }
 
-void DdgiGpu::blendKernels(const ProbeField& field, int blendRays, int jobs) {
+void DdgiGpu::uploadDirections(const RaySet& rays) {
+    // The unrotated directions, once: the kernels rotate them by the frame's rotation (a uniform).
+    if (rays.blendRays == blendDirectionCount_ && rays.fixedRays == fixedDirectionCount_) return;
+    std::vector<glm::vec4> blend, fixed;
+    for (int i = 0; i < rays.blendRays; ++i) blend.emplace_back(sphericalFibonacci(i, rays.blendRays), 0.0f);
+    for (int i = 0; i < rays.fixedRays; ++i) fixed.emplace_back(rays.directions[std::size_t(i)], 0.0f);
+    fixed.resize(std::max<std::size_t>(fixed.size(), 1));
+    directions_ = gl::createBuffer(blend.size() * sizeof(glm::vec4), blend.data());
+    fixedDirections_ = gl::createBuffer(fixed.size() * sizeof(glm::vec4), fixed.data());
+    blendDirectionCount_ = rays.blendRays;
+    fixedDirectionCount_ = rays.fixedRays;
+}
+
+void DdgiGpu::blendKernels(const ProbeField& field, const RaySet& rays, int jobs) {
     const BlendParams bp = BlendParams::from(field.desc());
     auto run = [&](gl::Program& program, GLuint atlas, int texels, int dispatch) {
         program.use();
         program.set("uTexels", texels);
-        program.set("uRays", blendRays);
+        program.set("uRays", rays.blendRays);
+        program.set("uRayRotation", rays.rotation);
         program.set("uGamma", bp.irradianceGamma);
         program.set("uIrradianceThreshold", bp.irradianceThreshold);
         program.set("uBrightnessThreshold", bp.brightnessThreshold);
@@ -218,16 +229,10 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
         uploadProbeData(field);
         times_.atlasesUploaded = true;
     }
-    // Per frame: the rotated blend directions (the fixed ones never change, but are a few
-    // hundred bytes), the dispatches' fixed sizes with their job counts at zero, the counters.
-    std::vector<glm::vec4> blendDirs, fixedDirs;
-    for (int i = 0; i < rays.blendRays; ++i) blendDirs.emplace_back(rays.blendDirection(i), 0.0f);
-    for (int i = 0; i < rays.fixedRays; ++i) fixedDirs.emplace_back(rays.directions[std::size_t(i)], 0.0f);
-    gl::ensureBuffer(directions_, directionsBytes_, blendDirs.size() * sizeof(glm::vec4));
-    glNamedBufferSubData(directions_.id(), 0, GLsizeiptr(blendDirs.size() * sizeof(glm::vec4)), blendDirs.data());
-    gl::ensureBuffer(fixedDirections_, fixedBytes_, std::max<std::size_t>(fixedDirs.size(), 1) * sizeof(glm::vec4));
-    if (!fixedDirs.empty())
-        glNamedBufferSubData(fixedDirections_.id(), 0, GLsizeiptr(fixedDirs.size() * sizeof(glm::vec4)), fixedDirs.data());
+    // Per frame nothing goes up but uniforms: the directions went up once, the lights go up
+    // when they change, and the dispatches' job counts and the counters are cleared on the GPU.
+    // (Quad lights add their sample points, a few kB, every frame.)
+    uploadDirections(rays);
     const GLuint irradianceGroups = GLuint((desc.irradianceTexels + 7) / 8), distanceGroups = GLuint((desc.distanceTexels + 7) / 8);
     const GLuint irradianceBorder = GLuint((desc.irradianceTexels + 2 + 7) / 8),
                  distanceBorder = GLuint((desc.distanceTexels + 2 + 7) / 8);
@@ -235,9 +240,16 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
         GLuint((rays.blendRays + 63) / 64), 0, 1,        irradianceGroups, irradianceGroups, 0,
         distanceGroups,                     distanceGroups, 0, irradianceBorder, irradianceBorder, 0,
         distanceBorder,                     distanceBorder, 0};
-    glNamedBufferSubData(dispatches_.id(), 0, sizeof(dispatches), dispatches);
-    const GLuint zeros[shading::kDdgiCounters] = {};
-    glNamedBufferSubData(counters_.id(), 0, sizeof(zeros), zeros);
+    if (dispatchRays_ != rays.blendRays) {
+        glNamedBufferSubData(dispatches_.id(), 0, sizeof(dispatches), dispatches);
+        dispatchRays_ = rays.blendRays;
+    }
+    const GLuint zero = 0;
+    for (int d = 0; d < shading::kDdgiDispatches; ++d)
+        glClearNamedBufferSubData(dispatches_.id(), GL_R32UI,
+                                  GLintptr((3 * d + (d == shading::kDdgiDispatchShade ? 1 : 2)) * sizeof(GLuint)),
+                                  sizeof(GLuint), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     gl::ensureBuffer(jobs_, jobsBytes_, probes * sizeof(BlendJob));
     gl::ensureBuffer(rays_, raysBytes_, probes * std::size_t(rays.blendRays) * sizeof(glm::vec4));
     gl::ensureBuffer(origins_, originsBytes_, probes * sizeof(glm::vec4));
@@ -274,7 +286,7 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
     // Reads the previous field before the blend below overwrites it.
     glBeginQuery(GL_TIME_ELAPSED, shadeQuery_.id());
-    volume_->dispatch(field, rays.blendRays, origins_.id(), GLintptr(3 * shading::kDdgiDispatchShade * sizeof(GLuint)),
+    volume_->dispatch(field, rays, origins_.id(), GLintptr(3 * shading::kDdgiDispatchShade * sizeof(GLuint)),
                       irradiance_.id(), distance_.id(), probeData_.id());
     glEndQuery(GL_TIME_ELAPSED);
     glFinish();
@@ -282,7 +294,7 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
     times_.shadeGpuMs = gl::timerQueryMs(shadeQuery_.id());
 
     start = Clock::now();
-    blendKernels(field, rays.blendRays, -1);
+    blendKernels(field, rays, -1);
     report.blendMs = msSince(start);
     start = Clock::now();
     borderKernels(field, -1);

@@ -70,20 +70,24 @@ private:
     void readBack(ProbeField& field);
     // Blend and border over `jobs` jobs, or over the job count of the indirect dispatches
     // (jobs < 0, updateProbes).
-    void blendKernels(const ProbeField& field, int blendRays, int jobs);
+    void blendKernels(const ProbeField& field, const RaySet& rays, int jobs);
+    // The unrotated blend and fixed directions, uploaded when their counts change.
+    void uploadDirections(const RaySet& rays);
     void borderKernels(const ProbeField& field, int jobs);
 
     gl::Program blendIrradiance_, blendDistance_, border_, apply_;
     gl::Handle irradiance_, distance_;
     gl::Handle jobs_, directions_, rays_, probeData_;
-    std::size_t jobsBytes_ = 0, directionsBytes_ = 0, raysBytes_ = 0, probeDataBytes_ = 0;
+    std::size_t jobsBytes_ = 0, raysBytes_ = 0, probeDataBytes_ = 0;
+    int blendDirectionCount_ = -1, fixedDirectionCount_ = -1;
     gl::Handle blendQuery_, borderQuery_, shadeQuery_, classifyQuery_;
     std::unique_ptr<VolumeShadeGl> volume_;
     // The GPU update's own state (traceInVolume): programs, probe records beside probeData_,
     // this frame's work per probe, the jobs' origins, indirect dispatches and counters.
     gl::Program schedule_, classify_;
     gl::Handle blends_, works_, origins_, dispatches_, counters_, fixedDirections_;
-    std::size_t blendsBytes_ = 0, worksBytes_ = 0, originsBytes_ = 0, fixedBytes_ = 0;
+    std::size_t blendsBytes_ = 0, worksBytes_ = 0, originsBytes_ = 0;
+    int dispatchRays_ = -1;  // the blend rays the dispatches' fixed sizes were written for
     bool cpuStale_ = false;  // the GPU atlases (and records) are newer than the field's (syncToCpu)
     Times times_;
     // The field (and its atlasVersion) the GPU atlases hold, after an upload or a read-back.

@@ -1,5 +1,7 @@
 #include "gi/ddgi/volume_shade_gpu.h"
 
+#include <cstring>
+
 #include "gi/ddgi/hit_shading.h"
 #include "gi/sky/sky_volume_texture.h"
 #include "gl/scene_gpu.h"
@@ -22,22 +24,27 @@ VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene)
       sky_(uploadSkyTexture(scene.sky)) {}
 
 void VolumeShadeGl::prepare(const RaySet& rays, std::uint32_t frame) {
-    // Lights may move between frames: a few hundred bytes each time.
+    // Lights may move between frames (the viewer drags them): up only when they changed.
     std::vector<shading::PackedLight> lights;
     for (const Light& l : scene_.lights) lights.push_back(shading::packLight(l));
     lightCount_ = int(lights.size());
-    upload(lights_, lightsBytes_, lights.data(), lights.size() * sizeof(shading::PackedLight));
+    const std::size_t bytes = lights.size() * sizeof(shading::PackedLight);
+    if (lights.size() != uploadedLights_.size() || (bytes > 0 && std::memcmp(lights.data(), uploadedLights_.data(), bytes) != 0)) {
+        upload(lights_, lightsBytes_, lights.data(), bytes);
+        uploadedLights_ = std::move(lights);
+    }
     const std::vector<glm::vec2> quad = quadLightSamples(scene_, rays.blendRays, frame);
     quadLights_ = !quad.empty();
     upload(quadSamples_, quadBytes_, quad.data(), quad.size() * sizeof(glm::vec2));
 }
 
-void VolumeShadeGl::dispatch(const ProbeField& field, int blendRays, GLuint origins, GLintptr indirectOffset,
+void VolumeShadeGl::dispatch(const ProbeField& field, const RaySet& rays, GLuint origins, GLintptr indirectOffset,
                              GLuint irradiance, GLuint distance, GLuint probeData) {
     program_.use();
     bindProbeField(program_, field, irradiance, distance, probeData);
     geometry_.bind(program_, 3);
-    program_.set("uRays", blendRays);
+    program_.set("uRays", rays.blendRays);
+    program_.set("uRayRotation", rays.rotation);
     program_.set("uLightCount", lightCount_);
     program_.set("uQuadSampleSets", quadLights_ ? kQuadSampleSets : 0);
     program_.set("uMissDistance", kMissDistance);

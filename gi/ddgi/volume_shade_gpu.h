@@ -10,6 +10,7 @@
 
 #include "gi/ddgi/nano_geometry_gl.h"
 #include "gi/ddgi/probe_blend.h"
+#include "shaders/shared/light_model.h"
 #include "gl/program.h"
 #include "gl/resources.h"
 
@@ -33,11 +34,12 @@ public:
         skyVolume_ = volume;
     }
     // Shades every job's blend rays into the ray buffer bound at 2, with the jobs bound at 0,
-    // the blend directions at 1 and the jobs' probe positions in `origins`; reads the previous
+    // the unrotated blend directions at 1 (turned by rays.rotation) and the jobs' probe
+    // positions in `origins`; reads the previous
     // field from the atlases and probe data. The job count is the y of the indirect dispatch at
     // `indirectOffset` in the buffer bound to GL_DISPATCH_INDIRECT_BUFFER.
-    void dispatch(const ProbeField& field, int blendRays, GLuint origins, GLintptr indirectOffset, GLuint irradiance,
-                  GLuint distance, GLuint probeData);
+    void dispatch(const ProbeField& field, const RaySet& rays, GLuint origins, GLintptr indirectOffset,
+                  GLuint irradiance, GLuint distance, GLuint probeData);
     const NanoGeometryGl& geometry() const { return geometry_; }
 
 private:
@@ -50,6 +52,7 @@ private:
     bool skyAtMisses_ = true;
     const SkyVolumeTexture* skyVolume_ = nullptr;
     std::size_t lightsBytes_ = 0, quadBytes_ = 0;
+    std::vector<shading::PackedLight> uploadedLights_;  // what lights_ holds
     int lightCount_ = 0;
     bool quadLights_ = false;
 };

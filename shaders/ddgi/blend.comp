@@ -9,7 +9,8 @@
 #include "ddgi/blend_common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 1) readonly buffer Directions { vec4 directions[]; };  // blend rays
+layout(std430, binding = 1) readonly buffer Directions { vec4 directions[]; };  // blend rays, unrotated
+uniform mat3 uRayRotation;  // this frame's (gi/ddgi/probe_rays.h, RaySet::rotation)
 layout(std430, binding = 2) readonly buffer Rays { vec4 rayValues[]; };  // rgb radiance, a signed distance
 layout(rgba32f, binding = 0) uniform image2D uAtlas;
 
@@ -58,7 +59,7 @@ void main() {
     for (int batch = 0; batch < uRays; batch += 64) {
         int load = batch + int(gl_LocalInvocationIndex);
         if (load < uRays) {
-            sDirection[gl_LocalInvocationIndex] = directions[load];
+            sDirection[gl_LocalInvocationIndex] = vec4(normalize(uRayRotation * directions[load].xyz), 0.0);
             sValue[gl_LocalInvocationIndex] = rayValues[job.rayBase + load];
         }
         barrier();

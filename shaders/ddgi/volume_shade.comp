@@ -17,7 +17,8 @@
 #include "shared/light_model.h"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 1) readonly buffer Directions { vec4 directions[]; };  // blend rays
+layout(std430, binding = 1) readonly buffer Directions { vec4 directions[]; };  // blend rays, unrotated
+uniform mat3 uRayRotation;  // this frame's (gi/ddgi/probe_rays.h, RaySet::rotation)
 layout(std430, binding = 2) writeonly buffer Rays { vec4 rayValues[]; };  // rgb radiance, a signed distance
 layout(std430, binding = 4) readonly buffer JobOrigins { vec4 jobOrigins[]; };  // per job: probe position
 layout(std430, binding = 6) readonly buffer Lights { PackedLight lights[]; };
@@ -44,7 +45,7 @@ void main() {
     BlendJob job = jobs[gl_WorkGroupID.y];
     int out_ = job.rayBase + ray;
     vec3 origin = jobOrigins[gl_WorkGroupID.y].xyz;
-    vec3 dir = directions[ray].xyz;
+    vec3 dir = normalize(uRayRotation * directions[ray].xyz);
     float t;
     ivec3 voxel;
     if (!nanoFirstHit(origin, dir, 0.0, uMissDistance, t, voxel)) {
