@@ -256,6 +256,25 @@ struct GpuDdgi {
     }
 };
 
+std::map<std::string, std::string> withVolume(std::map<std::string, std::string> keys) {
+    keys["trace"] = "volume";
+    return keys;
+}
+
+// The same settings after `frames` updates on the GPU (trace = volume) and on the CPU (Embree).
+struct GpuAndCpu {
+    GpuDdgi gpu;
+    RayTracer tracer;
+    DdgiSystem cpu;
+    GpuAndCpu(const Scene& scene, const std::map<std::string, std::string>& keys, int frames)
+        : gpu(scene, withVolume(keys)), tracer(scene), cpu(tracer, test::descFrom(keys)) {
+        gpu.run(frames, scene.camera.eye);
+        for (int f = 0; f < frames; ++f) cpu.update(scene.camera.eye);
+    }
+    const ProbeField& gpuField() const { return gpu.system.field(); }
+    const ProbeField& cpuField() const { return cpu.field(); }
+};
+
 }  // namespace
 
 // A 4 m closed box with 1 m cells: the 8 inner probes are 1.5 m from every wall and sleep; with
@@ -293,19 +312,12 @@ TEST_F(DdgiVolumeShade, GpuClassificationPutsFarProbesToSleepWithoutRays) {
 // classifies them from Embree's rays.
 TEST_F(DdgiVolumeShade, GpuClassificationTurnsProbesInsideAWallOff) {
     const Scene scene = test::twoRooms(0.5f);
-    const std::map<std::string, std::string> keys{{"probes", "9 3 3"}, {"rays", "32"}, {"relocate", "false"},
-                                                  {"trace_voxels", "8"}};
-    auto volumeKeys = keys;
-    volumeKeys["trace"] = "volume";
-    GpuDdgi gpu(scene, volumeKeys);
-    gpu.run(2, scene.camera.eye);
-    RayTracer tracer(scene);
-    DdgiSystem cpu(tracer, test::descFrom(keys));
-    for (int f = 0; f < 2; ++f) cpu.update(scene.camera.eye);
+    const GpuAndCpu run(scene, {{"probes", "9 3 3"}, {"rays", "32"}, {"relocate", "false"}, {"trace_voxels", "8"}}, 2);
+    const ProbeField &cpu = run.cpuField(), &gpu = run.gpuField();
     int inWall = 0, same = 0;
-    for (int p = 0; p < cpu.field().probeCount(); ++p) {
-        const ProbeState a = cpu.field().probes[std::size_t(p)].state, b = gpu.system.field().probes[std::size_t(p)].state;
-        const float x = std::abs(cpu.field().probePosition(p).x);
+    for (int p = 0; p < cpu.probeCount(); ++p) {
+        const ProbeState a = cpu.probes[std::size_t(p)].state, b = gpu.probes[std::size_t(p)].state;
+        const float x = std::abs(cpu.probePosition(p).x);
         same += a == b;
         if (x < 0.2f) {
             ++inWall;
@@ -314,8 +326,7 @@ TEST_F(DdgiVolumeShade, GpuClassificationTurnsProbesInsideAWallOff) {
             EXPECT_NE(b, ProbeState::Off) << "probe " << p;
         }
     }
-    std::printf("two rooms: %d probes in the wall; %d of %d states as the CPU's\n", inWall, same,
-                cpu.field().probeCount());
+    std::printf("two rooms: %d probes in the wall; %d of %d states as the CPU's\n", inWall, same, cpu.probeCount());
     EXPECT_GT(inWall, 0);
 }
 
@@ -348,26 +359,19 @@ TEST_F(DdgiVolumeShade, GpuRelocationKeepsProbesAwayFromWhatTheRaysMiss) {
     const float size = 0.02f;
     const glm::vec3 pebble = glm::vec3(0.5f) + 0.25f * glm::normalize(glm::vec3(-0.2677f, -0.1892f, 0.9447f));
     scene.meshes.push_back(makeBox(glm::translate(glm::mat4(1.0f), pebble) * glm::scale(glm::mat4(1.0f), glm::vec3(size)), 0));
-    const std::map<std::string, std::string> keys{{"probes", "4"}, {"rays", "32"}, {"trace_voxels", "16"}};
-    auto volumeKeys = keys;
-    volumeKeys["trace"] = "volume";
-    GpuDdgi gpu(scene, volumeKeys);
-    gpu.run(3, scene.camera.eye);
-    RayTracer tracer(scene);
-    DdgiSystem cpu(tracer, test::descFrom(keys));
-    for (int f = 0; f < 3; ++f) cpu.update(scene.camera.eye);
+    const GpuAndCpu run(scene, {{"probes", "4"}, {"rays", "32"}, {"trace_voxels", "16"}}, 3);
+    const ProbeField &cpu = run.cpuField(), &gpu = run.gpuField();
     int probe = -1;
-    for (int p = 0; p < cpu.field().probeCount(); ++p)
-        if (glm::length(cpu.field().probePosition(p) - cpu.field().probes[std::size_t(p)].offset - glm::vec3(0.5f)) < 1e-4f)
-            probe = p;
+    for (int p = 0; p < cpu.probeCount(); ++p)
+        if (glm::length(cpu.probePosition(p) - cpu.probes[std::size_t(p)].offset - glm::vec3(0.5f)) < 1e-4f) probe = p;
     ASSERT_GE(probe, 0);
     auto gap = [&](const ProbeField& field) {  // from the probe to the pebble's surface
         const glm::vec3 d = glm::max(glm::abs(field.probePosition(probe) - pebble) - glm::vec3(0.5f * size), glm::vec3(0.0f));
         return glm::length(d);
     };
     std::printf("probe %d: %.3f m from the pebble on the GPU, %.3f m with Embree's rays\n", probe,
-                gap(gpu.system.field()), gap(cpu.field()));
-    EXPECT_GT(gap(gpu.system.field()), 0.28f);  // the voxels cover the pebble: 0.3 from them is farther from it
+                gap(gpu), gap(cpu));
+    EXPECT_GT(gap(gpu), 0.28f);  // the voxels cover the pebble: 0.3 from them is farther from it
 }
 
 // The Cornell box at 8 x 8 x 8 probes: the GPU's states against the CPU's (Embree's fixed rays
@@ -375,23 +379,16 @@ TEST_F(DdgiVolumeShade, GpuRelocationKeepsProbesAwayFromWhatTheRaysMiss) {
 // sleeping / off 361 / 141 / 10, GPU 372 / 130 / 10); with every probe "near" 371 would not.
 TEST_F(DdgiVolumeShade, GpuStatesAgreeWithTheEmbreeClassification) {
     const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/cornell-box.json");
-    const std::map<std::string, std::string> keys{{"fit_cells", "8"}, {"rays", "64"}};
-    auto volumeKeys = keys;
-    volumeKeys["trace"] = "volume";
-    GpuDdgi gpu(scene, volumeKeys);
-    gpu.run(4, scene.camera.eye);
-    RayTracer tracer(scene);
-    DdgiSystem cpu(tracer, test::descFrom(keys));
-    for (int f = 0; f < 4; ++f) cpu.update(scene.camera.eye);
+    const GpuAndCpu run(scene, {{"fit_cells", "8"}, {"rays", "64"}}, 4);
+    const ProbeField &cpu = run.cpuField(), &gpu = run.gpuField();
     int same = 0;
-    const int n = cpu.field().probeCount();
+    const int n = cpu.probeCount();
     for (int p = 0; p < n; ++p) {
-        same += cpu.field().probes[std::size_t(p)].state == gpu.system.field().probes[std::size_t(p)].state;
+        same += cpu.probes[std::size_t(p)].state == gpu.probes[std::size_t(p)].state;
         if (std::getenv("VOXGI_DEBUG_TRACE"))
-            std::printf("probe %d: cpu %d gpu %d\n", p, int(cpu.field().probes[std::size_t(p)].state),
-                        int(gpu.system.field().probes[std::size_t(p)].state));
+            std::printf("probe %d: cpu %d gpu %d\n", p, int(cpu.probes[std::size_t(p)].state), int(gpu.probes[std::size_t(p)].state));
     }
-    const ProbeStateCounts a = countStates(cpu.field()), b = countStates(gpu.system.field());
+    const ProbeStateCounts a = countStates(cpu), b = countStates(gpu);
     std::printf("Cornell box: %d of %d probe states agree (cpu active/sleeping/off %d/%d/%d, gpu %d/%d/%d)\n", same,
                 n, a.active, a.sleeping, a.off, b.active, b.sleeping, b.off);
     EXPECT_GE(same, n * 95 / 100);

@@ -33,33 +33,24 @@ void relocateProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& tra
             if (trace.work[std::size_t(p)] != ProbeWork::Full) continue;
             const ProbeVolume& v = field.volumes()[std::size_t(field.volumeOf(p))];
             const float minFront = desc.minFrontfaceDistance * v.minSpacing();
-            int backfaces = 0;
-            float closestBack = INFINITY, closestFront = INFINITY;
-            glm::vec3 closestBackDir(0.0f), closestFrontDir(0.0f);
-            const int traced = trace.blendRaysTraced ? trace.stride : rays.fixedRays;
-            if (traced == 0) continue;
-            for (int i = 0; i < traced; ++i) {
+            shading::ProbeHits hits;
+            hits.traced = trace.blendRaysTraced ? trace.stride : rays.fixedRays;
+            if (hits.traced == 0) continue;
+            hits.backfaces = 0;
+            hits.closestBack = hits.closestFront = INFINITY;
+            hits.closestBackDir = hits.closestFrontDir = glm::vec3(0.0f);
+            for (int i = 0; i < hits.traced; ++i) {
                 float d = trace.at(p, i).distance;
                 const glm::vec3& dir = rays.directions[std::size_t(i)];
                 if (d < 0.0f) {
-                    ++backfaces;
-                    if (-d < closestBack) closestBack = -d, closestBackDir = dir;
-                } else if (d < closestFront) {
-                    closestFront = d, closestFrontDir = dir;
+                    ++hits.backfaces;
+                    if (-d < hits.closestBack) hits.closestBack = -d, hits.closestBackDir = dir;
+                } else if (d < hits.closestFront) {
+                    hits.closestFront = d, hits.closestFrontDir = dir;
                 }
             }
             ProbeRecord& rec = field.probes[std::size_t(p)];
-            glm::vec3 offset = rec.offset;
-            if (float(backfaces) / float(traced) > desc.relocationBackfaceThreshold) {
-                // Inside: step through the nearest backface to the open side.
-                offset += closestBackDir * (closestBack + 0.5f * minFront);
-            } else if (closestFront < minFront) {
-                offset -= closestFrontDir * (minFront - closestFront);
-            } else {
-                continue;
-            }
-            glm::vec3 limit = 0.45f * v.spacing;
-            rec.offset = glm::clamp(offset, -limit, limit);
+            rec.offset = shading::relocatedOffset(rec.offset, hits, desc.relocationBackfaceThreshold, minFront, v.spacing);
         }
     });
 }
@@ -86,7 +77,7 @@ void classifyProbes(ProbeField& field, const RaySet& rays, const ProbeTrace& tra
             if (query.insideSolid && query.insideSolid(position)) inside = true;
             if (query.distanceToGeometry && query.distanceToGeometry(position) <= v.cellDiagonal()) near = true;
             ProbeRecord& rec = field.probes[std::size_t(p)];
-            ProbeState next = inside ? ProbeState::Off : near ? ProbeState::Active : ProbeState::Sleeping;
+            const ProbeState next = ProbeState(shading::classifiedState(inside, near));
             if (rec.state == ProbeState::Off && next != ProbeState::Off) rec.blends = 0;
             rec.state = next;
         }

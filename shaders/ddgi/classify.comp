@@ -36,9 +36,13 @@ void main() {
         vec3 spacing = uSpacing[v];
         vec3 base = ddgiProbeBasePosition(p);
         vec3 offset = data.xyz;
-        int backfaces = 0;
-        float closestBack = uMissDistance, closestFront = uMissDistance;
-        vec3 closestBackDir = vec3(0.0), closestFrontDir = vec3(0.0);
+        ProbeHits hits;
+        hits.traced = uFixedRays;
+        hits.backfaces = 0;
+        hits.closestBack = uMissDistance;
+        hits.closestFront = uMissDistance;
+        hits.closestBackDir = vec3(0.0);
+        hits.closestFrontDir = vec3(0.0);
         pnanovdb_readaccessor_t normals = nanoAccessor(uNanoNormalGrid);
         for (int i = 0; i < uFixedRays; ++i) {
             vec3 dir = fixedDirections[i].xyz;
@@ -47,40 +51,37 @@ void main() {
             if (!nanoFirstHit(base + offset, dir, 0.0, uMissDistance, t, voxel)) continue;
             vec3 n;
             if (nanoBackFace(nanoReadVec3(normals, voxel), dir, n)) {
-                ++backfaces;
-                if (t < closestBack) {
-                    closestBack = t;
-                    closestBackDir = dir;
+                ++hits.backfaces;
+                if (t < hits.closestBack) {
+                    hits.closestBack = t;
+                    hits.closestBackDir = dir;
                 }
-            } else if (t < closestFront) {
-                closestFront = t;
-                closestFrontDir = dir;
+            } else if (t < hits.closestFront) {
+                hits.closestFront = t;
+                hits.closestFrontDir = dir;
             }
         }
         if (work == kProbeWorkFull && uRelocate) {
             float minFront = uMinFrontfaceDistance * min(spacing.x, min(spacing.y, spacing.z));
-            vec3 moved = offset;
+            // The nearest occupied voxel counts as a front face, which the fixed rays may pass beside.
             vec3 surface;
-            if (float(backfaces) / float(uFixedRays) > uRelocationBackfaceThreshold) {
-                moved += closestBackDir * (closestBack + 0.5 * minFront);  // inside: through the nearest back face
-            } else if (nanoNearestOccupied(base + offset, vec3(minFront), false, surface) &&
-                       distance(surface, base + offset) < minFront && distance(surface, base + offset) > 0.0) {
-                // Away from the nearest occupied voxel, which the fixed rays may pass between.
-                vec3 away = base + offset - surface;
-                moved += normalize(away) * (minFront - length(away));
-            } else if (closestFront < minFront) {
-                moved -= closestFrontDir * (minFront - closestFront);
+            if (nanoNearestOccupied(base + offset, vec3(minFront), false, surface)) {
+                float d = distance(surface, base + offset);
+                if (d > 0.0 && d < hits.closestFront) {
+                    hits.closestFront = d;
+                    hits.closestFrontDir = (surface - base - offset) / d;
+                }
             }
-            offset = clamp(moved, -0.45 * spacing, 0.45 * spacing);
+            offset = relocatedOffset(offset, hits, uRelocationBackfaceThreshold, minFront, spacing);
         }
         int blends = probeBlends[p];
         if (work == kProbeWorkFull) ++blends;
         if (uClassify) {
             vec3 at = base + offset;
-            bool inside = float(backfaces) / float(uFixedRays) > uBackfaceThreshold;
+            bool inside = float(hits.backfaces) / float(uFixedRays) > uBackfaceThreshold;
             vec3 unused;
             bool near = nanoNearestOccupied(at, spacing, true, unused);
-            int next = inside ? kProbeOff : near ? kProbeActive : kProbeSleeping;
+            int next = classifiedState(inside, near);
             if (state == kProbeOff && next != kProbeOff) blends = 0;
             state = next;
         }

@@ -46,6 +46,37 @@ inline float probeHysteresis(float hysteresis, int blends) {
     return min(hysteresis, n / (n + 1.0f));
 }
 
+// What a probe's classification rays found: how many were traced, how many hit a back face,
+// and the nearest back and front hits (distance, unit direction; a distance of at least the
+// miss distance when there was none).
+struct ProbeHits {
+    int traced;
+    int backfaces;
+    float closestBack;
+    vec3 closestBackDir;
+    float closestFront;
+    vec3 closestFrontDir;
+};
+
+// RTXGI's relocation: a probe with more than `backfaceThreshold` of its rays on back faces is
+// inside and steps through the nearest back face, half `minFront` beyond it; one whose nearest
+// front face is closer than `minFront` steps away from it. The offset stays within 45 % of a
+// cell on every axis.
+inline vec3 relocatedOffset(vec3 offset, ProbeHits hits, float backfaceThreshold, float minFront, vec3 spacing) {
+    vec3 moved = offset;
+    if (float(hits.backfaces) / float(hits.traced) > backfaceThreshold) {
+        moved += hits.closestBackDir * (hits.closestBack + 0.5f * minFront);
+    } else if (hits.closestFront < minFront) {
+        moved -= hits.closestFrontDir * (minFront - hits.closestFront);
+    } else {
+        return offset;
+    }
+    return clamp(moved, -0.45f * spacing, 0.45f * spacing);
+}
+
+// Classification: off inside geometry, active with geometry near, else sleeping.
+inline int classifiedState(bool inside, bool near) { return inside ? kProbeOff : near ? kProbeActive : kProbeSleeping; }
+
 // The GPU update's indirect dispatches (three uints each: groups in x, y, z), in this order; the
 // schedule adds each blending probe to the job axis (y for the shading, z for the others).
 constexpr int kDdgiDispatchShade = 0;
