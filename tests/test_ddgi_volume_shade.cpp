@@ -9,9 +9,11 @@
 
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/ddgi_system.h"
+#include "gi/ddgi/hit_shading.h"
 #include "gi/ddgi/occupancy_query.h"
 #include "gi/ddgi/probe_sampling.h"
 #include "gi/ddgi/probe_states.h"
+#include "gi/sampling/sequences.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
@@ -393,6 +395,26 @@ TEST_F(DdgiVolumeShade, GpuStatesAgreeWithTheEmbreeClassification) {
                 n, a.active, a.sleeping, a.off, b.active, b.sleeping, b.off);
     EXPECT_GE(same, n * 95 / 100);
     EXPECT_EQ(a.off, b.off);
+}
+
+// The GPU draws the quad-light points from each row's first point and the R2 step in float
+// (volume_shade.comp): the same points as the CPU's table, to float precision, at a late frame.
+TEST(DdgiQuadSamples, RowStartsGiveTheCpusTable) {
+    const Scene scene = loadSceneFile(std::string(VOXGI_SOURCE_DIR) + "/scenes/cornell-box.json");
+    const int rays = 256;
+    const std::uint32_t frame = 5000;
+    const std::vector<glm::vec2> table = quadLightSamples(scene, rays, frame);
+    ASSERT_EQ(table.size(), std::size_t(kQuadSampleSets * rays));
+    const glm::vec2 step(r2Step());
+    float worst = 0.0f;
+    for (int k = 0; k < kQuadSampleSets; ++k) {
+        const glm::vec2 start = quadSampleStart(k, rays, frame);
+        for (int i = 0; i < rays; ++i) {
+            const glm::vec2 d = glm::abs(glm::fract(start + float(i) * step) - table[std::size_t(k * rays + i)]);
+            worst = std::max(worst, std::max(std::min(d.x, 1.0f - d.x), std::min(d.y, 1.0f - d.y)));
+        }
+    }
+    EXPECT_LT(worst, 1e-4f);
 }
 
 // The volume trace runs in GL compute with shadow rays: the CPU back end and occlusion probes

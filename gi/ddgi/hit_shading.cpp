@@ -212,6 +212,11 @@ std::int64_t evaluateGroups(const ShadeContext& c, const HitCache& cache, bool s
 
 }  // namespace
 
+namespace {
+// Each residue's R2 sequence starts from its own offset, so neighbouring probes see other points.
+glm::vec2 quadSampleOffset(int residue) { return glm::vec2(0.5f) + 0.137f * float(residue); }
+}  // namespace
+
 std::vector<glm::vec2> quadLightSamples(const Scene& scene, int blendRays, std::uint32_t frame) {
     bool quadLights = false;
     for (const Light& l : scene.lights) quadLights |= l.type == LightType::Quad;
@@ -220,8 +225,12 @@ std::vector<glm::vec2> quadLightSamples(const Scene& scene, int blendRays, std::
     samples.reserve(std::size_t(kQuadSampleSets) * std::size_t(blendRays));
     for (int residue = 0; residue < kQuadSampleSets; ++residue)
         for (int i = 0; i < blendRays; ++i)
-            samples.push_back(r2Sequence(int(frame) * blendRays + i, glm::vec2(0.5f) + 0.137f * float(residue)));
+            samples.push_back(r2Sequence(int(frame) * blendRays + i, quadSampleOffset(residue)));
     return samples;
+}
+
+glm::vec2 quadSampleStart(int residue, int blendRays, std::uint32_t frame) {
+    return r2Sequence(int(frame) * blendRays, quadSampleOffset(residue));
 }
 
 bool hitCacheUsed(const DdgiDesc& desc, const Scene& scene) {

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "gi/ddgi/probe_rays.h"
+#include "shaders/ddgi/limits.h"
 
 namespace voxgi {
 
@@ -65,8 +66,11 @@ class ProbeSampler;
 // The points on quad lights that blend ray `ray` of `probe` uses in `frame`: entry
 // (probe % kQuadSampleSets) * blendRays + ray, R2 points offset per residue, so neighbouring
 // probes see different points and one table serves every probe (empty without quad lights).
-inline constexpr int kQuadSampleSets = 7;
+inline constexpr int kQuadSampleSets = kDdgiQuadSampleSets;
 std::vector<glm::vec2> quadLightSamples(const Scene& scene, int blendRays, std::uint32_t frame);
+// The first point of row `residue` of that table; its ray i is fract(start + i * r2Step()),
+// which the GPU evaluates from these seven points instead of uploading the table.
+glm::vec2 quadSampleStart(int residue, int blendRays, std::uint32_t frame);
 
 // Whether shading with `desc` reads a hit cache (its mode is on and there is something to
 // share: the probe gather, or light visibility in the `all` mode).

@@ -1,8 +1,10 @@
 #include "gi/ddgi/volume_shade_gpu.h"
 
 #include <cstring>
+#include <string>
 
 #include "gi/ddgi/hit_shading.h"
+#include "gi/sampling/sequences.h"
 #include "gi/sky/sky_volume_texture.h"
 #include "gl/scene_gpu.h"
 #include "scenes/scene.h"
@@ -33,9 +35,11 @@ void VolumeShadeGl::prepare(const RaySet& rays, std::uint32_t frame) {
         upload(lights_, lightsBytes_, lights.data(), bytes);
         uploadedLights_ = std::move(lights);
     }
-    const std::vector<glm::vec2> quad = quadLightSamples(scene_, rays.blendRays, frame);
-    quadLights_ = !quad.empty();
-    upload(quadSamples_, quadBytes_, quad.data(), quad.size() * sizeof(glm::vec2));
+    quadLights_ = false;
+    for (const Light& l : scene_.lights) quadLights_ |= l.type == LightType::Quad;
+    // The quad-light points of quadLightSamples, from each row's first point (uniforms).
+    for (int residue = 0; residue < kQuadSampleSets; ++residue)
+        quadStarts_[std::size_t(residue)] = quadSampleStart(residue, rays.blendRays, frame);
 }
 
 void VolumeShadeGl::dispatch(const ProbeField& field, const RaySet& rays, GLuint origins, GLintptr indirectOffset,
@@ -47,6 +51,9 @@ void VolumeShadeGl::dispatch(const ProbeField& field, const RaySet& rays, GLuint
     program_.set("uRayRotation", rays.rotation);
     program_.set("uLightCount", lightCount_);
     program_.set("uQuadSampleSets", quadLights_ ? kQuadSampleSets : 0);
+    for (int residue = 0; residue < kQuadSampleSets; ++residue)
+        program_.set(("uQuadStart[" + std::to_string(residue) + "]").c_str(), quadStarts_[std::size_t(residue)]);
+    program_.set("uR2Step", glm::vec2(r2Step()));
     program_.set("uMissDistance", kMissDistance);
     program_.set("uEnergy", field.desc().energyPreservation);
     glBindTextureUnit(kSkyTextureUnit, sky_.id());
@@ -61,7 +68,6 @@ void VolumeShadeGl::dispatch(const ProbeField& field, const RaySet& rays, GLuint
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, lights_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, quadSamples_.id());
     glDispatchComputeIndirect(indirectOffset);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

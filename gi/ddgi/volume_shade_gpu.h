@@ -4,6 +4,7 @@
 // shading (gi/ddgi/probe_rays.h, hit_shading.h) are its reference.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -25,7 +26,8 @@ public:
     // Uploads the grids; `scene` (its lights and sky) must outlive this. Needs a GL 4.5 context.
     VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene);
 
-    // Per frame, before dispatch(): this frame's quad-light points and the scene's lights.
+    // Per frame, before dispatch(): this frame's quad-light points (as uniforms) and the
+    // scene's lights (uploaded when they change).
     void prepare(const RaySet& rays, std::uint32_t frame);
     // Where the rays find the sky (hit_shading.h's ProbeSky; `volume` is its GPU copy, bound
     // while it lives).
@@ -46,12 +48,13 @@ private:
     const Scene& scene_;
     gl::Program program_;
     NanoGeometryGl geometry_;
-    gl::Handle lights_, quadSamples_, sky_;
+    gl::Handle lights_, sky_;
     static constexpr GLuint kSkyTextureUnit = 6;  // 4 and 5: the probe atlases (bindProbeField)
     static constexpr int kSkyVolumeUnit = 7;      // and 8: its brick index
     bool skyAtMisses_ = true;
     const SkyVolumeTexture* skyVolume_ = nullptr;
-    std::size_t lightsBytes_ = 0, quadBytes_ = 0;
+    std::size_t lightsBytes_ = 0;
+    std::array<glm::vec2, kQuadSampleSets> quadStarts_{};  // quadSampleStart, this frame
     std::vector<shading::PackedLight> uploadedLights_;  // what lights_ holds
     int lightCount_ = 0;
     bool quadLights_ = false;

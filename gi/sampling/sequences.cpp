@@ -6,9 +6,10 @@
 
 namespace voxgi {
 
+glm::dvec2 r2Step() { return {0.75487766624669276005, 0.56984029099805326591}; }
+
 glm::vec2 r2Sequence(int index, glm::vec2 offset) {
-    const glm::dvec2 a(0.75487766624669276005, 0.56984029099805326591);
-    glm::dvec2 v = glm::dvec2(offset) + double(index) * a;
+    glm::dvec2 v = glm::dvec2(offset) + double(index) * r2Step();
     return glm::vec2(v - glm::floor(v));
 }
 

@@ -9,6 +9,8 @@ namespace voxgi {
 // Roberts' R2 sequence: fract(offset + i * (1/g, 1/g^2)), g the plastic number. i = 0 gives
 // `offset`, so the default first sample is the centre of the unit square.
 glm::vec2 r2Sequence(int index, glm::vec2 offset = glm::vec2(0.5f));
+// Its step (1/g, 1/g^2): r2Sequence(n + i, o) == fract(r2Sequence(n, o) + i * r2Step()).
+glm::dvec2 r2Step();
 
 // Radical inverse in base 2 (van der Corput), for Hammersley point sets.
 float radicalInverse2(unsigned index);

@@ -8,6 +8,8 @@ namespace voxgi {
 
 // Probe volumes (cascades) the sampling shader takes as uniform arrays.
 const int kDdgiMaxVolumes = 8;
+// Rows of quad-light sample points the probe rays use (gi/ddgi/hit_shading.h, quadLightSamples).
+const int kDdgiQuadSampleSets = 7;
 
 #ifdef __cplusplus
 }  // namespace voxgi

@@ -22,11 +22,13 @@ uniform mat3 uRayRotation;  // this frame's (gi/ddgi/probe_rays.h, RaySet::rotat
 layout(std430, binding = 2) writeonly buffer Rays { vec4 rayValues[]; };  // rgb radiance, a signed distance
 layout(std430, binding = 4) readonly buffer JobOrigins { vec4 jobOrigins[]; };  // per job: probe position
 layout(std430, binding = 6) readonly buffer Lights { PackedLight lights[]; };
-layout(std430, binding = 7) readonly buffer QuadSamples { vec2 quadSamples[]; };  // gi/ddgi/hit_shading.h
 
 uniform int uRays;
 uniform int uLightCount;
 uniform int uQuadSampleSets;  // kQuadSampleSets, or 0 without quad lights (the sample is then the centre)
+// gi/ddgi/hit_shading.h's quadLightSamples: row k's ray i is fract(uQuadStart[k] + i * uR2Step).
+uniform vec2 uQuadStart[kDdgiQuadSampleSets];
+uniform vec2 uR2Step;
 uniform float uMissDistance;
 uniform float uEnergy;
 uniform bool uSkyAtMisses;   // gi/ddgi/hit_shading.h, ProbeSky
@@ -65,7 +67,7 @@ void main() {
         return;
     }
     vec3 p = origin + t * dir;
-    vec2 u = uQuadSampleSets > 0 ? quadSamples[(job.probe % uQuadSampleSets) * uRays + ray] : vec2(0.5);
+    vec2 u = uQuadSampleSets > 0 ? fract(uQuadStart[job.probe % uQuadSampleSets] + float(ray) * uR2Step) : vec2(0.5);
     vec3 e = vec3(0.0);
     float h = uNanoVoxelSize;
     vec3 shadowOrigin = p + n * (kShadowOffsetVoxels * h);
