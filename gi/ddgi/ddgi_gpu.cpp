@@ -230,8 +230,8 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
         times_.atlasesUploaded = true;
     }
     // Per frame nothing goes up but uniforms: the directions went up once, the lights go up
-    // when they change, and the dispatches' job counts and the counters are cleared on the GPU.
-    // (Quad lights add their sample points, a few kB, every frame.)
+    // when they change (VolumeShadeGl::prepare), and the dispatches' job counts and the
+    // counters are cleared on the GPU.
     uploadDirections(rays);
     const GLuint irradianceGroups = GLuint((desc.irradianceTexels + 7) / 8), distanceGroups = GLuint((desc.distanceTexels + 7) / 8);
     const GLuint irradianceBorder = GLuint((desc.irradianceTexels + 2 + 7) / 8),

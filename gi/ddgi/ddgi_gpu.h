@@ -2,8 +2,9 @@
 // border.comp) as a BlendBackend, and the fullscreen apply pass. With CPU ray shading the CPU
 // ProbeField stays the master copy: atlases come back after the border pass, because the next
 // frame's ray shading reads them on the CPU, and go up before blending only when the CPU
-// changed them since. Tracing in the volume (traceInVolume), they stay on the GPU until a CPU
-// reader asks (syncToCpu).
+// changed them since. Tracing in the volume (traceInVolume), the whole update runs here
+// (schedule.comp, volume_shade.comp, blend, border, classify.comp over indirect dispatches) and
+// the atlases and probe records stay on the GPU until a CPU reader asks (syncToCpu).
 #pragma once
 
 #include <memory>
