@@ -34,6 +34,10 @@ void downloadAtlas(GLuint texture, Atlas& atlas, std::vector<glm::vec4>& rows) {
 }
 
 std::string indexed(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
+
+// Workgroups (8x8) per tile side of blend.comp (the interior texels) and border.comp (the tile).
+GLuint blendGroups(int texels) { return GLuint((texels + 7) / 8); }
+GLuint borderGroups(int texels) { return GLuint((texels + 2 + 7) / 8); }
 }  // namespace
 
 DdgiGpu::DdgiGpu(const ProbeField& field) {
@@ -173,7 +177,7 @@ void DdgiGpu::blendKernels(const ProbeField& field, const RaySet& rays, int jobs
         program.set("uBrightnessThreshold", bp.brightnessThreshold);
         program.set("uBackfaceScale", kBackfaceDistanceScale);
         glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-        const GLuint groups = GLuint((texels + 7) / 8);
+        const GLuint groups = blendGroups(texels);
         if (jobs >= 0) glDispatchCompute(groups, groups, GLuint(jobs));
         else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
     };
@@ -202,7 +206,7 @@ void DdgiGpu::borderKernels(const ProbeField& field, int jobs) {
         border_.set("uTexels", texels);
         border_.set("uDistance", isDistance);
         glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-        const GLuint groups = GLuint((texels + 2 + 7) / 8);
+        const GLuint groups = borderGroups(texels);
         if (jobs >= 0) glDispatchCompute(groups, groups, GLuint(jobs));
         else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
     };
@@ -233,14 +237,11 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
     // when they change (VolumeShadeGl::prepare), and the dispatches' job counts and the
     // counters are cleared on the GPU.
     uploadDirections(rays);
-    const GLuint irradianceGroups = GLuint((desc.irradianceTexels + 7) / 8), distanceGroups = GLuint((desc.distanceTexels + 7) / 8);
-    const GLuint irradianceBorder = GLuint((desc.irradianceTexels + 2 + 7) / 8),
-                 distanceBorder = GLuint((desc.distanceTexels + 2 + 7) / 8);
-    const GLuint dispatches[3 * shading::kDdgiDispatches] = {
-        GLuint((rays.blendRays + 63) / 64), 0, 1,        irradianceGroups, irradianceGroups, 0,
-        distanceGroups,                     distanceGroups, 0, irradianceBorder, irradianceBorder, 0,
-        distanceBorder,                     distanceBorder, 0};
-    if (dispatchRays_ != rays.blendRays) {
+    if (dispatchRays_ != rays.blendRays) {  // the dispatches' fixed sizes; their job counts are cleared below
+        const GLuint bi = blendGroups(desc.irradianceTexels), bd = blendGroups(desc.distanceTexels);
+        const GLuint ri = borderGroups(desc.irradianceTexels), rd = borderGroups(desc.distanceTexels);
+        const GLuint dispatches[3 * shading::kDdgiDispatches] = {
+            GLuint((rays.blendRays + 63) / 64), 0, 1, bi, bi, 0, bd, bd, 0, ri, ri, 0, rd, rd, 0};
         glNamedBufferSubData(dispatches_.id(), 0, sizeof(dispatches), dispatches);
         dispatchRays_ = rays.blendRays;
     }

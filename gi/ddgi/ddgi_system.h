@@ -3,7 +3,6 @@
 // with the CPU backend, so tests and benchmarks can drive it directly.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <functional>

@@ -218,15 +218,19 @@ glm::vec2 quadSampleOffset(int residue) { return glm::vec2(0.5f) + 0.137f * floa
 }  // namespace
 
 std::vector<glm::vec2> quadLightSamples(const Scene& scene, int blendRays, std::uint32_t frame) {
-    bool quadLights = false;
-    for (const Light& l : scene.lights) quadLights |= l.type == LightType::Quad;
     std::vector<glm::vec2> samples;
-    if (!quadLights) return samples;
+    if (!hasQuadLights(scene)) return samples;
     samples.reserve(std::size_t(kQuadSampleSets) * std::size_t(blendRays));
     for (int residue = 0; residue < kQuadSampleSets; ++residue)
         for (int i = 0; i < blendRays; ++i)
             samples.push_back(r2Sequence(int(frame) * blendRays + i, quadSampleOffset(residue)));
     return samples;
+}
+
+bool hasQuadLights(const Scene& scene) {
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Quad) return true;
+    return false;
 }
 
 glm::vec2 quadSampleStart(int residue, int blendRays, std::uint32_t frame) {

@@ -68,6 +68,7 @@ class ProbeSampler;
 // probes see different points and one table serves every probe (empty without quad lights).
 inline constexpr int kQuadSampleSets = kDdgiQuadSampleSets;
 std::vector<glm::vec2> quadLightSamples(const Scene& scene, int blendRays, std::uint32_t frame);
+bool hasQuadLights(const Scene& scene);
 // The first point of row `residue` of that table; its ray i is fract(start + i * r2Step()),
 // which the GPU evaluates from these seven points instead of uploading the table.
 glm::vec2 quadSampleStart(int residue, int blendRays, std::uint32_t frame);

@@ -35,8 +35,7 @@ void VolumeShadeGl::prepare(const RaySet& rays, std::uint32_t frame) {
         upload(lights_, lightsBytes_, lights.data(), bytes);
         uploadedLights_ = std::move(lights);
     }
-    quadLights_ = false;
-    for (const Light& l : scene_.lights) quadLights_ |= l.type == LightType::Quad;
+    quadLights_ = hasQuadLights(scene_);
     // The quad-light points of quadLightSamples, from each row's first point (uniforms).
     for (int residue = 0; residue < kQuadSampleSets; ++residue)
         quadStarts_[std::size_t(residue)] = quadSampleStart(residue, rays.blendRays, frame);
