@@ -38,6 +38,21 @@ std::string indexed(const char* name, int i) { return std::string(name) + "[" + 
 // Workgroups (8x8) per tile side of blend.comp (the interior texels) and border.comp (the tile).
 GLuint blendGroups(int texels) { return GLuint((texels + 7) / 8); }
 GLuint borderGroups(int texels) { return GLuint((texels + 2 + 7) / 8); }
+
+// One pass over the tiles of `jobs` jobs, or of the job count in indirect dispatch `dispatch`
+// (jobs < 0: the GPU's own schedule).
+void dispatchTiles(GLuint groups, int jobs, int dispatch) {
+    if (jobs >= 0) glDispatchCompute(groups, groups, GLuint(jobs));
+    else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
+}
+
+// Ends the timed passes that wrote the atlases: their barrier, then their GPU time.
+double endAtlasPasses(GLuint query) {
+    glEndQuery(GL_TIME_ELAPSED);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glFinish();
+    return gl::timerQueryMs(query);
+}
 }  // namespace
 
 DdgiGpu::DdgiGpu(const ProbeField& field) {
@@ -177,17 +192,12 @@ void DdgiGpu::blendKernels(const ProbeField& field, const RaySet& rays, int jobs
         program.set("uBrightnessThreshold", bp.brightnessThreshold);
         program.set("uBackfaceScale", kBackfaceDistanceScale);
         glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-        const GLuint groups = blendGroups(texels);
-        if (jobs >= 0) glDispatchCompute(groups, groups, GLuint(jobs));
-        else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
+        dispatchTiles(blendGroups(texels), jobs, dispatch);
     };
     glBeginQuery(GL_TIME_ELAPSED, blendQuery_.id());
     run(blendIrradiance_, irradiance_.id(), bp.irradianceTexels, shading::kDdgiDispatchBlendIrradiance);
     run(blendDistance_, distance_.id(), bp.distanceTexels, shading::kDdgiDispatchBlendDistance);
-    glEndQuery(GL_TIME_ELAPSED);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    glFinish();
-    times_.blendGpuMs = gl::timerQueryMs(blendQuery_.id());
+    times_.blendGpuMs = endAtlasPasses(blendQuery_.id());
 }
 
 void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
@@ -206,17 +216,12 @@ void DdgiGpu::borderKernels(const ProbeField& field, int jobs) {
         border_.set("uTexels", texels);
         border_.set("uDistance", isDistance);
         glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-        const GLuint groups = borderGroups(texels);
-        if (jobs >= 0) glDispatchCompute(groups, groups, GLuint(jobs));
-        else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
+        dispatchTiles(borderGroups(texels), jobs, dispatch);
     };
     glBeginQuery(GL_TIME_ELAPSED, borderQuery_.id());
     run(irradiance_.id(), field.desc().irradianceTexels, 0, shading::kDdgiDispatchBorderIrradiance);
     run(distance_.id(), field.desc().distanceTexels, 1, shading::kDdgiDispatchBorderDistance);
-    glEndQuery(GL_TIME_ELAPSED);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    glFinish();
-    times_.borderGpuMs = gl::timerQueryMs(borderQuery_.id());
+    times_.borderGpuMs = endAtlasPasses(borderQuery_.id());
 }
 
 BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet& rays, std::uint32_t frame) {
