@@ -12,7 +12,7 @@
 # unpacks both from .gpu/ (the scenes beside the checkout, where scenes/*.json look for them).
 # Without .gpu/ it runs build/tools/voxgi with the scenes it finds. --quick: small sizes and few
 # frames, to check the script itself on llvmpipe. The goals each log answers:
-#   ddgi.txt    issue 18: a 16x8x12 probe update <= 1 ms, >= 1 G probe-rays/s (trace = volume)
+#   ddgi.txt    issue 18: a 16x8x12 probe update <= 1 ms, >= 1 G probe-rays/s (trace = volume and bvh)
 #   clpv.txt    issue 17: Sponza's CLPV update at 3x32^3 <= 2 ms, 3x64^3 <= 4 ms; Sibenik's
 #               injection and blockers < 2 ms
 #   isr.txt     issue 22: ISR at 1080p <= 1 ms, without and with the guard band

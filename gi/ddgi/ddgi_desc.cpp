@@ -1,5 +1,7 @@
 #include "gi/ddgi/ddgi_desc.h"
 
+#include <string>
+
 #include "scenes/errors.h"
 #include "shaders/ddgi/limits.h"
 
@@ -22,11 +24,13 @@ void requireAffordable(const DdgiDesc& d) {
 
 // The volume trace runs in GL compute and shades with shadow rays through the volume.
 void requireTraceable(const DdgiDesc& d) {
-    if (d.trace != DdgiTrace::Volume) return;
-    if (!d.gpuBlend()) throw InputError("gi.ddgi.trace: volume traces on the GPU and needs ddgi.backend=gl");
+    if (d.trace == DdgiTrace::Triangles) return;
+    const char* name = d.trace == DdgiTrace::Volume ? "volume" : "bvh";
+    if (!d.gpuBlend())
+        throw InputError(std::string("gi.ddgi.trace: ") + name + " traces on the GPU and needs ddgi.backend=gl");
     if (d.directLight != DdgiDirectLight::ShadowRays)
-        throw InputError("gi.ddgi.trace: volume shades with shadow rays through the volume; ddgi.direct=occlusion needs "
-                         "trace=triangles");
+        throw InputError(std::string("gi.ddgi.trace: ") + name +
+                         " shades with shadow rays on the GPU; ddgi.direct=occlusion needs trace=triangles");
 }
 
 SettingsTable<DdgiDesc> makeTable() {
@@ -74,9 +78,11 @@ SettingsTable<DdgiDesc> makeTable() {
               "frames between evaluations of a hit-cache cell seen last frame (1: every frame)");
     t.integer("seed", &D::seed, 0, 2147483647, "ray rotations; the same seed and frames give bitwise the same field");
     t.choice("backend", &D::backend, backendChoices(), "blend and border on the GPU (gl) or with the CPU reference (cpu)").main();
-    t.choice("trace", &D::trace, {{"triangles", DdgiTrace::Triangles}, {"volume", DdgiTrace::Volume}},
-             "blend rays against the triangles (Embree, CPU) or the voxelized scene as NanoVDB (GL compute)");
-    t.integer("trace_voxels", &D::traceVoxels, 1, 64, "trace = volume: voxels per smallest probe spacing");
+    t.choice("trace", &D::trace,
+             {{"triangles", DdgiTrace::Triangles}, {"volume", DdgiTrace::Volume}, {"bvh", DdgiTrace::Bvh}},
+             "blend rays against the triangles (Embree, CPU), the voxelized scene as NanoVDB (GL compute) or the "
+             "triangles in Embree's BVH (GL compute; probes classified in the volume)");
+    t.integer("trace_voxels", &D::traceVoxels, 1, 64, "trace = volume or bvh: voxels per smallest probe spacing");
     t.check(requireAffordable);
     t.check(requireTraceable);
     return t;

@@ -30,6 +30,7 @@ enum class DdgiHitCache {
 enum class DdgiTrace {
     Triangles,  // the scene's triangles with Embree on the CPU, shaded on the CPU (the reference)
     Volume,     // the voxelized scene as NanoVDB, traced and shaded on the GPU (backend gl)
+    Bvh,        // the triangles in Embree's BVH, traced and shaded on the GPU; probes classified in the volume
 };
 
 // Camera-centred scrolling of the probe volumes.

@@ -76,8 +76,8 @@ DdgiGpu::DdgiGpu(const ProbeField& field) {
 
 DdgiGpu::~DdgiGpu() = default;
 
-void DdgiGpu::traceInVolume(const NanoGeometry& geometry, const Scene& scene) {
-    volume_ = std::make_unique<VolumeShadeGl>(geometry, scene);
+void DdgiGpu::traceInVolume(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles) {
+    volume_ = std::make_unique<VolumeShadeGl>(geometry, scene, triangles);
     schedule_ = gl::Program::compute("ddgi/schedule.comp");
     classify_ = gl::Program::compute("ddgi/classify.comp");
     dispatches_ = gl::createBuffer(3 * shading::kDdgiDispatches * sizeof(GLuint));

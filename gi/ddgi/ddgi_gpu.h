@@ -22,11 +22,11 @@ public:
     explicit DdgiGpu(const ProbeField& field);
     ~DdgiGpu() override;
 
-    // From now on the whole update runs here (ddgi.trace = volume): the schedule, the blend
-    // rays traced and shaded through `geometry`, blend, border, and relocation and
-    // classification through the same volume, with the probe records kept on the GPU; `scene`
-    // gives the lights and must outlive this.
-    void traceInVolume(const NanoGeometry& geometry, const Scene& scene);
+    // From now on the whole update runs here (ddgi.trace = volume or bvh): the schedule, the
+    // blend rays traced and shaded through `geometry` (through `triangles` when given), blend,
+    // border, and relocation and classification through the volume, with the probe records
+    // kept on the GPU; `scene` gives the lights and must outlive this.
+    void traceInVolume(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles = nullptr);
     bool updatesProbes() const override { return volume_ != nullptr; }
     UpdateReport updateProbes(ProbeField& field, const RaySet& rays, std::uint32_t frame) override;
     // Where the volume trace finds the sky (VolumeShadeGl::setSky); nothing without it.

@@ -26,7 +26,11 @@ TechniquePlan ddgiPlan(const Scene& scene) {
     }
     TechniquePlan p;
     p.update.push_back({"ddgi.trace", std::to_string(probes) + " probes (" + grids.str() + ") x " + std::to_string(d.rays) +
-                                          " rays (+" + std::to_string(d.fixedRayCount()) + " fixed) with Embree"});
+                                          " rays (+" + std::to_string(d.fixedRayCount()) + " fixed) " +
+                                          (d.trace == DdgiTrace::Triangles ? "with Embree"
+                                           : d.trace == DdgiTrace::Volume  ? "through the NanoVDB volume on gl"
+                                                                           : "through the triangles' BVH on gl (fixed rays "
+                                                                             "through the NanoVDB volume)")});
     p.update.push_back({"ddgi.shade", std::string("emission, direct light by ") +
                                           (d.directLight == DdgiDirectLight::ShadowRays ? "shadow rays" : "occlusion probes") +
                                           (scene.sky.enabled && readSkyVolumeDesc(scene.gi).light ? ", the sky volume's irradiance" : "") +

@@ -22,11 +22,7 @@ DdgiSystem::DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQu
     const glm::vec3 forward = glm::length(view) > 0.0f ? glm::normalize(view) : glm::vec3(0.0f);
     bounds_ = scene.bounds();
     field_ = std::make_unique<ProbeField>(desc, layoutVolumes(desc, bounds_, scene.camera.eye, forward));
-    const Bounds& b = bounds_;
-    // Shadow-ray offsets relative to the scene's size (no absolute floor, which a tiny scene
-    // would feel); a scene of one point gets 1.
-    const float radius = b.valid() ? 0.5f * glm::length(b.extent()) : 0.0f;
-    shadowRays_ = std::make_unique<ShadowRayVisibility>(tracer, 1e-4f * (radius > 0.0f ? radius : 1.0f));
+    shadowRays_ = std::make_unique<ShadowRayVisibility>(tracer, shadowRayOffset(scene));
 }
 
 DdgiSystem::~DdgiSystem() = default;

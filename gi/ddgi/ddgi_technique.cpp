@@ -4,6 +4,7 @@
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/occupancy_query.h"
 #include "gi/raytrace/ray_tracer.h"
+#include "gi/raytrace/triangle_bvh.h"
 #include "gi/sky/sky_volume_texture.h"
 #include "volumes/nano_geometry.h"
 
@@ -21,8 +22,11 @@ DdgiTechnique::DdgiTechnique(const Scene& scene, GeometryQuery query) {
     }
     system_ = std::make_unique<DdgiSystem>(*tracer_, desc, std::move(query));
     gpu_ = std::make_unique<DdgiGpu>(system_->field());
-    if (desc.trace == DdgiTrace::Volume && scene.triangleCount() > 0)
-        gpu_->traceInVolume(voxelizeForTracing(*tracer_, system_->field()), scene);
+    if (desc.trace != DdgiTrace::Triangles && scene.triangleCount() > 0) {
+        const TriangleBvh bvh = desc.trace == DdgiTrace::Bvh ? buildTriangleBvh(scene) : TriangleBvh{};
+        gpu_->traceInVolume(voxelizeForTracing(*tracer_, system_->field()), scene,
+                            desc.trace == DdgiTrace::Bvh ? &bvh : nullptr);
+    }
 }
 
 DdgiTechnique::~DdgiTechnique() = default;

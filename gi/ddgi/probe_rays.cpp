@@ -18,9 +18,6 @@ namespace voxgi {
 
 namespace {
 
-// Quad-light geometry is drawn by the direct pass; its emission must not enter the probes too.
-bool countsAsIndirectEmitter(const Mesh& mesh) { return mesh.name.rfind("quad_light_", 0) != 0; }
-
 struct Emitters {
     std::vector<std::uint16_t> material;  // ProbeTrace::emission entry per material (0: none)
     std::vector<char> mesh;               // the mesh's emission counts (not an analytic light's quad)

@@ -19,10 +19,13 @@ void upload(gl::Handle& buffer, std::size_t& capacity, const void* data, std::si
 }
 }  // namespace
 
-VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene)
+VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles)
     : scene_(scene),
-      program_(gl::Program::compute("ddgi/volume_shade.comp")),
+      program_(triangles ? gl::Program::compute("ddgi/volume_shade.comp", {{"DDGI_TRACE_TRIANGLES", "1"}})
+                         : gl::Program::compute("ddgi/volume_shade.comp")),
       geometry_(geometry),
+      triangles_(triangles ? std::make_unique<TriangleBvhGl>(scene, *triangles) : nullptr),
+      shadowOffset_(shadowRayOffset(scene)),
       sky_(uploadSkyTexture(scene.sky)) {}
 
 void VolumeShadeGl::prepare(const RaySet& rays, std::uint32_t frame) {
@@ -45,7 +48,12 @@ void VolumeShadeGl::dispatch(const ProbeField& field, const RaySet& rays, GLuint
                              GLuint irradiance, GLuint distance, GLuint probeData) {
     program_.use();
     bindProbeField(program_, field, irradiance, distance, probeData);
-    geometry_.bind(program_, 3);
+    if (triangles_) {
+        triangles_->bind(program_, 3);
+        program_.set("uShadowOffset", shadowOffset_);
+    } else {
+        geometry_.bind(program_, 3);
+    }
     program_.set("uRays", rays.blendRays);
     program_.set("uRayRotation", rays.rotation);
     program_.set("uLightCount", lightCount_);

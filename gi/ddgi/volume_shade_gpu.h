@@ -1,7 +1,8 @@
-// ddgi.trace = volume: the blend rays traced and shaded on the GPU (shaders/ddgi/
-// volume_shade.comp) through the scene's geometry volume uploaded once as NanoVDB, written into
-// the buffer the blend kernels read, so no shaded ray crosses the bus. The Embree trace and CPU
-// shading (gi/ddgi/probe_rays.h, hit_shading.h) are its reference.
+// ddgi.trace = volume or bvh: the blend rays traced and shaded on the GPU (shaders/ddgi/
+// volume_shade.comp) through the scene's geometry volume uploaded once as NanoVDB, or through
+// its triangles (gi/ddgi/triangle_bvh_gl.h), written into the buffer the blend kernels read, so
+// no shaded ray crosses the bus. The Embree trace and CPU shading (gi/ddgi/probe_rays.h,
+// hit_shading.h) are its reference. The volume also classifies the probes (classify.comp).
 #pragma once
 
 #include <array>
@@ -9,7 +10,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <memory>
+
 #include "gi/ddgi/nano_geometry_gl.h"
+#include "gi/ddgi/triangle_bvh_gl.h"
 #include "gi/ddgi/probe_blend.h"
 #include "shaders/shared/light_model.h"
 #include "gl/program.h"
@@ -20,11 +24,13 @@ namespace voxgi {
 struct NanoGeometry;
 struct Scene;
 class SkyVolumeTexture;
+struct TriangleBvh;
 
 class VolumeShadeGl {
 public:
-    // Uploads the grids; `scene` (its lights and sky) must outlive this. Needs a GL 4.5 context.
-    VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene);
+    // Uploads the grids (and the triangles when `triangles` is given: the rays trace them);
+    // `scene` (its lights and sky) must outlive this. Needs a GL 4.5 context.
+    VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles = nullptr);
 
     // Per frame, before dispatch(): this frame's quad-light points (as uniforms) and the
     // scene's lights (uploaded when they change).
@@ -48,6 +54,8 @@ private:
     const Scene& scene_;
     gl::Program program_;
     NanoGeometryGl geometry_;
+    std::unique_ptr<TriangleBvhGl> triangles_;
+    float shadowOffset_ = 0.0f;
     gl::Handle lights_, sky_;
     static constexpr GLuint kSkyTextureUnit = 6;  // 4 and 5: the probe atlases (bindProbeField)
     static constexpr int kSkyVolumeUnit = 7;      // and 8: its brick index

@@ -10,6 +10,7 @@
 #include "gi/ddgi/occupancy_query.h"
 #include "gi/ddgi/volume_trace_gpu.h"
 #include "gi/raytrace/ray_tracer.h"
+#include "gi/raytrace/triangle_bvh.h"
 #include "volumes/geometry_volume.h"
 #include "volumes/nano_geometry.h"
 
@@ -46,25 +47,54 @@ void printVolumeTraceBench(const DdgiSystem& ddgi) {
                     perSpacing, double(settings.voxelSize), static_cast<unsigned long long>(nano.activeVoxels),
                     double(nano.bytes()) / (1 << 20), buildMs, gpu[1], wall[1], double(rays.size()) / wall[1] * 1e-3);
     }
+    // The same rays through the triangles (ddgi.trace = bvh).
+    const auto t0 = std::chrono::steady_clock::now();
+    const TriangleBvh bvh = buildTriangleBvh(ddgi.tracer().scene());
+    const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    VolumeTracerGl tracer(ddgi.tracer().scene(), bvh);
+    std::vector<double> gpu, wall;
+    for (int k = 0; k < 3; ++k) {
+        tracer.trace(rays, kMissDistance);
+        gpu.push_back(tracer.lastKernelMs());
+        wall.push_back(tracer.lastKernelWallMs());
+    }
+    std::sort(gpu.begin(), gpu.end());
+    std::sort(wall.begin(), wall.end());
+    std::printf("  triangles' BVH: %zu triangles, %zu nodes, %.1f MiB with the surfaces, built in %.0f ms; kernel %.2f ms "
+                "GPU, %.2f ms wall, %.1f Mrays/s (wall)\n",
+                bvh.triangle.size(), bvh.nodeCount(), double(bvh.bytes() + bvh.triangle.size() * 64) / (1 << 20), buildMs,
+                gpu[1], wall[1], double(rays.size()) / wall[1] * 1e-3);
 }
 
 void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 eye, int frames) {
-    desc.trace = DdgiTrace::Volume;
     desc.backend = Backend::Gl;
-    std::printf("GL update with ddgi.trace = volume (medians of %d frames; wall ms unless GPU):\n", frames);
+    std::printf("GL update with ddgi.trace = volume, and bvh (medians of %d frames; wall ms unless GPU):\n", frames);
     auto median = [](std::vector<double> v) {
         std::sort(v.begin(), v.end());
         return v.empty() ? 0.0 : v[v.size() / 2];
     };
-    // The last row without classification: every probe traces and blends every frame.
-    const std::pair<int, bool> runs[] = {{4, true}, {8, true}, {16, true}, {16, false}};
-    for (const auto& [perSpacing, classify] : runs) {
+    // The fourth row without classification: every probe traces and blends every frame. The last
+    // traces the triangles (its fixed rays through the volume at 8 voxels per spacing).
+    struct Run {
+        int perSpacing;
+        bool classify;
+        DdgiTrace trace;
+    };
+    const Run runs[] = {{4, true, DdgiTrace::Volume},
+                        {8, true, DdgiTrace::Volume},
+                        {16, true, DdgiTrace::Volume},
+                        {16, false, DdgiTrace::Volume},
+                        {8, true, DdgiTrace::Bvh}};
+    for (const auto& [perSpacing, classify, through] : runs) {
         desc.traceVoxels = perSpacing;
         desc.classify = classify;
+        desc.trace = through;
         DdgiSystem system(tracer, desc);
         DdgiGpu gpu(system.field());
         const auto t0 = std::chrono::steady_clock::now();
-        gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), tracer.scene());
+        const bool triangles = through == DdgiTrace::Bvh;
+        const TriangleBvh bvh = triangles ? buildTriangleBvh(tracer.scene()) : TriangleBvh{};
+        gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), tracer.scene(), triangles ? &bvh : nullptr);
         const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         std::vector<double> total, trace, blend, border, classes, gpuTrace, gpuBlend, gpuBorder, gpuClassify, rays;
         for (int f = 0; f < frames + 2; ++f) {
@@ -82,9 +112,10 @@ void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 ey
             gpuBorder.push_back(t.borderGpuMs);
             gpuClassify.push_back(t.classifyGpuMs);
         }
-        std::printf("  trace_voxels %-2d%s: volume built in %.0f ms; update %.2f: trace + shade %.2f, blend %.2f, "
+        std::printf("  %strace_voxels %-2d%s: %s built in %.0f ms; update %.2f: trace + shade %.2f, blend %.2f, "
                     "border %.2f, schedule + classify %.2f (GPU %.3f / %.3f / %.3f / %.3f); %.0f rays\n",
-                    perSpacing, classify ? "" : ", classify off", buildMs, median(total), median(trace), median(blend), median(border), median(classes),
+                    triangles ? "bvh, " : "", perSpacing, classify ? "" : ", classify off",
+                    triangles ? "volume and BVH" : "volume", buildMs, median(total), median(trace), median(blend), median(border), median(classes),
                     median(gpuTrace), median(gpuBlend), median(gpuBorder), median(gpuClassify), median(rays));
     }
 }

@@ -9,8 +9,15 @@ static_assert(sizeof(VolumeRay) == 32 && sizeof(VolumeHit) == 32, "std430 layout
 
 VolumeTracerGl::VolumeTracerGl(const NanoGeometry& geometry)
     : program_(gl::Program::compute("ddgi/volume_rays.comp")),
-      geometry_(geometry),
+      geometry_(std::make_unique<NanoGeometryGl>(geometry)),
       query_(gl::createTimerQuery()) {}
+
+VolumeTracerGl::VolumeTracerGl(const Scene& scene, const TriangleBvh& bvh)
+    : program_(gl::Program::compute("ddgi/bvh_rays.comp")),
+      triangles_(std::make_unique<TriangleBvhGl>(scene, bvh)),
+      query_(gl::createTimerQuery()) {}
+
+VolumeTracerGl::~VolumeTracerGl() = default;
 
 std::vector<VolumeHit> VolumeTracerGl::trace(const std::vector<VolumeRay>& rays, float missDistance) {
     std::vector<VolumeHit> hits(rays.size());
@@ -23,7 +30,8 @@ std::vector<VolumeHit> VolumeTracerGl::trace(const std::vector<VolumeRay>& rays,
     }
     glNamedBufferSubData(rays_.id(), 0, GLsizeiptr(bytes), rays.data());
     program_.use();
-    geometry_.bind(program_, 0);
+    if (geometry_) geometry_->bind(program_, 0);
+    else triangles_->bind(program_, 0);
     program_.set("uRayCount", int(rays.size()));
     program_.set("uMissDistance", missDistance);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, rays_.id());
