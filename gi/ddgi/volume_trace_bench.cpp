@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <utility>
 
 #include "gi/ddgi/ddgi_gpu.h"
@@ -15,6 +16,30 @@
 #include "volumes/nano_geometry.h"
 
 namespace voxgi {
+
+namespace {
+
+// Median of three traces of `rays`: "kernel G ms GPU, W ms wall, R Mrays/s (wall)".
+std::string timeTraces(VolumeTracerGl& tracer, const std::vector<VolumeRay>& rays) {
+    std::vector<double> gpu, wall;
+    for (int k = 0; k < 3; ++k) {
+        tracer.trace(rays, kMissDistance);
+        gpu.push_back(tracer.lastKernelMs());
+        wall.push_back(tracer.lastKernelWallMs());
+    }
+    std::sort(gpu.begin(), gpu.end());
+    std::sort(wall.begin(), wall.end());
+    char line[160];
+    std::snprintf(line, sizeof line, "kernel %.2f ms GPU, %.2f ms wall, %.1f Mrays/s (wall)", gpu[1], wall[1],
+                  double(rays.size()) / wall[1] * 1e-3);
+    return line;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
 
 void printVolumeTraceBench(const DdgiSystem& ddgi) {
     const ProbeField& field = ddgi.field();
@@ -32,38 +57,20 @@ void printVolumeTraceBench(const DdgiSystem& ddgi) {
         const auto t0 = std::chrono::steady_clock::now();
         const SparseGeometryVolume volume = voxelizeScene(ddgi.tracer().scene(), settings);
         const NanoGeometry nano = makeNanoGeometry(volume);
-        const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const double buildMs = msSince(t0);
         VolumeTracerGl tracer(nano);
-        std::vector<double> gpu, wall;
-        for (int k = 0; k < 3; ++k) {
-            tracer.trace(rays, kMissDistance);
-            gpu.push_back(tracer.lastKernelMs());
-            wall.push_back(tracer.lastKernelWallMs());
-        }
-        std::sort(gpu.begin(), gpu.end());
-        std::sort(wall.begin(), wall.end());
-        std::printf("  voxel = spacing/%-2d (%.4g): %llu voxels, %.1f MiB NanoVDB, built in %.0f ms; kernel %.2f ms "
-                    "GPU, %.2f ms wall, %.1f Mrays/s (wall)\n",
-                    perSpacing, double(settings.voxelSize), static_cast<unsigned long long>(nano.activeVoxels),
-                    double(nano.bytes()) / (1 << 20), buildMs, gpu[1], wall[1], double(rays.size()) / wall[1] * 1e-3);
+        std::printf("  voxel = spacing/%-2d (%.4g): %llu voxels, %.1f MiB NanoVDB, built in %.0f ms; %s\n", perSpacing,
+                    double(settings.voxelSize), static_cast<unsigned long long>(nano.activeVoxels),
+                    double(nano.bytes()) / (1 << 20), buildMs, timeTraces(tracer, rays).c_str());
     }
     // The same rays through the triangles (ddgi.trace = bvh).
     const auto t0 = std::chrono::steady_clock::now();
     const TriangleBvh bvh = buildTriangleBvh(ddgi.tracer().scene());
-    const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double buildMs = msSince(t0);
     VolumeTracerGl tracer(ddgi.tracer().scene(), bvh);
-    std::vector<double> gpu, wall;
-    for (int k = 0; k < 3; ++k) {
-        tracer.trace(rays, kMissDistance);
-        gpu.push_back(tracer.lastKernelMs());
-        wall.push_back(tracer.lastKernelWallMs());
-    }
-    std::sort(gpu.begin(), gpu.end());
-    std::sort(wall.begin(), wall.end());
-    std::printf("  triangles' BVH: %zu triangles, %zu nodes, %.1f MiB with the surfaces, built in %.0f ms; kernel %.2f ms "
-                "GPU, %.2f ms wall, %.1f Mrays/s (wall)\n",
+    std::printf("  triangles' BVH: %zu triangles, %zu nodes, %.1f MiB with the surfaces, built in %.0f ms; %s\n",
                 bvh.triangle.size(), bvh.nodeCount(), double(bvh.bytes() + bvh.triangle.size() * 64) / (1 << 20), buildMs,
-                gpu[1], wall[1], double(rays.size()) / wall[1] * 1e-3);
+                timeTraces(tracer, rays).c_str());
 }
 
 void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 eye, int frames) {
@@ -95,7 +102,7 @@ void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 ey
         const bool triangles = through == DdgiTrace::Bvh;
         const TriangleBvh bvh = triangles ? buildTriangleBvh(tracer.scene()) : TriangleBvh{};
         gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), tracer.scene(), triangles ? &bvh : nullptr);
-        const double buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const double buildMs = msSince(t0);
         std::vector<double> total, trace, blend, border, classes, gpuTrace, gpuBlend, gpuBorder, gpuClassify, rays;
         for (int f = 0; f < frames + 2; ++f) {
             const DdgiFrameStats s = system.update(eye, &gpu);
