@@ -122,7 +122,7 @@ bool Scene::hasGlossyOrRefractive() const {
 }
 
 std::string Scene::quadLightMeshName(std::size_t light) const {
-    return "quad_light_" + (lights[light].name.empty() ? std::to_string(light) : lights[light].name);
+    return Mesh::kQuadLightMeshPrefix + (lights[light].name.empty() ? std::to_string(light) : lights[light].name);
 }
 
 const Mesh* Scene::quadLightMesh(std::size_t light) const {

@@ -115,6 +115,10 @@ struct Mesh {
     std::vector<std::uint32_t> materialIds;   // 1 per triangle
 
     std::size_t triangleCount() const { return indices.size() / 3; }
+    // The geometry Scene adds for a quad light (quadLightMeshName): the direct pass draws its
+    // light, so ray tracers that gather indirect light must not count its emission again.
+    bool isQuadLightGeometry() const { return name.rfind(kQuadLightMeshPrefix, 0) == 0; }
+    static constexpr const char* kQuadLightMeshPrefix = "quad_light_";
 };
 
 struct Bounds {

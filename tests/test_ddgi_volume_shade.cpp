@@ -141,7 +141,7 @@ RayAgreement compareRays(const Scene& scene, const std::map<std::string, std::st
     std::vector<int> probes;
     for (int p = 0; p < field.probeCount(); ++p)
         if (trace.work[std::size_t(p)] == ProbeWork::Full) probes.push_back(p);
-    ShadowRayVisibility visibility(tracer, shadowRayOffset(scene));  // the system's own
+    ShadowRayVisibility visibility(tracer, surfaceRayOffset(scene));  // the system's own
     ProbeSampler previous(field);
     ShadedRays cpu;
     shadeProbeRays(scene, visibility, previous, rays, trace, probes, std::uint32_t(frames), nullptr, cpu);

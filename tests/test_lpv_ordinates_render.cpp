@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -126,6 +129,41 @@ TEST_F(LpvOrdinatesRender, ASunlitFloorUnderAnOpenSkyGetsNoIndirectLight) {
     for (float v : img.find("indirect")->data) indirect += double(v);
     EXPECT_GT(direct, 0.0);
     EXPECT_EQ(indirect, 0.0);
+}
+
+// lpv.tap_visibility: a lamp 0.3 m before a thin wall on an open floor. The floor behind the
+// wall reads cells whose centres lie on the lamp's side, in front of it, through the wall; the
+// path tracer has almost no indirect light there (nothing behind the wall is lit). With the
+// taps it cannot see dropped, the strip behind the wall comes within reach of the reference,
+// and the lamp's side, which sees its taps, keeps its light.
+TEST_F(LpvOrdinatesRender, TapVisibilityKeepsTheLightOfAWallsLitSideOffItsBack) {
+    Scene s = parseSceneJson(R"({"camera": {"eye": [0.0, 3.0, 3.0], "target": [0.0, 0.0, -0.5], "resolution": [48, 48]},
+        "materials": {"stone": {"albedo": 0.7}},
+        "lights": [{"type": "point", "position": [-0.3, 0.5, 0.0], "intensity": 5}],
+        "meshes": [{"type": "quad", "material": "stone", "corners": [[-4, 0, 4], [4, 0, 4], [4, 0, -4], [-4, 0, -4]]},
+                   {"type": "box", "material": "stone", "transform": {"scale": [0.02, 1.0, 4.0], "translate": [0, 0.5, 0]}}],
+        "regions": [{"name": "behind", "min": [0.02, -0.01, -1.5], "max": [0.5, 0.01, 1.5], "facing": [0, 1, 0]},
+                    {"name": "lit_side", "min": [-0.8, -0.01, -1.5], "max": [-0.02, 0.01, 1.5], "facing": [0, 1, 0]}],
+        "gi": {"lpv": {"resolution": 32}}})",
+                             "wall.json");
+    PathTracerOptions o;
+    o.width = o.height = 48;
+    PathTracer pt(s, o);
+    pt.render(256);
+    const Image reference = pt.image();
+    const Image plain = render(s, "lpv");
+    s.gi.set("lpv.tap_visibility", "true");
+    const Image visible = render(s, "lpv");
+    std::map<std::string, RegionMean> before, after;
+    for (const RegionMean& r : regionMeans(plain, reference, s, "indirect")) before[r.name] = r;
+    for (const RegionMean& r : regionMeans(visible, reference, s, "indirect")) after[r.name] = r;
+    ASSERT_GT(before["behind"].pixels, 30u);
+    ASSERT_GT(before["lit_side"].pixels, 30u);
+    std::printf("behind the wall: %.3g -> %.3g of the reference's indirect; lamp's side %.3g -> %.3g\n",
+                before["behind"].ratio, after["behind"].ratio, before["lit_side"].ratio, after["lit_side"].ratio);
+    EXPECT_GT(before["behind"].ratio, 3.0);  // the leak
+    EXPECT_LT(after["behind"].ratio, 0.5 * before["behind"].ratio);
+    EXPECT_NEAR(after["lit_side"].ratio, before["lit_side"].ratio, 0.1 * before["lit_side"].ratio);
 }
 
 // The gl back end sweeps on the GPU: the same light as the cpu's, up to float rounding, for one

@@ -22,7 +22,7 @@ DdgiSystem::DdgiSystem(const RayTracer& tracer, const DdgiDesc& desc, GeometryQu
     const glm::vec3 forward = glm::length(view) > 0.0f ? glm::normalize(view) : glm::vec3(0.0f);
     bounds_ = scene.bounds();
     field_ = std::make_unique<ProbeField>(desc, layoutVolumes(desc, bounds_, scene.camera.eye, forward));
-    shadowRays_ = std::make_unique<ShadowRayVisibility>(tracer, shadowRayOffset(scene));
+    shadowRays_ = std::make_unique<ShadowRayVisibility>(tracer, surfaceRayOffset(scene));
 }
 
 DdgiSystem::~DdgiSystem() = default;

@@ -18,12 +18,6 @@
 
 namespace voxgi {
 
-float shadowRayOffset(const Scene& scene) {
-    const Bounds b = scene.bounds();
-    const float radius = b.valid() ? 0.5f * glm::length(b.extent()) : 0.0f;
-    return 1e-4f * (radius > 0.0f ? radius : 1.0f);  // a scene of one point gets 1e-4
-}
-
 float ShadowRayVisibility::visible(int, glm::vec3 p, glm::vec3 n, glm::vec3 l, float range) const {
     glm::vec3 origin = p + n * offset_;
     float tMax = std::isfinite(range) ? range * (1.0f - 1e-4f) - offset_ : 1e30f;

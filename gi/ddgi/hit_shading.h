@@ -35,10 +35,6 @@ struct LightVisibility {
     virtual float visible(int light, glm::vec3 p, glm::vec3 n, glm::vec3 l, float range) const = 0;
 };
 
-// How far shadow rays start off a probe ray's hit along its normal (and stop short of the
-// light): relative to the scene's size, with no absolute floor that a tiny scene would feel.
-float shadowRayOffset(const Scene& scene);
-
 class ShadowRayVisibility : public LightVisibility {
 public:
     explicit ShadowRayVisibility(const RayTracer& tracer, float offset) : tracer_(tracer), offset_(offset) {}

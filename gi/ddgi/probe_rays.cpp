@@ -103,7 +103,7 @@ void traceProbes(const RayTracer& tracer, const ProbeField& field, const RaySet&
         emitters.material[m] = std::uint16_t(trace.emission.size());
         trace.emission.push_back(scene.materials[m].emission);
     }
-    for (const Mesh& mesh : scene.meshes) emitters.mesh.push_back(countsAsIndirectEmitter(mesh));
+    for (const Mesh& mesh : scene.meshes) emitters.mesh.push_back(!mesh.isQuadLightGeometry());
 
     const int probes = field.probeCount();
     trace.stride = rays.stride();

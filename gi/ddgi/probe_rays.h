@@ -9,15 +9,11 @@
 #include <glm/glm.hpp>
 
 #include "gi/ddgi/probe_field.h"
-#include "scenes/scene.h"
 
 namespace voxgi {
 
 class HitCache;
 class RayTracer;
-
-// Quad-light geometry is drawn by the direct pass; its emission must not enter the probes too.
-inline bool countsAsIndirectEmitter(const Mesh& mesh) { return mesh.name.rfind("quad_light_", 0) != 0; }
 
 // Stored distance of a ray that left the scene.
 inline constexpr float kMissDistance = 1e30f;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gi/ddgi/hit_shading.h"
+#include "gi/raytrace/ray_tracer.h"
 #include "gi/sampling/sequences.h"
 #include "gi/sky/sky_volume_texture.h"
 #include "gl/scene_gpu.h"
@@ -25,7 +26,7 @@ VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene, c
                          : gl::Program::compute("ddgi/volume_shade.comp")),
       geometry_(geometry),
       triangles_(triangles ? std::make_unique<TriangleBvhGl>(scene, *triangles) : nullptr),
-      shadowOffset_(shadowRayOffset(scene)),
+      shadowOffset_(surfaceRayOffset(scene)),
       sky_(uploadSkyTexture(scene.sky)) {}
 
 void VolumeShadeGl::prepare(const RaySet& rays, std::uint32_t frame) {

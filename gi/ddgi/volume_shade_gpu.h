@@ -1,6 +1,6 @@
 // ddgi.trace = volume or bvh: the blend rays traced and shaded on the GPU (shaders/ddgi/
 // volume_shade.comp) through the scene's geometry volume uploaded once as NanoVDB, or through
-// its triangles (gi/ddgi/triangle_bvh_gl.h), written into the buffer the blend kernels read, so
+// its triangles (gi/raytrace/triangle_bvh_gl.h), written into the buffer the blend kernels read, so
 // no shaded ray crosses the bus. The Embree trace and CPU shading (gi/ddgi/probe_rays.h,
 // hit_shading.h) are its reference. The volume also classifies the probes (classify.comp).
 #pragma once
@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "gi/ddgi/nano_geometry_gl.h"
-#include "gi/ddgi/triangle_bvh_gl.h"
+#include "gi/raytrace/triangle_bvh_gl.h"
 #include "gi/ddgi/probe_blend.h"
 #include "shaders/shared/light_model.h"
 #include "gl/program.h"

@@ -1,7 +1,7 @@
 // Rays cast on the GPU through a geometry volume uploaded as NanoVDB (shaders/ddgi/
 // volume_rays.comp): the first step of tracing DDGI's probe rays on the GPU. A hit is the
 // entry into the first occupied voxel, so it lies up to a voxel diagonal before the surface.
-// Or through the scene's triangles (shaders/ddgi/bvh_rays.comp, gi/ddgi/triangle_bvh_gl.h).
+// Or through the scene's triangles (shaders/ddgi/bvh_rays.comp, gi/raytrace/triangle_bvh_gl.h).
 #pragma once
 
 #include <cstddef>
@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "gi/ddgi/nano_geometry_gl.h"
-#include "gi/ddgi/triangle_bvh_gl.h"
+#include "gi/raytrace/triangle_bvh_gl.h"
 #include "gl/program.h"
 #include "gl/resources.h"
 

@@ -65,6 +65,10 @@ struct LpvDesc {
     // per sweep) at that many sweeps' cost each.
     int sweeps = kFittedInteger;
     CubeRead cubeRead = CubeRead::Ambient;  // ordinates: see CubeRead; clpv's default is Quadratic (lpvDefaults)
+    // ordinates: a receiver reads only the cells it sees. Each trilinear tap whose cell centre
+    // lies in front of the receiver's surface is kept when a ray from the surface to the centre
+    // meets no triangle (the scene's BVH on the GPU); taps behind the surface are kept as before.
+    bool tapVisibility = false;
 };
 
 // The table of `lpv` (cascaded = false: one volume) or `clpv`.

@@ -130,7 +130,7 @@ public:
             }
         }
         if (desc.transport == LpvTransport::Ordinates) {
-            ordinatesLight = std::make_unique<OrdinatesLight>(desc);
+            ordinatesLight = std::make_unique<OrdinatesLight>(desc, scene);
             return;
         }
         for (auto* v : {&injected, &accumulated, &injectedInner, &accumulatedInner}) v->resize(std::size_t(desc.cascades));

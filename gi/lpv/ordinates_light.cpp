@@ -7,16 +7,28 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/lpv/gl_cascade_uniforms.h"
-#include "shaders/lpv/limits.h"
+#include "gi/raytrace/ray_tracer.h"
+#include "gi/raytrace/triangle_bvh.h"
+#include "gi/raytrace/triangle_bvh_gl.h"
 #include "gi/sky/sky_volume.h"
+#include "shaders/lpv/limits.h"
 #include "volumes/voxel_surfaces.h"
 
 namespace voxgi {
 
-OrdinatesLight::OrdinatesLight(const LpvDesc& desc)
-    : desc_(desc), program_(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag")) {
+OrdinatesLight::OrdinatesLight(const LpvDesc& desc, const Scene& scene)
+    : desc_(desc),
+      program_(desc.tapVisibility && scene.triangleCount() > 0
+                   ? gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag", {{"LPV_TAP_VISIBILITY", "1"}})
+                   : gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag")) {
     if (desc_.backend == Backend::Gl) gl_ = std::make_unique<GlOrdinates>();
+    if (desc.tapVisibility && scene.triangleCount() > 0) {
+        triangles_ = std::make_unique<TriangleBvhGl>(scene, buildTriangleBvh(scene));
+        tapRayOffset_ = surfaceRayOffset(scene);
+    }
 }
+
+OrdinatesLight::~OrdinatesLight() = default;
 
 bool OrdinatesLight::place(const std::vector<CascadePlacement>& placements, const SparseGeometryVolume* voxels) {
     const std::size_t count = placements.size();
@@ -199,6 +211,10 @@ void OrdinatesLight::apply(const GBufferView& g) const {
     program_.set("uApplyNormalOffset", desc_.applyNormalOffset);
     program_.set("uQuadraticRead", desc_.cubeRead == CubeRead::Quadratic ? 1 : 0);
     program_.set("uResolution", desc_.resolution);
+    if (triangles_) {
+        triangles_->bind(program_, 14);
+        program_.set("uTapRayOffset", tapRayOffset_);
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, pool_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, tables_.id());
     program_.set("uEye", g.eye);

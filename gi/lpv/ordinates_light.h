@@ -21,10 +21,14 @@ namespace voxgi {
 
 class SkyVolume;
 class SparseGeometryVolume;
+class TriangleBvhGl;
+struct Scene;
 
 class OrdinatesLight {
 public:
-    explicit OrdinatesLight(const LpvDesc& desc);
+    // `scene` must outlive this (lpv.tap_visibility traces its triangles).
+    OrdinatesLight(const LpvDesc& desc, const Scene& scene);
+    ~OrdinatesLight();
 
     // Makes the transports of cascades that moved, their surfaces from `voxels` (level = cascade;
     // may be null: no surfaces but the emitters'). Returns whether any was made.
@@ -75,6 +79,8 @@ private:
     std::vector<int> tableStart_;                // per cascade
     std::vector<std::uint64_t> tableRevisions_;  // per cascade: the transport geometry the tables hold
     gl::Program program_;
+    std::unique_ptr<TriangleBvhGl> triangles_;  // lpv.tap_visibility
+    float tapRayOffset_ = 0.0f;
     Stats stats_;
 };
 

@@ -150,6 +150,12 @@ RayTracer::RayTracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scen
 
 RayTracer::~RayTracer() = default;
 
+float surfaceRayOffset(const Scene& scene) {
+    const Bounds b = scene.bounds();
+    const float radius = b.valid() ? 0.5f * glm::length(b.extent()) : 0.0f;
+    return 1e-4f * (radius > 0.0f ? radius : 1.0f);
+}
+
 namespace {
 // Embree's nearest hit along one ray.
 RTCRayHit nearest(RTCScene scene, RTCIntersectContext& context, glm::vec3 o, glm::vec3 d, float tMin, float tMax) {

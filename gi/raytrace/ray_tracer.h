@@ -130,4 +130,9 @@ private:
     std::size_t triangles_ = 0;
 };
 
+// How far rays leaving a surface start off it along its normal (and stop short of what they
+// aim at): relative to the scene's size, with no absolute floor that a tiny scene would feel
+// (1e-4 of the bounds' half diagonal; 1e-4 for a scene of one point).
+float surfaceRayOffset(const Scene& scene);
+
 }  // namespace voxgi

@@ -1,12 +1,12 @@
 // Ray casting through the scene's triangles (gi/raytrace/triangle_bvh.h, uploaded by
-// gi/ddgi/triangle_bvh_gl.h as one buffer: nodes, then corners, then surfaces). Closest-hit and
+// gi/raytrace/triangle_bvh_gl.h as one buffer: nodes, then corners, then surfaces). Closest-hit and
 // any-hit traversal of the two-child tree with a stack, nearer child first; a triangle is hit
 // by the Moller-Trumbore test with Embree's barycentrics (u weighs the second corner, v the
 // third). Define TRIANGLE_BVH_BINDING before including.
 layout(std430, binding = TRIANGLE_BVH_BINDING) readonly buffer TriangleBvhData { vec4 bvhData[]; };
 
 uniform int uBvhCorners;   // where the corners start in bvhData (three vec4 per triangle)
-uniform int uBvhSurfaces;  // where the surfaces start (gi/ddgi/triangle_bvh_gl.h: four vec4 per triangle)
+uniform int uBvhSurfaces;  // where the surfaces start (gi/raytrace/triangle_bvh_gl.h: four vec4 per triangle)
 
 const int kBvhStackSize = 48;  // gi/raytrace/triangle_bvh.cpp's kMaxDepth
 

@@ -12,7 +12,7 @@
 #ifdef DDGI_TRACE_TRIANGLES
 #define TRIANGLE_BVH_BINDING 3
 #include "common/triangle_bvh.glsl"
-uniform float uShadowOffset;  // hit_shading.h's shadowRayOffset
+uniform float uShadowOffset;  // gi/raytrace/ray_tracer.h's surfaceRayOffset
 #else
 #define NANO_GEOMETRY_BINDING 3
 #include "common/nano_geometry.glsl"

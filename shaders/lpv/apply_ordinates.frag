@@ -11,6 +11,13 @@
 #include "shared/light_bricks.h"
 #include "common/gbuffer_textures.glsl"
 
+#ifdef LPV_TAP_VISIBILITY
+#define TRIANGLE_BVH_BINDING 14
+#include "common/triangle_bvh.glsl"
+uniform float uTapRayOffset;  // rays to the taps leave the surface this far along its normal
+#endif
+const uint kAllTaps = 0xFFu;
+
 layout(std430, binding = 12) readonly buffer LightBricks { vec4 lightBricks[]; };     // per light set: [face][slot][brick cell]
 layout(std430, binding = 13) readonly buffer BrickTables { int brickTables[]; };      // per cascade and brick: slot
 
@@ -33,21 +40,56 @@ int storedCell(int c, ivec3 cell) {
     return slot < 0 ? -1 : brickCell(slot, cell);
 }
 
-// Irradiance (W/m^2) for normal n: the cell's six faces read as uQuadraticRead says
-// (shared/irradiance_cube.h), trilinear between cell centres and clamped at the grid's edge as a
-// texture would be (rgb), over the cells whose bricks are stored (a: their trilinear weight).
-// Receivers read stored cells only (the bricks reach ordinatesReach cells around every surface);
-// the glossy march may not.
-vec4 cubeIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
+// The eight trilinear taps of cascade c around uvw (tap k: i0, or i1 on the axes whose bit of k
+// is set) and the weights of the upper ones.
+void trilinearTaps(vec3 uvw, out ivec3 i0, out ivec3 i1, out vec3 f) {
     float size = float(uResolution);
     vec3 x = clamp(uvw * size - 0.5, vec3(0.0), vec3(size - 1.0));
-    ivec3 i0 = ivec3(floor(x));
-    ivec3 i1 = min(i0 + 1, ivec3(uResolution - 1));
-    vec3 f = x - vec3(i0);
+    i0 = ivec3(floor(x));
+    i1 = min(i0 + 1, ivec3(uResolution - 1));
+    f = x - vec3(i0);
+}
+
+// lpv.tap_visibility: bit k set where the receiver at `surface` (normal n) sees tap k's cell
+// centre, or where that centre lies behind its surface (such cells hold the light that reaches
+// the surface from the cell it lies in, and are kept). A thin wall or a stall's panel between
+// the receiver and a cell hides that cell's light, which is the light of the panel's other side.
+uint visibleTaps(int c, vec3 uvw, vec3 surface, vec3 n) {
+#ifdef LPV_TAP_VISIBILITY
+    ivec3 i0, i1;
+    vec3 f;
+    trilinearTaps(uvw, i0, i1, f);
+    uint mask = 0u;
+    vec3 o = surface + n * uTapRayOffset;
+    for (int k = 0; k < 8; ++k) {
+        ivec3 tap = mix(i0, i1, bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0));
+        vec3 centre = uLpvMin[c] + (vec3(tap) + 0.5) * uCellSize[c];
+        vec3 d = centre - o;
+        float len = length(d);
+        BvhHit blocker;
+        bool hidden = dot(centre - surface, n) > 0.0 && len > 0.0 && bvhTrace(o, d / len, 0.0, len, true, blocker);
+        if (!hidden) mask |= 1u << k;
+    }
+    return mask;
+#else
+    return kAllTaps;
+#endif
+}
+
+// Irradiance (W/m^2) for normal n: the cell's six faces read as uQuadraticRead says
+// (shared/irradiance_cube.h), trilinear between cell centres and clamped at the grid's edge as a
+// texture would be (rgb), over the taps in `taps` whose bricks are stored (a: their trilinear
+// weight). Receivers read stored cells only (the bricks reach ordinatesReach cells around every
+// surface); the glossy march may not.
+vec4 cubeIrradiance(int c, int firstSlot, vec3 uvw, vec3 n, uint taps) {
+    ivec3 i0, i1;
+    vec3 f;
+    trilinearTaps(uvw, i0, i1, f);
     CubeWeights w = cubeWeights(n, uQuadraticRead != 0);
     int first = firstSlot * 6 * kBrickCells, slots = uSlots[c];
     vec4 e = vec4(0.0);
     for (int k = 0; k < 8; ++k) {
+        if ((taps & (1u << k)) == 0u) continue;
         bvec3 upper = bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0);
         int cell = storedCell(c, mix(i0, i1, upper));
         if (cell < 0) continue;
@@ -65,8 +107,8 @@ vec4 cubeIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
 }
 
 // The stored cells' irradiance, renormalized over their weight.
-vec3 storedIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
-    vec4 e = cubeIrradiance(c, firstSlot, uvw, n);
+vec3 storedIrradiance(int c, int firstSlot, vec3 uvw, vec3 n, uint taps) {
+    vec4 e = cubeIrradiance(c, firstSlot, uvw, n, taps);
     return e.a > 0.0 ? e.rgb / e.a : vec3(0.0);
 }
 
@@ -74,7 +116,7 @@ vec3 storedIrradiance(int c, int firstSlot, vec3 uvw, vec3 n) {
 
 // A surface facing r collects the radiance around r: its irradiance over pi (a: stored weight).
 vec4 glossyCellRadiance(vec3 uvw, vec3 r) {
-    vec4 e = cubeIrradiance(0, uRingSlot[0], uvw, r);
+    vec4 e = cubeIrradiance(0, uRingSlot[0], uvw, r, kAllTaps);
     return e.a > 0.0 ? vec4(e.rgb / e.a * kInvPi, 1.0) : vec4(0.0);
 }
 
@@ -92,8 +134,9 @@ void main() {
         float held = 1.0 - outside + w;           // S_c
         vec3 uvw = uvwOf(c, p);
         if (held > 0.0 && all(greaterThanEqual(uvw, vec3(0.0))) && all(lessThanEqual(uvw, vec3(1.0)))) {
-            e += held * storedIrradiance(c, uRingSlot[c], uvw, n);
-            if (c > 0 && w > 0.0) e += w * storedIrradiance(c, uInnerSlot[c], uvw, n);
+            uint taps = visibleTaps(c, uvw, s.position, n);
+            e += held * storedIrradiance(c, uRingSlot[c], uvw, n, taps);
+            if (c > 0 && w > 0.0) e += w * storedIrradiance(c, uInnerSlot[c], uvw, n, taps);
         }
         outside -= w;
     }

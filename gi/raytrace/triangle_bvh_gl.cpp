@@ -1,4 +1,4 @@
-#include "gi/ddgi/triangle_bvh_gl.h"
+#include "gi/raytrace/triangle_bvh_gl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "gi/ddgi/probe_rays.h"
 #include "gi/raytrace/texture_pyramid.h"
 #include "gi/raytrace/triangle_bvh.h"
 #include "scenes/scene.h"
@@ -33,7 +32,7 @@ std::vector<glm::vec4> triangleSurfaces(const Scene& scene, const TriangleBvh& b
         const std::size_t t = global - meshFirst[m];
         const std::uint32_t* tri = &mesh.indices[3 * t];
         const Material& material = scene.materials[mesh.materialIds[t]];
-        const glm::vec3 emission = material.isEmissive() && countsAsIndirectEmitter(mesh) ? material.emission : glm::vec3(0.0f);
+        const glm::vec3 emission = material.isEmissive() && !mesh.isQuadLightGeometry() ? material.emission : glm::vec3(0.0f);
         glm::vec3 albedo = material.albedo;
         if (material.albedoTexture >= 0 && !mesh.uvs.empty()) {
             const TexturePyramid& pyramid = *pyramids[std::size_t(material.albedoTexture)];

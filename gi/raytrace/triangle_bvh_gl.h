@@ -1,9 +1,10 @@
-// ddgi.trace = bvh: the scene's triangles on the GPU for probe rays (shaders/common/
-// triangle_bvh.glsl). One storage buffer holds the hierarchy (gi/raytrace/triangle_bvh.h), the
-// triangles' corners and, per triangle, what shading a probe ray's hit needs: its vertex
-// normals, its emission (as the Embree probe trace counts it) and its diffuse albedo averaged
-// over the triangle (the texture's mip level whose texel spans the triangle, read at its
-// centroid) where the CPU reference averages over each ray's cone.
+// The scene's triangles on the GPU (shaders/common/triangle_bvh.glsl): DDGI's probe rays with
+// ddgi.trace = bvh, the LPV apply's rays to its taps with lpv.tap_visibility. One storage
+// buffer holds the hierarchy (gi/raytrace/triangle_bvh.h), the triangles' corners and, per
+// triangle, what shading a hit needs: its vertex normals, its emission (none for a quad light's
+// own geometry, which the direct pass draws) and its diffuse albedo averaged over the triangle
+// (the texture's mip level whose texel spans the triangle, read at its centroid) where DDGI's
+// CPU reference averages over each ray's cone.
 #pragma once
 
 #include <cstddef>
