@@ -79,7 +79,8 @@ DdgiGpu::~DdgiGpu() = default;
 void DdgiGpu::traceInVolume(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles) {
     volume_ = std::make_unique<VolumeShadeGl>(geometry, scene, triangles);
     schedule_ = gl::Program::compute("ddgi/schedule.comp");
-    classify_ = gl::Program::compute("ddgi/classify.comp");
+    classify_ = triangles ? gl::Program::compute("ddgi/classify.comp", {{"DDGI_TRACE_TRIANGLES", "1"}})
+                          : gl::Program::compute("ddgi/classify.comp");
     dispatches_ = gl::createBuffer(3 * shading::kDdgiDispatches * sizeof(GLuint));
     counters_ = gl::createBuffer(shading::kDdgiCounters * sizeof(GLuint));
 }
@@ -310,6 +311,7 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
     classify_.use();
     bindUpdate(classify_);
     volume_->geometry().bind(classify_, 3);
+    if (volume_->triangles()) volume_->triangles()->bind(classify_, 14);
     classify_.set("uFixedRays", rays.fixedRays);
     classify_.set("uClassify", desc.classify ? 1 : 0);
     classify_.set("uRelocate", desc.relocate ? 1 : 0);

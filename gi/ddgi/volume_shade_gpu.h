@@ -49,6 +49,7 @@ public:
     void dispatch(const ProbeField& field, const RaySet& rays, GLuint origins, GLintptr indirectOffset,
                   GLuint irradiance, GLuint distance, GLuint probeData);
     const NanoGeometryGl& geometry() const { return geometry_; }
+    const TriangleBvhGl* triangles() const { return triangles_.get(); }  // null: the rays trace the volume
 
 private:
     const Scene& scene_;

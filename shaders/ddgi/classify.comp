@@ -1,15 +1,20 @@
 #version 450 core
-// Relocation and classification on the GPU (ddgi.trace = volume), one thread per probe that the
-// schedule gave work: the CPU's relocateProbes and classifyProbes (gi/ddgi/probe_states.cpp)
-// with the fixed rays cast through the NanoVDB geometry volume instead of by Embree, and the
-// volume's occupancy read where the CPU reads the rays' hits: "geometry near" is an occupied
-// voxel within one cell on every axis, and relocation keeps the probe min_frontface_distance
-// from the nearest occupied voxel (the fixed rays may pass beside a small object). Writes each
-// probe's offset, state and blends where the next frame's schedule and every sampling pass read
-// them, and counts the states.
+// Relocation and classification on the GPU (ddgi.trace = volume or bvh), one thread per probe
+// that the schedule gave work: the CPU's relocateProbes and classifyProbes (gi/ddgi/
+// probe_states.cpp) with the fixed rays cast through the NanoVDB geometry volume (through the
+// triangles' BVH with DDGI_TRACE_TRIANGLES) instead of by Embree, and the volume's occupancy read
+// where the CPU reads the rays' hits: "geometry near" is an occupied voxel within one cell on
+// every axis, and relocation keeps the probe min_frontface_distance from the nearest occupied
+// voxel (the fixed rays may pass beside a small object). Writes each probe's offset, state and
+// blends where the next frame's schedule and every sampling pass read them, and counts the
+// states.
 #define NANO_GEOMETRY_BINDING 3
 #define DDGI_PROBE_DATA_ACCESS
 #include "common/nano_geometry.glsl"
+#ifdef DDGI_TRACE_TRIANGLES
+#define TRIANGLE_BVH_BINDING 14
+#include "common/triangle_bvh.glsl"
+#endif
 #include "ddgi/probe_layout.glsl"
 #include "ddgi/probe_update.glsl"
 
@@ -47,10 +52,18 @@ void main() {
         for (int i = 0; i < uFixedRays; ++i) {
             vec3 dir = fixedDirections[i].xyz;
             float t;
+#ifdef DDGI_TRACE_TRIANGLES
+            BvhHit hit;
+            if (!bvhTrace(base + offset, dir, 0.0, uMissDistance, false, hit)) continue;
+            t = hit.t;
+            bool back = !(dot(bvhGeometricNormal(hit.triangle), dir) < 0.0);
+#else
             ivec3 voxel;
             if (!nanoFirstHit(base + offset, dir, 0.0, uMissDistance, t, voxel)) continue;
             vec3 n;
-            if (nanoBackFace(nanoReadVec3(normals, voxel), dir, n)) {
+            bool back = nanoBackFace(nanoReadVec3(normals, voxel), dir, n);
+#endif
+            if (back) {
                 ++hits.backfaces;
                 if (t < hits.closestBack) {
                     hits.closestBack = t;
