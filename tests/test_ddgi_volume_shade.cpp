@@ -17,7 +17,6 @@
 #include "gi/ddgi/probe_states.h"
 #include "gi/sampling/sequences.h"
 #include "gi/raytrace/ray_tracer.h"
-#include "gi/raytrace/triangle_bvh.h"
 #include "scenes/errors.h"
 #include "scenes/scene_loader.h"
 #include "support/test_support.h"
@@ -29,20 +28,13 @@ using namespace voxgi;
 namespace {
 
 
-// The whole update on the GPU, its rays through the volume or (trace = bvh) the triangles.
-void traceOnGpu(DdgiGpu& gpu, const RayTracer& tracer, const DdgiSystem& system, const Scene& scene) {
-    const TriangleBvh bvh = system.desc().trace == DdgiTrace::Bvh ? buildTriangleBvh(scene) : TriangleBvh{};
-    gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), scene,
-                      system.desc().trace == DdgiTrace::Bvh ? &bvh : nullptr);
-}
-
 // Per-probe mean irradiance after `frames` updates with the GL backend.
 std::vector<glm::vec3> converge(const Scene& scene, std::map<std::string, std::string> keys, int frames) {
     const DdgiDesc desc = test::descFrom(keys);
     RayTracer tracer(scene);
     DdgiSystem system(tracer, desc);
     DdgiGpu gpu(system.field());
-    if (desc.trace != DdgiTrace::Triangles) traceOnGpu(gpu, tracer, system, scene);
+    if (desc.trace != DdgiTrace::Triangles) gpu.traceOnGpu(tracer, system.field(), system.desc().trace);
     for (int f = 0; f < frames; ++f) system.update(scene.camera.eye, &gpu);
     gpu.syncToCpu(system.field());
     std::vector<glm::vec3> mean;
@@ -128,7 +120,7 @@ RayAgreement compareRays(const Scene& scene, const std::map<std::string, std::st
     RayTracer tracer(scene);
     DdgiSystem system(tracer, desc);
     DdgiGpu gpu(system.field());
-    traceOnGpu(gpu, tracer, system, scene);
+    gpu.traceOnGpu(tracer, system.field(), system.desc().trace);
     const int frames = 12;
     for (int f = 0; f < frames; ++f) system.update(scene.camera.eye, &gpu);
     // Frame `frames` on the CPU first, from the field (and probe records) the GPU left.
@@ -308,7 +300,7 @@ struct GpuDdgi {
     DdgiGpu gpu;
     GpuDdgi(const Scene& scene, const std::map<std::string, std::string>& keys)
         : tracer(scene), system(tracer, test::descFrom(keys)), gpu(system.field()) {
-        traceOnGpu(gpu, tracer, system, scene);
+        gpu.traceOnGpu(tracer, system.field(), system.desc().trace);
     }
     DdgiFrameStats run(int frames, glm::vec3 eye) {
         DdgiFrameStats last;

@@ -5,11 +5,15 @@
 #include <cstdio>
 #include <string>
 
+#include "gi/ddgi/occupancy_query.h"
+#include "gi/raytrace/ray_tracer.h"
+#include "gi/raytrace/triangle_bvh.h"
 #include "gl/context.h"
 #include "gl/screen_pass.h"
 #include "gi/sampling/sequences.h"
 #include "shaders/ddgi/limits.h"
 #include "shaders/shared/probe_schedule.h"
+#include "volumes/nano_geometry.h"
 
 namespace voxgi {
 
@@ -79,10 +83,14 @@ DdgiGpu::~DdgiGpu() = default;
 void DdgiGpu::traceInVolume(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles) {
     volume_ = std::make_unique<VolumeShadeGl>(geometry, scene, triangles);
     schedule_ = gl::Program::compute("ddgi/schedule.comp");
-    classify_ = triangles ? gl::Program::compute("ddgi/classify.comp", {{"DDGI_TRACE_TRIANGLES", "1"}})
-                          : gl::Program::compute("ddgi/classify.comp");
+    classify_ = gl::Program::compute("ddgi/classify.comp", traceDefines(triangles != nullptr));
     dispatches_ = gl::createBuffer(3 * shading::kDdgiDispatches * sizeof(GLuint));
     counters_ = gl::createBuffer(shading::kDdgiCounters * sizeof(GLuint));
+}
+
+void DdgiGpu::traceOnGpu(const RayTracer& tracer, const ProbeField& field, DdgiTrace trace) {
+    const TriangleBvh bvh = trace == DdgiTrace::Bvh ? buildTriangleBvh(tracer.scene()) : TriangleBvh{};
+    traceInVolume(voxelizeForTracing(tracer, field), tracer.scene(), trace == DdgiTrace::Bvh ? &bvh : nullptr);
 }
 
 void DdgiGpu::upload(const ProbeField& field) {

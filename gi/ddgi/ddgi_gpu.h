@@ -17,6 +17,8 @@
 
 namespace voxgi {
 
+class RayTracer;
+
 class DdgiGpu : public BlendBackend {
 public:
     explicit DdgiGpu(const ProbeField& field);
@@ -27,6 +29,9 @@ public:
     // border, and relocation and classification through the volume, with the probe records
     // kept on the GPU; `scene` gives the lights and must outlive this.
     void traceInVolume(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles = nullptr);
+    // traceInVolume with what ddgi.trace = `trace` (volume or bvh) traces, built for `field`
+    // from `tracer`'s scene (the volume by voxelizeForTracing, the BVH by buildTriangleBvh).
+    void traceOnGpu(const RayTracer& tracer, const ProbeField& field, DdgiTrace trace);
     bool updatesProbes() const override { return volume_ != nullptr; }
     UpdateReport updateProbes(ProbeField& field, const RaySet& rays, std::uint32_t frame) override;
     // Where the volume trace finds the sky (VolumeShadeGl::setSky); nothing without it.

@@ -4,7 +4,6 @@
 #include "gi/ddgi/ddgi_gpu.h"
 #include "gi/ddgi/occupancy_query.h"
 #include "gi/raytrace/ray_tracer.h"
-#include "gi/raytrace/triangle_bvh.h"
 #include "gi/sky/sky_volume_texture.h"
 #include "volumes/nano_geometry.h"
 
@@ -22,11 +21,8 @@ DdgiTechnique::DdgiTechnique(const Scene& scene, GeometryQuery query) {
     }
     system_ = std::make_unique<DdgiSystem>(*tracer_, desc, std::move(query));
     gpu_ = std::make_unique<DdgiGpu>(system_->field());
-    if (desc.trace != DdgiTrace::Triangles && scene.triangleCount() > 0) {
-        const TriangleBvh bvh = desc.trace == DdgiTrace::Bvh ? buildTriangleBvh(scene) : TriangleBvh{};
-        gpu_->traceInVolume(voxelizeForTracing(*tracer_, system_->field()), scene,
-                            desc.trace == DdgiTrace::Bvh ? &bvh : nullptr);
-    }
+    if (desc.trace != DdgiTrace::Triangles && scene.triangleCount() > 0)
+        gpu_->traceOnGpu(*tracer_, system_->field(), desc.trace);
 }
 
 DdgiTechnique::~DdgiTechnique() = default;

@@ -20,10 +20,14 @@ void upload(gl::Handle& buffer, std::size_t& capacity, const void* data, std::si
 }
 }  // namespace
 
+gl::Program::Defines traceDefines(bool triangles) {
+    if (!triangles) return {};
+    return {{"DDGI_TRACE_TRIANGLES", "1"}};
+}
+
 VolumeShadeGl::VolumeShadeGl(const NanoGeometry& geometry, const Scene& scene, const TriangleBvh* triangles)
     : scene_(scene),
-      program_(triangles ? gl::Program::compute("ddgi/volume_shade.comp", {{"DDGI_TRACE_TRIANGLES", "1"}})
-                         : gl::Program::compute("ddgi/volume_shade.comp")),
+      program_(gl::Program::compute("ddgi/volume_shade.comp", traceDefines(triangles != nullptr))),
       geometry_(geometry),
       triangles_(triangles ? std::make_unique<TriangleBvhGl>(scene, *triangles) : nullptr),
       shadowOffset_(surfaceRayOffset(scene)),

@@ -69,6 +69,9 @@ private:
     bool quadLights_ = false;
 };
 
+// The defines of the kernels that trace the volume or, with `triangles`, the triangles' BVH.
+gl::Program::Defines traceDefines(bool triangles);
+
 // The probe field's uniforms of shaders/ddgi/sampling.glsl (volumes, atlases on texture units
 // 4 and 5, probe data at storage binding 5), for every pass that samples the field.
 void bindProbeField(const gl::Program& program, const ProbeField& field, GLuint irradiance, GLuint distance,

@@ -100,8 +100,7 @@ void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 ey
         DdgiGpu gpu(system.field());
         const auto t0 = std::chrono::steady_clock::now();
         const bool triangles = through == DdgiTrace::Bvh;
-        const TriangleBvh bvh = triangles ? buildTriangleBvh(tracer.scene()) : TriangleBvh{};
-        gpu.traceInVolume(voxelizeForTracing(tracer, system.field()), tracer.scene(), triangles ? &bvh : nullptr);
+        gpu.traceOnGpu(tracer, system.field(), through);
         const double buildMs = msSince(t0);
         std::vector<double> total, trace, blend, border, classes, gpuTrace, gpuBlend, gpuBorder, gpuClassify, rays;
         for (int f = 0; f < frames + 2; ++f) {

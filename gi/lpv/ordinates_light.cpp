@@ -16,13 +16,18 @@
 
 namespace voxgi {
 
+namespace {
+// lpv.tap_visibility, where there are triangles to trace.
+bool tapsTested(const LpvDesc& desc, const Scene& scene) { return desc.tapVisibility && scene.triangleCount() > 0; }
+}  // namespace
+
 OrdinatesLight::OrdinatesLight(const LpvDesc& desc, const Scene& scene)
     : desc_(desc),
-      program_(desc.tapVisibility && scene.triangleCount() > 0
-                   ? gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag", {{"LPV_TAP_VISIBILITY", "1"}})
-                   : gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag")) {
+      program_(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag",
+                                     tapsTested(desc, scene) ? gl::Program::Defines{{"LPV_TAP_VISIBILITY", "1"}}
+                                                             : gl::Program::Defines{})) {
     if (desc_.backend == Backend::Gl) gl_ = std::make_unique<GlOrdinates>();
-    if (desc.tapVisibility && scene.triangleCount() > 0) {
+    if (tapsTested(desc, scene)) {
         triangles_ = std::make_unique<TriangleBvhGl>(scene, buildTriangleBvh(scene));
         tapRayOffset_ = surfaceRayOffset(scene);
     }
