@@ -63,6 +63,7 @@ uint visibleTaps(int c, vec3 uvw, vec3 surface, vec3 n) {
     vec3 o = surface + n * uTapRayOffset;
     for (int k = 0; k < 8; ++k) {
         ivec3 tap = mix(i0, i1, bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0));
+        if (storedCell(c, tap) < 0) continue;  // not read anyway: no ray
         vec3 centre = uLpvMin[c] + (vec3(tap) + 0.5) * uCellSize[c];
         vec3 d = centre - o;
         float len = length(d);
