@@ -1,6 +1,7 @@
 // voxgi eval: the ambient baseline's fit, and report generation on a tiny Cornell box.
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -15,6 +16,11 @@ namespace {
 nlohmann::json readJson(const std::string& path) {
     std::ifstream in(path);
     return nlohmann::json::parse(in);
+}
+
+std::string readText(const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 }  // namespace
 
@@ -101,6 +107,16 @@ TEST(Eval, ReportOnTinyCornellBoxWithTwoMethods) {
     RunResult again = runVoxgi("eval cornell-box --methods direct --width 24 --height 24 --spp 8 --frames 6 -o " + dir);
     ASSERT_EQ(again.exitCode, 0) << again.output;
     EXPECT_TRUE(readJson(dir + "/report.json")["scenes"][0]["reference"]["cached"].get<bool>());
+    EXPECT_TRUE(readJson(dir + "/report.json")["scenes"][0]["reference"]["caustics"].get<bool>());
+    // A reference without caustics is another reference, cached under its own name, and the
+    // report says which it is.
+    RunResult plain = runVoxgi("eval cornell-box --methods direct --width 24 --height 24 --spp 8 --frames 6 --no-caustics -o " + dir);
+    ASSERT_EQ(plain.exitCode, 0) << plain.output;
+    const nlohmann::json reference = readJson(dir + "/report.json")["scenes"][0]["reference"];
+    EXPECT_FALSE(reference["cached"].get<bool>());
+    EXPECT_FALSE(reference["caustics"].get<bool>());
+    EXPECT_NE(reference["path"].get<std::string>().find("nocaustics"), std::string::npos);
+    EXPECT_NE(readText(dir + "/report.md").find("path traced without caustics"), std::string::npos);
 }
 
 TEST(Eval, TemporalMethodsWarmUpUntilTheirLightSettles) {
@@ -137,6 +153,7 @@ TEST(Eval, BadOptionsAreOneLineErrors) {
     EXPECT_EQ(runVoxgi("eval cornell-box --methods direct").exitCode, 2);
     EXPECT_EQ(runVoxgi("eval cornell-box --methods ddgi --converge 2 -o " + dir).exitCode, 2);
     EXPECT_EQ(runVoxgi("eval --stability --cases no-such-case -o " + dir).exitCode, 2);
+    EXPECT_EQ(runVoxgi("eval cornell-box --methods direct --reference ref.exr --no-caustics -o " + dir).exitCode, 2);
     EXPECT_FALSE(fileExists(dir + "/report.json"));
     // Bad input leaves no output folder.
     EXPECT_EQ(runVoxgi("eval no-such-scene.json -o " + dir + "/new").exitCode, 2);

@@ -4,6 +4,7 @@
 // NaN/Inf guard.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -507,6 +508,81 @@ TEST(PathTracer, GlassDoesNotCreateEnergy) {
             EXPECT_GT(mean, 0.9);
         }
     }
+}
+
+// A mirror floor, a quad light facing it and a white ceiling above the light: the ceiling
+// gets light only by way of the mirror (a caustic). `ceilingMaterial` lets a test make it glossy.
+Scene mirrorUnderCeiling(const char* ceilingMaterial = R"({"albedo": 0.8, "specular": 0})") {
+    char json[1400];
+    std::snprintf(json, sizeof json, R"({
+      "camera": {"eye": [3, 0.8, 0], "target": [2, 1, 0], "fov": 40, "resolution": [16, 16]},
+      "materials": {"mirror": {"albedo": 0.9, "metallic": 1, "roughness": 0},
+                    "ceiling": %s},
+      "lights": [{"type": "quad", "corner": [-0.5, 0.5, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "radiance": 3}],
+      "meshes": [{"type": "quad", "material": "mirror", "corners": [[-9,0,9],[9,0,9],[9,0,-9],[-9,0,-9]]},
+                 {"type": "quad", "material": "ceiling", "corners": [[-9,1,-9],[9,1,-9],[9,1,9],[-9,1,9]]}]})",
+                  ceilingMaterial);
+    return parseSceneJson(json, "mirror.json");
+}
+
+TEST(PathTracer, WithoutCausticsACeilingLitOnlyThroughAMirrorGetsNothing) {
+    // The light faces down, so the ceiling point (2, 1, 0) sees it only in the mirror.
+    Scene s = mirrorUnderCeiling();
+    const glm::vec3 eye(3.0f, 0.8f, 0.0f), p(2.0f, 1.0f, 0.0f);
+    PathTracerOptions o;
+    PathTracer with(s, o);
+    const Estimate caustic = alongRay(with, eye, p, 4000);
+    o.caustics = false;
+    PathTracer without(s, o);
+    const Estimate none = alongRay(without, eye, p, 4000);
+    std::printf("ceiling lit through a mirror: %.5f +- %.5f with caustics, %.5f without\n", caustic.mean,
+                caustic.standardError, none.mean);
+    EXPECT_GT(caustic.mean, 10.0 * caustic.standardError);
+    EXPECT_EQ(none.mean, 0.0);
+    // A glossy ceiling keeps only its diffuse lobe past the first surface too: still nothing.
+    Scene glossy = mirrorUnderCeiling(R"({"albedo": 0.8, "specular": 0.5, "roughness": 0.3})");
+    PathTracer glossyWithout(glossy, o);
+    EXPECT_EQ(alongRay(glossyWithout, eye, p, 1000).mean, 0.0);
+}
+
+TEST(PathTracer, WithoutCausticsWhatTheCameraSeesInAMirrorAndDiffuseLightStayTheSame) {
+    // Up to two scatterings, a camera that sees only a mirror wall sees in it the floor lit by
+    // the light above and the light itself: no caustic, so the image must come out bit for bit
+    // as with caustics (light subpaths off in both: without caustics none are traced).
+    Scene s = parseSceneJson(R"({
+      "camera": {"eye": [-0.5, 0.25, 0], "target": [-1, 0.25, 0], "fov": 40, "resolution": [16, 16]},
+      "materials": {"mirror": {"albedo": 0.9, "metallic": 1, "roughness": 0}, "floor": {"albedo": 0.8}},
+      "lights": [{"type": "quad", "corner": [-0.5, 0.5, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "radiance": 3}],
+      "meshes": [{"type": "quad", "material": "floor", "corners": [[-9,0,9],[9,0,9],[9,0,-9],[-9,0,-9]]},
+                 {"type": "quad", "material": "mirror", "corners": [[-1,0,-2],[-1,0,2],[-1,2,2],[-1,2,-2]]}]})",
+                             "mirror-wall.json");
+    PathTracerOptions o;
+    o.maxBounces = 2;
+    o.lightPaths = false;
+    PathTracer with(s, o);
+    with.render(4);
+    o.caustics = false;
+    PathTracer without(s, o);
+    without.render(4);
+    EXPECT_EQ(with.image().find("beauty")->data, without.image().find("beauty")->data);
+    // The lit floor in the mirror: light after two scatterings, the indirect layer.
+    const std::vector<float>& floor = with.image().find("indirect")->data;
+    EXPECT_GT(*std::max_element(floor.begin(), floor.end()), 0.05f);
+    // And a diffuse Cornell box at any depth.
+    Scene box = test::cornellBox();
+    for (Material& m : box.materials) m.specular = 0.0f;
+    PathTracerOptions b;
+    b.width = b.height = 24;
+    b.lightPaths = false;
+    PathTracer boxWith(box, b);
+    boxWith.render(2);
+    b.caustics = false;
+    PathTracer boxWithout(box, b);
+    boxWithout.render(2);
+    EXPECT_EQ(boxWith.image().find("beauty")->data, boxWithout.image().find("beauty")->data);
+    double sum = 0.0;
+    for (float v : boxWith.image().find("indirect")->data) sum += v;
+    EXPECT_GT(sum, 0.0);
 }
 
 TEST(PathTracer, SameImageWhateverTheThreadCount) {

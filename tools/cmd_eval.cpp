@@ -28,7 +28,7 @@ const char* kUsage =
     "voxgi eval SCENE... -o DIR [--methods NAME,...] [--presets low,medium,high]\n"
     "       [--reference REF.exr | auto] [--spp N] [--cache DIR] [--frames N] [--warmup N] [--converge EPS]\n"
     "       [--max-warmup N] [--width W --height H] [--set section.key=value]...\n"
-    "       [--views N | --views VIEWS.json] [--view-seed S]\n"
+    "       [--views N | --views VIEWS.json] [--view-seed S] [--no-caustics]\n"
     "  voxgi eval --stability -o DIR [--cases NAME,...]\n"
     "  --methods: default every built method; --presets: each method's (voxgi methods NAME), one run for a method with none\n"
     "  --spp: reference samples per pixel (default 256); --cache: reference cache (default DIR/cache)\n"
@@ -36,7 +36,8 @@ const char* kUsage =
     "  --converge: methods whose light builds up over frames (ddgi) warm up until it changes less than this\n"
     "    relative amount over their window (0.002), or for --max-warmup frames (300)\n"
     "  --views: judge over N camera views drawn in the scene's free space (seed --view-seed, default 1), or over\n"
-    "    the camera keys of a viewer script; each view has its own cached reference; writes views.md/json/csv";
+    "    the camera keys of a viewer script; each view has its own cached reference; writes views.md/json/csv\n"
+    "  --no-caustics: path-traced references without caustics (voxgi reference --no-caustics)";
 
 std::string sceneName(const std::string& argument) {
     std::string stem = std::filesystem::path(argument).stem().string();
@@ -159,6 +160,7 @@ int runViewsEvaluation(const Args& args, const std::string& dir, const std::vect
             for (const Preset& preset : presetsFor(findMethod(method), presetNames)) job.runs.push_back({method, preset});
         job.settings = settings[si];
         job.spp = spp;
+        job.caustics = !args.flag("--no-caustics");
         job.cacheDir = cacheDir;
         std::filesystem::create_directories(dir + "/" + name);
         ViewsEval e = evaluateViews(scenes[si], name, views[si], job, dir);
@@ -194,6 +196,8 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
     const int spp = args.integer("--spp", 256, 1, 1 << 20);
     const std::string cacheDir = args.value("--cache", dir + "/cache");
     const bool views = args.has("--views");
+    if (refArg != "auto" && args.flag("--no-caustics"))
+        throw InputError("--no-caustics: applies to the references eval path traces; a given --reference is used as it is");
     if (views && refArg != "auto") throw InputError("--reference: each of --views has its own reference; leave it auto");
     if (!views && args.has("--view-seed")) throw InputError("--view-seed: only with --views");
 
@@ -228,11 +232,12 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
         std::filesystem::create_directories(dir + "/" + se.name);
         std::printf("%s: reference...\n", se.name.c_str());
         std::fflush(stdout);
-        Reference ref = refArg == "auto" ? loadOrRenderReference(scene, se.name, spp, cacheDir)
+        Reference ref = refArg == "auto" ? loadOrRenderReference(scene, se.name, spp, cacheDir, !args.flag("--no-caustics"))
                                          : readReference(refArg, scene);
         se.referenceSpp = ref.spp;
         se.referenceSeconds = ref.seconds;
         se.referenceCached = ref.fromCache;
+        se.referenceCaustics = refArg != "auto" || !args.flag("--no-caustics");
         se.referencePath = ref.path;
         se.referenceMeanIndirect = layerMean(ref.image, "indirect");
         se.selfFull = computeMetrics(ref.image, ref.image, "beauty");
@@ -280,7 +285,7 @@ int runEval(const std::vector<std::string>& argv) {
     Args args(argv,
               {"-o", "--methods", "--presets", "--reference", "--spp", "--cache", "--frames", "--warmup", "--converge",
                "--max-warmup", "--width", "--height", "--set", "--cases", "--views", "--view-seed"},
-              {"--stability"}, {"--set"});
+              {"--stability", "--no-caustics"}, {"--set"});
     auto out = args.value("-o");
     if (!out) throw InputError("-o DIR is required; usage: " + usageLine(kUsage));
     if (args.flag("--stability")) {

@@ -18,10 +18,12 @@ namespace {
 
 const char* kUsage =
     "voxgi reference SCENE (--spp N | --time SECONDS) -o OUT.exr [--max-bounces B] [--seed S] [--unidirectional]\n"
-    "       [--width W --height H] [--png OUT.png] [--exposure auto|STOPS] [--tonemap filmic|reinhard] [--set section.key=value]...\n"
+    "       [--no-caustics] [--width W --height H] [--png OUT.png] [--exposure auto|STOPS] [--tonemap filmic|reinhard] [--set section.key=value]...\n"
     "  --max-bounces: scattering events per path (1 = direct light only; default unlimited, Russian roulette)\n"
     "  --unidirectional: camera paths only, without connections to light subpaths from point and spot\n"
-    "  lights (the same image in expectation, noisier; docs/reference.md)" VOXGI_DISPLAY_USAGE;
+    "  lights (the same image in expectation, noisier; docs/reference.md)\n"
+    "  --no-caustics: leave out light reaching a surface through mirrors and clear glass (what methods that\n"
+    "  trace only the camera's reflections aim at; not the physical image, docs/reference.md)" VOXGI_DISPLAY_USAGE;
 
 using Clock = std::chrono::steady_clock;
 
@@ -36,7 +38,7 @@ void printProgress(double fraction, double elapsed, int spp) {
 
 int runReference(const std::vector<std::string>& argv) {
     Args args(argv, {"--spp", "--time", "-o", "--max-bounces", "--seed", "--width", "--height", "--png", "--exposure", "--tonemap", "--set"},
-              {"--quiet", "--unidirectional"}, {"--set"});
+              {"--quiet", "--unidirectional", "--no-caustics"}, {"--set"});
     args.requirePositional(1, kUsage);
     if (args.has("--spp") == args.has("--time")) throw InputError("give exactly one of --spp N or --time SECONDS");
     auto out = args.value("-o");
@@ -49,6 +51,7 @@ int runReference(const std::vector<std::string>& argv) {
     options.maxBounces = args.integer("--max-bounces", 0, 0, 1 << 20);
     options.seed = std::uint64_t(args.number("--seed", 0.0, 0.0, 9007199254740992.0));
     options.lightPaths = !args.flag("--unidirectional");
+    options.caustics = !args.flag("--no-caustics");
 
     Scene scene = loadSceneArgument(args.positional()[0]);
     applySceneOverrides(args, scene);
@@ -103,10 +106,10 @@ int runReference(const std::vector<std::string>& argv) {
     if (auto png = args.value("--png"))
         writePng(*png, image, "beauty", image.display.exposureStops, image.display.toneCurve);
     double raysPerSecond = renderTime > 0.0 ? double(tracer.raysTraced()) / renderTime : 0.0;
-    std::printf("path traced %s: %dx%d, %d spp, max bounces %s, seed %llu\n", args.positional()[0].c_str(),
+    std::printf("path traced %s: %dx%d, %d spp, max bounces %s, seed %llu%s\n", args.positional()[0].c_str(),
                 tracer.width(), tracer.height(), tracer.samplesPerPixel(),
                 options.maxBounces > 0 ? std::to_string(options.maxBounces).c_str() : "unlimited",
-                static_cast<unsigned long long>(options.seed));
+                static_cast<unsigned long long>(options.seed), options.caustics ? "" : ", no caustics");
     std::printf("time %.2f s (+ %.2f s BVH build), %llu rays, %.2f M rays/s, dropped NaN/Inf samples: %llu\n",
                 renderTime, setup, static_cast<unsigned long long>(tracer.raysTraced()), raysPerSecond * 1e-6,
                 static_cast<unsigned long long>(tracer.droppedSamples()));

@@ -99,7 +99,7 @@ std::string markdown(const std::vector<SceneEval>& scenes, const ReportInfo& inf
     if (!info.gnuplot) md << "**Plots skipped: gnuplot was not found** (install `gnuplot-nox`).\n\n";
     for (const SceneEval& s : scenes) {
         md << "## " << s.name << "\n\n";
-        md << s.width << "x" << s.height << ", reference: " << s.referenceSpp << " spp path traced in "
+        md << s.width << "x" << s.height << ", reference: " << s.referenceSpp << " spp path traced" << (s.referenceCaustics ? "" : " without caustics") << " in "
            << formatNumber(s.referenceSeconds, "%.1f") << " s" << (s.referenceCached ? " (reused from cache)" : "")
            << ". Reference against itself: RMSE " << formatNumber(s.selfFull.rmse) << ", FLIP " << formatNumber(s.selfFull.flip)
            << " (full), RMSE " << formatNumber(s.selfIndirect.rmse) << " (indirect).\n\n";
@@ -145,7 +145,8 @@ std::string json(const std::vector<SceneEval>& scenes, const ReportInfo& info) {
                           {"width", s.width},
                           {"height", s.height},
                           {"reference", {{"spp", s.referenceSpp}, {"seconds", s.referenceSeconds},
-                                         {"cached", s.referenceCached}, {"path", s.referencePath}}},
+                                         {"cached", s.referenceCached}, {"path", s.referencePath},
+                                         {"caustics", s.referenceCaustics}}},
                           {"reference_mean_indirect", {s.referenceMeanIndirect.x, s.referenceMeanIndirect.y, s.referenceMeanIndirect.z}},
                           {"reference_self", {{"full", metricsJson(s.selfFull)}, {"indirect", metricsJson(s.selfIndirect)}}}};
         for (const EvalRow& r : s.rows) {

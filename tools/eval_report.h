@@ -32,6 +32,7 @@ struct SceneEval {
     int referenceSpp = 0;
     double referenceSeconds = 0.0;
     bool referenceCached = false;
+    bool referenceCaustics = true;  // false: path traced without caustics (--no-caustics)
     std::string referencePath, referencePng, cropsPng;
     glm::dvec3 referenceMeanIndirect{0.0};
     ImageMetrics selfFull, selfIndirect;  // the reference against itself (must be all zero error)

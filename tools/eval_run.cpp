@@ -158,13 +158,15 @@ MethodRun renderMethod(const Scene& base, const std::string& method, const Prese
     return MethodSession(base, method, preset, settings, extra).render(base.camera);
 }
 
-Reference loadOrRenderReference(const Scene& scene, const std::string& name, int spp, const std::string& cacheDir) {
+Reference loadOrRenderReference(const Scene& scene, const std::string& name, int spp, const std::string& cacheDir,
+                                bool caustics) {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::create_directories(cacheDir, ec);
     if (ec) throw InputError(cacheDir + ": cannot create the reference cache (" + ec.message() + ")");
     const std::string stem = cacheDir + "/" + name + "-" + std::to_string(scene.camera.width) + "x" +
-                             std::to_string(scene.camera.height) + "-" + std::to_string(spp) + "spp-" + sceneKey(scene);
+                             std::to_string(scene.camera.height) + "-" + std::to_string(spp) + "spp-" + (caustics ? "" : "nocaustics-") +
+                             sceneKey(scene);
     Reference ref;
     ref.path = stem + ".exr";
     ref.spp = spp;
@@ -177,7 +179,9 @@ Reference loadOrRenderReference(const Scene& scene, const std::string& name, int
         return ref;
     }
     auto start = Clock::now();
-    PathTracer tracer(scene, PathTracerOptions{});
+    PathTracerOptions options;
+    options.caustics = caustics;
+    PathTracer tracer(scene, options);
     // Passes of a few samples keep memory flat and let a slow scene print progress.
     while (tracer.samplesPerPixel() < spp) {
         tracer.render(std::min(8, spp - tracer.samplesPerPixel()));

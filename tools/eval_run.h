@@ -78,8 +78,10 @@ struct Reference {
 };
 
 // `cacheDir`/<name>-<w>x<h>-<spp>spp-<hash>.exr (+ .json with spp and time) when present, else
-// path traced and written there.
-Reference loadOrRenderReference(const Scene& scene, const std::string& name, int spp, const std::string& cacheDir);
+// path traced and written there. `caustics` false: PathTracerOptions::caustics (the file name
+// says "nocaustics").
+Reference loadOrRenderReference(const Scene& scene, const std::string& name, int spp, const std::string& cacheDir,
+                                bool caustics = true);
 // A reference given as a file; its size must match the scene camera's.
 Reference readReference(const std::string& path, const Scene& scene);
 

@@ -83,6 +83,7 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
     out.width = scene.camera.width;
     out.height = scene.camera.height;
     out.spp = job.spp;
+    out.caustics = job.caustics;
     out.views = views;
     const std::string folder = name + "/views";
     std::filesystem::create_directories(dir + "/" + folder);
@@ -101,7 +102,8 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
     for (std::size_t k = 0; k < views.size(); ++k) {
         const auto start = std::chrono::steady_clock::now();
         viewScene.camera = views[k];
-        references.push_back(loadOrRenderReference(viewScene, name + "-view" + std::to_string(k), job.spp, job.cacheDir));
+        references.push_back(loadOrRenderReference(viewScene, name + "-view" + std::to_string(k), job.spp, job.cacheDir,
+                                                    job.caustics));
         const Reference& ref = references.back();
         out.referenceSeconds.push_back(ref.seconds);
         if (!ref.fromCache) {

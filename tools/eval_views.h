@@ -44,6 +44,7 @@ struct ViewsRow {
 struct ViewsEval {
     std::string name, source, viewsFile;  // viewsFile: the views as a viewer script, relative
     int width = 0, height = 0, spp = 0;
+    bool caustics = true;  // the references' (ViewsJob::caustics)
     std::vector<Camera> views;
     std::vector<double> referenceSeconds;  // per view: path tracing time (the cache's record)
     int referencesRendered = 0;            // not found in the cache
@@ -54,6 +55,7 @@ struct ViewsJob {
     std::vector<std::pair<std::string, Preset>> runs;  // method and preset, in report order
     RenderSettings settings;
     int spp = 0;
+    bool caustics = true;  // the references' (PathTracerOptions::caustics)
     std::string cacheDir;
     int worstViews = 5;
 };

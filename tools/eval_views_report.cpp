@@ -77,7 +77,7 @@ std::string markdown(const std::vector<ViewsEval>& scenes, const ReportInfo& inf
         md << "## " << s.name << "\n\n";
         double refSeconds = std::accumulate(s.referenceSeconds.begin(), s.referenceSeconds.end(), 0.0);
         md << s.views.size() << " views (" << s.viewsFile << "), " << s.width << "x" << s.height << ", references "
-           << s.spp << " spp: " << formatNumber(refSeconds / double(std::max<std::size_t>(s.views.size(), 1)), "%.1f")
+           << s.spp << " spp" << (s.caustics ? "" : " without caustics") << ": " << formatNumber(refSeconds / double(std::max<std::size_t>(s.views.size(), 1)), "%.1f")
            << " s of path tracing per view (" << s.referencesRendered << " rendered now, the rest from the cache).\n\n";
         md << "| method | preset | relMSE | FLIP | relMSE indirect | FLIP indirect | frame ms | beats direct | "
               "beats ambient | f_q | gain (Eq. 19) |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -123,7 +123,8 @@ std::string json(const std::vector<ViewsEval>& scenes, const ReportInfo& info) {
     j["device"] = info.device;
     for (const ViewsEval& s : scenes) {
         nlohmann::json js{{"name", s.name}, {"views_file", s.viewsFile}, {"width", s.width}, {"height", s.height},
-                          {"reference_spp", s.spp}, {"reference_seconds", s.referenceSeconds},
+                          {"reference_spp", s.spp}, {"reference_caustics", s.caustics},
+                          {"reference_seconds", s.referenceSeconds},
                           {"references_rendered", s.referencesRendered}};
         for (const Camera& c : s.views)
             js["views"].push_back({{"eye", {c.eye.x, c.eye.y, c.eye.z}}, {"target", {c.target.x, c.target.y, c.target.z}}});

@@ -83,9 +83,19 @@ void Bsdf::setAlbedo(const Material& m, glm::vec3 albedo) {
     setSpecularProbability();
 }
 
+bool Bsdf::hasDiffuseLobe() const {
+    return opaqueWeight_ > 0.0f && std::max(std::max(diffuse_.r, diffuse_.g), diffuse_.b) > 0.0f;
+}
+
+void Bsdf::keepDiffuseLobeOnly() {
+    diffuseOnly_ = true;
+    setSpecularProbability();
+}
+
 void Bsdf::setSpecularProbability() {
     float nv = std::max(glm::dot(n_, wo_), 0.0f);
-    float ws = std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f ? luminanceRec709(fresnelSchlick(f0_, nv)) : 0.0f;
+    // Zero exactly when the GGX lobe is left out (evalOpaque and sampleOpaque skip it).
+    float ws = std::max(std::max(f0_.r, f0_.g), f0_.b) > 0.0f && !diffuseOnly_ ? luminanceRec709(fresnelSchlick(f0_, nv)) : 0.0f;
     float wd = luminanceRec709(diffuse_);
     specularProbability_ = ws + wd > 0.0f ? ws / (ws + wd) : 0.0f;
 }
@@ -112,7 +122,7 @@ glm::vec3 Bsdf::evalOpaque(glm::vec3 wi, float* pdf) const {
     if (nl <= 0.0f || nv <= 0.0f) return glm::vec3(0.0f);
     glm::vec3 f = diffuse_ * (1.0f / shading::kPi);
     *pdf = (1.0f - specularProbability_) * nl / shading::kPi;
-    if (specularProbability_ > 0.0f) {  // non-zero exactly when F0 is
+    if (specularProbability_ > 0.0f) {  // non-zero exactly when F0 is and the lobe is kept
         glm::vec3 h = glm::normalize(wo_ + wi);
         float a2 = alpha_ * alpha_;
         float nh = std::max(glm::dot(n_, h), 0.0f), vh = glm::dot(wo_, h);
@@ -167,7 +177,7 @@ glm::vec3 Bsdf::evalPdf(glm::vec3 wi, float* pdf) const {
         f += opaqueWeight_ * evalOpaque(wi, &p);
         *pdf += opaqueWeight_ * p;
     }
-    if (transmission_ > 0.0f && !smoothDielectric_) {
+    if (roughTransmission()) {
         float p;
         f += transmission_ * evalRoughDielectric(wi, &p);
         *pdf += transmission_ * p;
@@ -274,6 +284,7 @@ bool Bsdf::sample(glm::vec3 u, BsdfSample& out) const {
     out = BsdfSample{};
     bool ok;
     if (u.z < transmission_) {
+        if (diffuseOnly_) return false;  // the dielectric's share, absorbed
         u.z /= transmission_;
         ok = sampleDielectric(u, out);
         if (ok && out.delta) return true;

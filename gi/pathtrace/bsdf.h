@@ -49,11 +49,11 @@ public:
     // tracer builds its BSDF before the albedo's texels arrive, to trace shadow rays meanwhile.
     void setAlbedo(const Material& material, glm::vec3 albedo);
     // True when eval can be non-zero somewhere (a light sample is worth tracing).
-    bool hasSmoothPart() const { return opaqueWeight_ > 0.0f || (transmission_ > 0.0f && !smoothDielectric_); }
+    bool hasSmoothPart() const { return opaqueWeight_ > 0.0f || roughTransmission(); }
     // False only where eval(wi) is zero whatever the albedo: what decides whether a shadow ray
     // towards wi is worth tracing before the albedo is known.
     bool mayReflect(glm::vec3 wi) const {
-        if (transmission_ > 0.0f && !smoothDielectric_) return true;
+        if (roughTransmission()) return true;
         return opaqueWeight_ > 0.0f && glm::dot(n_, wi) > 0.0f && glm::dot(n_, wo_) > 0.0f;
     }
     // The same surface point seen from `wo` instead: light subpaths sample with wo pointing
@@ -63,9 +63,16 @@ public:
     // Normals oriented to the side of wo (two-sided shading).
     glm::vec3 shadingNormal() const { return n_; }
     glm::vec3 geometricNormal() const { return ng_; }
+    // Whether the surface scatters diffusely (after setAlbedo).
+    bool hasDiffuseLobe() const;
+    // From here on the diffuse lobe alone (weighted 1 - transmission as before): no GGX, no
+    // dielectric; a sample of what was dropped is absorbed. A path tracer without caustics
+    // (PathTracerOptions::caustics). Before or after setAlbedo.
+    void keepDiffuseLobeOnly();
 
 private:
     void setSpecularProbability();
+    bool roughTransmission() const { return transmission_ > 0.0f && !smoothDielectric_ && !diffuseOnly_; }
     glm::vec3 evalOpaque(glm::vec3 wi, float* pdf) const;
     glm::vec3 evalRoughDielectric(glm::vec3 wi, float* pdf) const;
     bool sampleOpaque(glm::vec3 u, BsdfSample& out) const;
@@ -79,6 +86,7 @@ private:
     float transmission_ = 0.0f;
     float eta_ = 1.0f;            // index on the wo side over the index on the other side
     bool smoothDielectric_ = false;
+    bool diffuseOnly_ = false;
 };
 
 // Unit t and b completing unit n to a right-handed orthonormal frame.

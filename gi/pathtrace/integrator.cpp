@@ -53,9 +53,9 @@ float rayOffsetScale(const Scene& scene) {
     return b.valid() ? std::max(glm::length(b.extent()), 1e-6f) : 1.0f;
 }
 
-Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces)
+Integrator::Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces, bool caustics)
     : scene_(scene), tracer_(tracer), lights_(scene), environment_(scene.sky),
-      maxBounces_(maxBounces > 0 ? maxBounces : kBounceGuard), sceneScale_(rayOffsetScale(scene)) {}
+      maxBounces_(maxBounces > 0 ? maxBounces : kBounceGuard), caustics_(caustics), sceneScale_(rayOffsetScale(scene)) {}
 
 bool Integrator::segmentOccluded(glm::vec3 from, glm::vec3 q, glm::vec3 nq) const {
     // The far end leaves the emitter the way rays leave surfaces and the segment stops at that
@@ -367,6 +367,7 @@ struct Integrator::PathState {
     float radianceScale = 1.0f;
     float previousPdf = 0.0f;
     bool previousDelta = true;  // the camera: what it sees directly gets full weight
+    bool diffuseOnly = false;  // without caustics: past a surface with a diffuse lobe
     glm::vec3 previousPosition;
     float previousCosine = 0.0f;  // |geometric normal . direction| at the previous surface
     CameraHistory history;        // kept only for connections
@@ -508,6 +509,7 @@ void Integrator::enterSurface(PathState& path) const {
     // The BSDF's frame first, then the delta lights' shadow rays; the albedo is read in the
     // next stage.
     path.bsdf.emplace(material, -direction, hit.geometricNormal, hit.shadingNormal, hit.frontFace);
+    if (path.diffuseOnly) path.bsdf->keepDiffuseLobeOnly();
     path.deltas.visible = 0;
     if (path.bsdf->hasSmoothPart()) deltaShadows(*path.bsdf, hit, path.uDisc, path.deltas, out.rays);
 }
@@ -542,6 +544,10 @@ void Integrator::leaveSurface(PathState& path) const {
     path.done = true;  // until the path survives this bounce
     BsdfSample s;
     if (!bsdf.sample(path.uBsdf, s)) return;
+    // Without caustics, every surface after one that scatters diffusely keeps only its diffuse
+    // lobe: light that reaches a diffuse surface by a specular reflection or a refraction is
+    // left out (the path tracer then traces no light subpaths, PathTracer::Impl).
+    if (!caustics_ && bsdf.hasDiffuseLobe()) path.diffuseOnly = true;
     path.throughput *= s.weight;
     out.scatterings = depth + 1;
     path.previousPdf = s.pdf;

@@ -21,7 +21,8 @@ constexpr int kBounceGuard = 10000;
 
 class Integrator {
 public:
-    Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces);
+    // `caustics`: PathTracerOptions::caustics.
+    Integrator(const Scene& scene, const RayTracer& tracer, int maxBounces, bool caustics = true);
     // Decision 0 of `sampler` is the caller's (the pixel position); bounce k uses 1 + 5k..5 + 5k.
     // With `lightVertices` (this sample index's, light_paths.h), every vertex of the path is also
     // connected to one of them (kConnections weighed, one traced); without, the path is
@@ -139,6 +140,7 @@ private:
     LightSampler lights_;
     EnvironmentSampler environment_;
     int maxBounces_;
+    bool caustics_;
     float sceneScale_;
 };
 

@@ -84,13 +84,13 @@ struct PathTracer::Impl {
     Impl(const Scene& s, const PathTracerOptions& o)
         : scene(pick(s, owned)), options(o), width(o.width > 0 ? o.width : s.camera.width),
           height(o.height > 0 ? o.height : s.camera.height), tracer(scene),
-          integrator(scene, tracer, o.maxBounces), camera(scene.camera, std::max(width, 1), std::max(height, 1)) {
+          integrator(scene, tracer, o.maxBounces, o.caustics), camera(scene.camera, std::max(width, 1), std::max(height, 1)) {
         if (width <= 0 || height <= 0) throw InputError("path tracer: image size must be positive");
         // Refuse before allocating: an absurd size would otherwise end in the OOM killer.
         requireMemory(double(width) * double(height) * double(sizeof(PixelSum) + 16 * sizeof(float)),
                       "path tracer: " + std::to_string(width) + "x" + std::to_string(height) + " accumulation and image buffers");
         sums.resize(std::size_t(width) * std::size_t(height));
-        if (options.lightPaths && integrator.tracesLightPaths()) {
+        if (options.lightPaths && options.caustics && integrator.tracesLightPaths()) {
             lightPaths = int(std::clamp<std::int64_t>(std::int64_t(width) * height / kPixelsPerLightPath, kMinLightPaths,
                                                       kMaxLightPaths));
             // At most maxLightVertices() per subpath, for each

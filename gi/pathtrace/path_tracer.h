@@ -30,6 +30,13 @@ struct PathTracerOptions {
     // spot lights and emitters; false: unidirectional paths only (the same image in
     // expectation, noisier).
     bool lightPaths = true;
+    // false: leave out caustics, the light that reaches a diffuse surface by way of a specular
+    // reflection or a refraction: past the first surface of a path that has a diffuse lobe,
+    // surfaces scatter only their diffuse lobe (metals and glass then end the path), and no
+    // light subpaths are traced. What methods that carry light between diffuse surfaces and
+    // trace only what the camera sees in mirrors aim at (hybrid); not the physical image
+    // (docs/reference.md).
+    bool caustics = true;
 };
 
 // What one camera path brought back, split the way the AOVs are.
