@@ -301,6 +301,7 @@ struct GpuDdgi {
     GpuDdgi(const Scene& scene, const std::map<std::string, std::string>& keys)
         : tracer(scene), system(tracer, test::descFrom(keys)), gpu(system.field()) {
         gpu.traceOnGpu(tracer, system.field(), system.desc().trace);
+        gpu.waitForEachStage(true);  // each update's own counts
     }
     DdgiFrameStats run(int frames, glm::vec3 eye) {
         DdgiFrameStats last;
@@ -362,6 +363,39 @@ TEST_F(DdgiVolumeShade, GpuClassificationPutsFarProbesToSleepWithoutRays) {
         }
         EXPECT_EQ(r.blends, expected) << "probe " << p;
     }
+}
+
+// The technique's update waits for nothing: the GPU does the same work, so the field is the
+// same bit for bit, and each update's counts come back later, tagged with the update they
+// describe, equal to what a waiting update counted then.
+TEST_F(DdgiVolumeShade, AnUpdateThatWaitsForNothingGivesTheSameFieldAndItsCountsLater) {
+    const Scene scene = test::furnaceBox(0.5f, 1.0f, 4.0f);
+    const std::map<std::string, std::string> keys = {
+        {"probes", "4"}, {"rays", "32"}, {"relocate", "false"}, {"trace", "volume"}};
+    GpuDdgi waiting(scene, keys), free(scene, keys);
+    free.gpu.waitForEachStage(false);
+    std::vector<DdgiFrameStats> waited, freed;
+    for (int f = 0; f < 12; ++f) {
+        waited.push_back(waiting.system.update(scene.camera.eye, &waiting.gpu));
+        freed.push_back(free.system.update(scene.camera.eye, &free.gpu));
+    }
+    waiting.gpu.syncToCpu(waiting.system.field());
+    free.gpu.syncToCpu(free.system.field());
+    EXPECT_TRUE(waiting.system.field().irradiance.texels == free.system.field().irradiance.texels);
+    EXPECT_TRUE(waiting.system.field().distance.texels == free.system.field().distance.texels);
+    int counted = 0;
+    for (int f = 0; f < 12; ++f) {
+        EXPECT_EQ(waited[std::size_t(f)].countedFrame, f);
+        const std::int64_t from = freed[std::size_t(f)].countedFrame;
+        EXPECT_LE(from, f);
+        if (from < 0) continue;
+        ++counted;
+        const DdgiFrameStats& then = waited[std::size_t(from)];
+        EXPECT_EQ(freed[std::size_t(f)].probesBlended, then.probesBlended) << "update " << f;
+        EXPECT_EQ(freed[std::size_t(f)].states.sleeping, then.states.sleeping) << "update " << f;
+        EXPECT_EQ(freed[std::size_t(f)].states.active, then.states.active) << "update " << f;
+    }
+    EXPECT_GT(counted, 0);
 }
 
 // Probes inside a wall half a metre thick are off, probes in the rooms are not, as the CPU

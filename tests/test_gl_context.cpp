@@ -1,11 +1,12 @@
 // The headless EGL context on llvmpipe (or any driver): GL 4.5 core, compute shaders, timer
-// queries, shader includes and clear compile errors.
+// queries, shader includes and clear compile errors; reading results back frames later.
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "gl/context.h"
 #include "gl/program.h"
+#include "gl/readback_ring.h"
 #include "gl/resources.h"
 #include "gl/screen_pass.h"
 #include "gl/timers.h"
@@ -113,4 +114,39 @@ TEST(StageTimerSummary, SkipsSamplesThatAreNotMeasurements) {
     EXPECT_DOUBLE_EQ(gl::summarize({1.0, std::nan(""), 3.0}).max, 3.0);
     EXPECT_TRUE(std::isnan(gl::summarize({std::nan("")}).median));
     EXPECT_EQ(gl::summarize({}).median, 0.0);
+}
+
+// Counters a kernel wrote, read back later without a wait: every push's bytes come back whole,
+// tagged with their push; finish() brings the last; more pushes than slots wait for the oldest.
+TEST_F(GlContext, ReadbackRingHandsBackEachPushWholeAndTheNewestLast) {
+    gl::Handle counters = gl::createBuffer(2 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl::Handle more = gl::createBuffer(sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl::ReadbackRing ring(3 * sizeof(GLuint), 3);
+    std::uint64_t tag = 0;
+    GLuint out[3] = {};
+    EXPECT_FALSE(ring.latest(tag, out));  // nothing pushed yet
+    std::uint64_t lastTag = 0;
+    for (GLuint push = 1; push <= 10; ++push) {
+        const GLuint values[2] = {push, 100 + push}, third = 1000 + push;
+        glNamedBufferSubData(counters.id(), 0, sizeof(values), values);
+        glNamedBufferSubData(more.id(), 0, sizeof(third), &third);
+        ring.push(push, {{counters.id(), 0, sizeof(values)}, {more.id(), 0, sizeof(third)}});
+        if (ring.latest(tag, out)) {
+            EXPECT_GT(tag, lastTag);  // newer than what came back before, never later than the push
+            EXPECT_LE(tag, push);
+            EXPECT_EQ(out[0], GLuint(tag));
+            EXPECT_EQ(out[1], 100 + GLuint(tag));
+            EXPECT_EQ(out[2], 1000 + GLuint(tag));
+            lastTag = tag;
+        }
+    }
+    ASSERT_TRUE(ring.finish(tag, out) || lastTag == 10);
+    if (lastTag != 10) {
+        EXPECT_EQ(tag, 10u);
+        EXPECT_EQ(out[0], 10u);
+        EXPECT_EQ(out[2], 1010u);
+    }
+    EXPECT_FALSE(ring.latest(tag, out));  // nothing newer since
+    EXPECT_THROW(ring.push(11, {{counters.id(), 0, 2 * sizeof(GLuint)}, {counters.id(), 0, 2 * sizeof(GLuint)}}),
+                 std::logic_error);
 }

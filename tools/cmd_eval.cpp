@@ -95,7 +95,7 @@ void requireKnownPresets(const std::vector<std::string>& wanted) {
 }
 
 EvalRow measure(const std::string& method, const Preset& preset, MethodRun run, const Reference& ref, const std::string& dir,
-                const std::string& sceneDir, const RenderSettings& rs) {
+                const std::string& sceneDir) {
     EvalRow row;
     row.method = method;
     row.preset = preset.name;
@@ -260,7 +260,7 @@ int runEvaluation(const Args& args, const std::string& dir, const std::vector<st
                     fitted = info.fitToReference(render, ref.image);
                 }
                 MethodRun run = renderMethod(scene, method, preset, rs, fitted);
-                EvalRow row = measure(method, preset, run, ref, dir, se.name, rs);
+                EvalRow row = measure(method, preset, run, ref, dir, se.name);
                 row.oracle = info.oracle();
                 row.fitted = settingsText(fitted);
                 std::printf("  %.2f ms/frame, RMSE %.4g FLIP %.4g (full), RMSE %.4g FLIP %.4g (indirect)\n",

@@ -158,7 +158,9 @@ ViewsEval evaluateViews(const Scene& scene, const std::string& name, const std::
             scoreViews(r, r, nullptr);
             continue;
         }
-        const auto& [method, preset] = job.runs[r];
+        // Named references, not a structured binding: lambdas may capture those only from C++20.
+        const std::string& method = job.runs[r].first;
+        const Preset& preset = job.runs[r].second;
         scoreViews(r, r, [&, r](std::size_t k) {
             RenderWith render = [&](const SettingList& extra) {
                 return renderMethod(viewScene, method, preset, job.settings, extra).image;

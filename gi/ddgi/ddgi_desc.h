@@ -14,6 +14,13 @@
 
 namespace voxgi {
 
+// The update's stages as the frame plan and the frame's timers name them.
+inline constexpr const char* kDdgiTraceStage = "ddgi.trace";
+inline constexpr const char* kDdgiShadeStage = "ddgi.shade";
+inline constexpr const char* kDdgiBlendStage = "ddgi.blend";
+inline constexpr const char* kDdgiBorderStage = "ddgi.border";
+inline constexpr const char* kDdgiClassifyStage = "ddgi.classify";
+
 enum class DdgiDirectLight {
     ShadowRays,       // one shadow ray per light per probe-ray hit
     OcclusionProbes,  // visibility reconstructed from an occlusion-probe field (seed 004 ch. 5)

@@ -9,6 +9,8 @@
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/raytrace/triangle_bvh.h"
 #include "gl/context.h"
+#include "gl/readback_ring.h"
+#include "gl/timers.h"
 #include "gl/screen_pass.h"
 #include "gi/sampling/sequences.h"
 #include "shaders/ddgi/limits.h"
@@ -50,13 +52,23 @@ void dispatchTiles(GLuint groups, int jobs, int dispatch) {
     else glDispatchComputeIndirect(GLintptr(3 * dispatch * sizeof(GLuint)));
 }
 
-// Ends the timed passes that wrote the atlases: their barrier, then their GPU time.
-double endAtlasPasses(GLuint query) {
-    glEndQuery(GL_TIME_ELAPSED);
+// What the passes that wrote the atlases wrote, for the passes and transfers after them.
+void atlasBarrier() {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+// Ends a timed pass and waits for it: its GPU time.
+double endTimedPass(GLuint query) {
+    glEndQuery(GL_TIME_ELAPSED);
     glFinish();
     return gl::timerQueryMs(query);
 }
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// What updateProbes reads back: the counters, then the shade dispatch's job count.
+constexpr std::size_t kCountsBytes = (shading::kDdgiCounters + 1) * sizeof(GLuint);
 }  // namespace
 
 DdgiGpu::DdgiGpu(const ProbeField& field) {
@@ -86,6 +98,7 @@ void DdgiGpu::traceInVolume(const NanoGeometry& geometry, const Scene& scene, co
     classify_ = gl::Program::compute("ddgi/classify.comp", traceDefines(triangles != nullptr));
     dispatches_ = gl::createBuffer(3 * shading::kDdgiDispatches * sizeof(GLuint));
     counters_ = gl::createBuffer(shading::kDdgiCounters * sizeof(GLuint));
+    counts_ = std::make_unique<gl::ReadbackRing>(kCountsBytes);
 }
 
 void DdgiGpu::traceOnGpu(const RayTracer& tracer, const ProbeField& field, DdgiTrace trace) {
@@ -173,7 +186,9 @@ void DdgiGpu::blend(ProbeField& field, const RaySet& rays, const ShadedRays& sha
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
     glFinish();  // the transfers end here, so the kernels' timing holds only the kernels
     times_.uploadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    glBeginQuery(GL_TIME_ELAPSED, blendQuery_.id());
     blendKernels(field, rays, int(jobs.size()));
+    times_.blendGpuMs = endTimedPass(blendQuery_.id());
 }
 
 void DdgiGpu::uploadDirections(const RaySet& rays) {
@@ -203,16 +218,17 @@ void DdgiGpu::blendKernels(const ProbeField& field, const RaySet& rays, int jobs
         glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
         dispatchTiles(blendGroups(texels), jobs, dispatch);
     };
-    glBeginQuery(GL_TIME_ELAPSED, blendQuery_.id());
     run(blendIrradiance_, irradiance_.id(), bp.irradianceTexels, shading::kDdgiDispatchBlendIrradiance);
     run(blendDistance_, distance_.id(), bp.distanceTexels, shading::kDdgiDispatchBlendDistance);
-    times_.blendGpuMs = endAtlasPasses(blendQuery_.id());
+    atlasBarrier();
 }
 
 void DdgiGpu::border(ProbeField& field, const std::vector<BlendJob>& jobs) {
     if (!jobs.empty()) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
+        glBeginQuery(GL_TIME_ELAPSED, borderQuery_.id());
         borderKernels(field, int(jobs.size()));
+        times_.borderGpuMs = endTimedPass(borderQuery_.id());
     }
     const auto start = std::chrono::steady_clock::now();
     readBack(field);
@@ -227,18 +243,29 @@ void DdgiGpu::borderKernels(const ProbeField& field, int jobs) {
         glBindImageTexture(0, atlas, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
         dispatchTiles(borderGroups(texels), jobs, dispatch);
     };
-    glBeginQuery(GL_TIME_ELAPSED, borderQuery_.id());
     run(irradiance_.id(), field.desc().irradianceTexels, 0, shading::kDdgiDispatchBorderIrradiance);
     run(distance_.id(), field.desc().distanceTexels, 1, shading::kDdgiDispatchBorderDistance);
-    times_.borderGpuMs = endAtlasPasses(borderQuery_.id());
+    atlasBarrier();
+}
+
+std::chrono::steady_clock::time_point DdgiGpu::beginStage(const char* stage, GLuint query) {
+    if (waitForEachStage_) glBeginQuery(GL_TIME_ELAPSED, query);
+    else if (stageTimers_) stageTimers_->begin(stage);
+    return Clock::now();
+}
+
+double DdgiGpu::endStage(GLuint query, std::chrono::steady_clock::time_point start, double& gpuMs) {
+    if (waitForEachStage_) {
+        gpuMs = endTimedPass(query);
+    } else if (stageTimers_) {
+        stageTimers_->end();
+    }
+    return msSince(start);
 }
 
 BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet& rays, std::uint32_t frame) {
-    using Clock = std::chrono::steady_clock;
-    auto msSince = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
     times_ = Times{};
     UpdateReport report;
-    auto start = Clock::now();
     const DdgiDesc& desc = field.desc();
     const std::size_t probes = field.probes.size();
     if (synced_ != &field || syncedVersion_ != field.atlasVersion() || blendsBytes_ < probes * sizeof(GLint)) {
@@ -271,6 +298,8 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
     gl::ensureBuffer(works_, worksBytes_, probes * sizeof(GLint));
     volume_->prepare(rays, frame);
 
+    // Each stage's barrier orders the next; nothing waits for the GPU unless asked
+    // (waitForEachStage), and what the update counted comes back frames later (counts_).
     const GLuint probeGroups = GLuint((probes + 63) / 64);
     auto bindUpdate = [&](const gl::Program& program) {
         bindProbeField(program, field, irradiance_.id(), distance_.id(), probeData_.id());
@@ -280,6 +309,8 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, counters_.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, dispatches_.id());
     };
+    double scheduleGpuMs = 0.0;
+    auto start = beginStage(kDdgiClassifyStage, classifyQuery_.id());
     schedule_.use();
     bindUpdate(schedule_);
     schedule_.set("uFrame", int(frame));
@@ -291,31 +322,26 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, origins_.id());
     glDispatchCompute(probeGroups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    glFinish();
-    report.classifyMs = msSince(start);
+    report.classifyMs = endStage(classifyQuery_.id(), start, scheduleGpuMs);
 
-    start = Clock::now();
+    start = beginStage(kDdgiTraceStage, shadeQuery_.id());
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dispatches_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, jobs_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, directions_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rays_.id());
     // Reads the previous field before the blend below overwrites it.
-    glBeginQuery(GL_TIME_ELAPSED, shadeQuery_.id());
     volume_->dispatch(field, rays, origins_.id(), GLintptr(3 * shading::kDdgiDispatchShade * sizeof(GLuint)),
                       irradiance_.id(), distance_.id(), probeData_.id());
-    glEndQuery(GL_TIME_ELAPSED);
-    glFinish();
-    report.traceMs = msSince(start);
-    times_.shadeGpuMs = gl::timerQueryMs(shadeQuery_.id());
+    report.traceMs = endStage(shadeQuery_.id(), start, times_.shadeGpuMs);
 
-    start = Clock::now();
+    start = beginStage(kDdgiBlendStage, blendQuery_.id());
     blendKernels(field, rays, -1);
-    report.blendMs = msSince(start);
-    start = Clock::now();
+    report.blendMs = endStage(blendQuery_.id(), start, times_.blendGpuMs);
+    start = beginStage(kDdgiBorderStage, borderQuery_.id());
     borderKernels(field, -1);
-    report.borderMs = msSince(start);
+    report.borderMs = endStage(borderQuery_.id(), start, times_.borderGpuMs);
 
-    start = Clock::now();
+    start = beginStage(kDdgiClassifyStage, classifyQuery_.id());
     classify_.use();
     bindUpdate(classify_);
     volume_->geometry().bind(classify_, 3);
@@ -328,22 +354,30 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
     classify_.set("uRelocationBackfaceThreshold", desc.relocationBackfaceThreshold);
     classify_.set("uMinFrontfaceDistance", desc.minFrontfaceDistance);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, fixedDirections_.id());
-    glBeginQuery(GL_TIME_ELAPSED, classifyQuery_.id());
     glDispatchCompute(probeGroups, 1, 1);
-    glEndQuery(GL_TIME_ELAPSED);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    // What the frame counted, 20 bytes: the only read-back of the update.
-    GLuint counters[shading::kDdgiCounters], jobCount = 0;
-    glGetNamedBufferSubData(counters_.id(), 0, sizeof(counters), counters);
-    glGetNamedBufferSubData(dispatches_.id(), GLintptr((3 * shading::kDdgiDispatchShade + 1) * sizeof(GLuint)),
-                            sizeof(GLuint), &jobCount);
-    report.classifyMs += msSince(start);
-    times_.classifyGpuMs = gl::timerQueryMs(classifyQuery_.id());
-    report.blended = int(jobCount);
-    report.fixedOnly = int(counters[shading::kDdgiCountFixedOnly]);
-    report.active = int(counters[shading::kDdgiCountStates + shading::kProbeActive]);
-    report.sleeping = int(counters[shading::kDdgiCountStates + shading::kProbeSleeping]);
-    report.off = int(counters[shading::kDdgiCountStates + shading::kProbeOff]);
+    // What the update counted, 20 bytes, copied on the GPU for a later frame to read.
+    counts_->push(frame, {{counters_.id(), 0, shading::kDdgiCounters * sizeof(GLuint)},
+                          {dispatches_.id(), (3 * shading::kDdgiDispatchShade + 1) * sizeof(GLuint), sizeof(GLuint)}});
+    report.classifyMs += endStage(classifyQuery_.id(), start, times_.classifyGpuMs);
+    times_.classifyGpuMs += scheduleGpuMs;
+
+    GLuint counts[shading::kDdgiCounters + 1];
+    std::uint64_t countedFrame = 0;
+    if (waitForEachStage_ ? counts_->finish(countedFrame, counts) : counts_->latest(countedFrame, counts)) {
+        lastCounts_.blended = int(counts[shading::kDdgiCounters]);
+        lastCounts_.fixedOnly = int(counts[shading::kDdgiCountFixedOnly]);
+        lastCounts_.active = int(counts[shading::kDdgiCountStates + shading::kProbeActive]);
+        lastCounts_.sleeping = int(counts[shading::kDdgiCountStates + shading::kProbeSleeping]);
+        lastCounts_.off = int(counts[shading::kDdgiCountStates + shading::kProbeOff]);
+        lastCounts_.countedFrame = std::int64_t(countedFrame);
+    }
+    report.blended = lastCounts_.blended;
+    report.fixedOnly = lastCounts_.fixedOnly;
+    report.active = lastCounts_.active;
+    report.sleeping = lastCounts_.sleeping;
+    report.off = lastCounts_.off;
+    report.countedFrame = lastCounts_.countedFrame;
     cpuStale_ = true;
     return report;
 }

@@ -7,6 +7,7 @@
 // the atlases and probe records stay on the GPU until a CPU reader asks (syncToCpu).
 #pragma once
 
+#include <chrono>
 #include <memory>
 
 #include "gi/ddgi/probe_blend.h"
@@ -16,6 +17,10 @@
 #include "gl/resources.h"
 
 namespace voxgi {
+namespace gl {
+class ReadbackRing;
+class StageTimers;
+}  // namespace gl
 
 class RayTracer;
 
@@ -33,7 +38,19 @@ public:
     // from `tracer`'s scene (the volume by voxelizeForTracing, the BVH by buildTriangleBvh).
     void traceOnGpu(const RayTracer& tracer, const ProbeField& field, DdgiTrace trace);
     bool updatesProbes() const override { return volume_ != nullptr; }
+    // The whole update on the GPU. It waits for nothing: its counts (probes per state, blended,
+    // fixed-only) are those of the newest update the GPU has finished, read back without a
+    // stall a frame or more later (report.countedFrame says which; gl::ReadbackRing), and its
+    // stage times are CPU submission times, with the GPU times in the timers given to
+    // timeStagesWith. Unless waitForEachStage.
     UpdateReport updateProbes(ProbeField& field, const RaySet& rays, std::uint32_t frame) override;
+    // Brackets the GPU update's stages (kDdgiTraceStage...) in the frame's timers (GL_TIME_ELAPSED
+    // queries collected with the frame's); null: none.
+    void timeStagesWith(gl::StageTimers* timers) { stageTimers_ = timers; }
+    // true: the GPU update waits for each stage (glFinish), so its stage times are wall times of
+    // the GPU's work (lastTimes: its GPU times) and its counts are this update's. For benchmarks
+    // and tests; a frame loses the CPU-GPU overlap.
+    void waitForEachStage(bool wait) { waitForEachStage_ = wait; }
     // Where the volume trace finds the sky (VolumeShadeGl::setSky); nothing without it.
     void setSky(bool atMisses, const SkyVolumeTexture* volume) {
         if (volume_) volume_->setSky(atMisses, volume);
@@ -80,6 +97,10 @@ private:
     // The unrotated blend and fixed directions, uploaded when their counts change.
     void uploadDirections(const RaySet& rays);
     void borderKernels(const ProbeField& field, int jobs);
+    // One stage of updateProbes: bracketed by `query` (waitForEachStage) or in stageTimers_.
+    std::chrono::steady_clock::time_point beginStage(const char* stage, GLuint query);
+    // Its CPU time (the GPU's too when waiting; its GPU time into gpuMs then).
+    double endStage(GLuint query, std::chrono::steady_clock::time_point start, double& gpuMs);
 
     gl::Program blendIrradiance_, blendDistance_, border_, apply_;
     gl::Handle irradiance_, distance_;
@@ -95,6 +116,10 @@ private:
     std::size_t blendsBytes_ = 0, worksBytes_ = 0, originsBytes_ = 0;
     int dispatchRays_ = -1;  // the blend rays the dispatches' fixed sizes were written for
     bool cpuStale_ = false;  // the GPU atlases (and records) are newer than the field's (syncToCpu)
+    std::unique_ptr<gl::ReadbackRing> counts_;  // each update's counters, read back later
+    UpdateReport lastCounts_;                    // the newest update's counts read so far
+    gl::StageTimers* stageTimers_ = nullptr;
+    bool waitForEachStage_ = false;
     Times times_;
     // The field (and its atlasVersion) the GPU atlases hold, after an upload or a read-back.
     std::vector<glm::vec4> staging_;  // atlas rows on their way up or down

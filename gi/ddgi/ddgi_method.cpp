@@ -25,20 +25,20 @@ TechniquePlan ddgiPlan(const Scene& scene) {
         separator = ", ";
     }
     TechniquePlan p;
-    p.update.push_back({"ddgi.trace", std::to_string(probes) + " probes (" + grids.str() + ") x " + std::to_string(d.rays) +
+    p.update.push_back({kDdgiTraceStage, std::to_string(probes) + " probes (" + grids.str() + ") x " + std::to_string(d.rays) +
                                           " rays (+" + std::to_string(d.fixedRayCount()) + " fixed) " +
                                           (d.trace == DdgiTrace::Triangles ? "with Embree"
                                            : d.trace == DdgiTrace::Volume  ? "through the NanoVDB volume on gl"
                                                                            : "through the triangles' BVH on gl (fixed rays "
                                                                              "through the NanoVDB volume)")});
-    p.update.push_back({"ddgi.shade", std::string("emission, direct light by ") +
+    p.update.push_back({kDdgiShadeStage, std::string("emission, direct light by ") +
                                           (d.directLight == DdgiDirectLight::ShadowRays ? "shadow rays" : "occlusion probes") +
                                           (scene.sky.enabled && readSkyVolumeDesc(scene.gi).light ? ", the sky volume's irradiance" : "") +
                                           " and the previous field's irradiance at every hit"});
     const std::string where = d.gpuBlend() ? "gl" : "cpu";
-    p.update.push_back({"ddgi.blend", "irradiance and distance atlases on " + where});
-    p.update.push_back({"ddgi.border", "atlas tile borders on " + where});
-    p.update.push_back({"ddgi.classify", std::string(d.relocate ? "relocate and " : "") + "classify the probes"});
+    p.update.push_back({kDdgiBlendStage, "irradiance and distance atlases on " + where});
+    p.update.push_back({kDdgiBorderStage, "atlas tile borders on " + where});
+    p.update.push_back({kDdgiClassifyStage, std::string(d.relocate ? "relocate and " : "") + "classify the probes"});
     p.apply.push_back({"ddgi.sample", "irradiance from the probe field at every pixel"});
     if (d.classify)
         p.notes.push_back("ddgi: sleeping probes trace all rays every " + std::to_string(d.sleepInterval) +

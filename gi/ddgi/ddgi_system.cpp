@@ -118,6 +118,7 @@ void DdgiSystem::updateElsewhere(DdgiFrameStats& stats, BlendBackend& backend) {
     stats.probesBlended = counts.blended;
     stats.raysTraced = std::int64_t(counts.blended) * rays_.stride() + std::int64_t(counts.fixedOnly) * rays_.fixedRays;
     stats.states = {counts.active, counts.sleeping, counts.off};
+    stats.countedFrame = counts.countedFrame;
     if (trackChange_) {
         backend.syncToCpu(field);
         measureChange();
@@ -141,6 +142,7 @@ void DdgiSystem::blendAndClassify(DdgiFrameStats& stats, BlendBackend& blender, 
     classifyProbes(field, rays_, trace_, query_);
     stats.classifyMs = msSince(t0);
     stats.states = countStates(field);
+    stats.countedFrame = std::int64_t(frame_);
     if (trackChange_) {
         blender.syncToCpu(field);
         measureChange();

@@ -34,6 +34,9 @@ struct DdgiFrameStats {
     std::int64_t cachedHits = 0;
     int probesBlended = 0;
     ProbeStateCounts states;
+    // The update (frame number) raysTraced, probesBlended and states describe: this one on the
+    // CPU; a GPU update's come back a frame or more later (DdgiGpu::updateProbes), -1 until then.
+    std::int64_t countedFrame = -1;
 };
 
 // Every number of a frame's stats by name (times in ms), for the technique's stats() and the

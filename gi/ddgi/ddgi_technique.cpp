@@ -34,16 +34,21 @@ void DdgiTechnique::update(const FrameInput& input, const GBufferView& gbuffer) 
     system_->setSky({false, input.sky ? &input.sky->volume() : nullptr});
     gpu_->setSky(false, input.sky);
     BlendBackend* backend = system_->desc().gpuBlend() ? gpu_.get() : nullptr;
+    // The GPU update brackets its own stages in the frame's timers (their GPU time, without a
+    // wait); the CPU's are timed by the system.
+    const bool onGpu = gpu_->updatesProbes();
+    gpu_->timeStagesWith(onGpu ? &input.timers : nullptr);
     lastStats_ = system_->update(gbuffer.eye, backend, viewForward(gbuffer.viewProjection));
+    gpu_->timeStagesWith(nullptr);
     // The system runs every stage each frame; the plan lists each one (ddgi_method.cpp).
-    const std::pair<const char*, double> stages[] = {{"ddgi.trace", lastStats_.traceMs},
-                                                     {"ddgi.shade", lastStats_.shadeMs},
-                                                     {"ddgi.blend", lastStats_.blendMs},
-                                                     {"ddgi.border", lastStats_.borderMs},
-                                                     {"ddgi.classify", lastStats_.classifyMs}};
+    const std::pair<const char*, double> stages[] = {{kDdgiTraceStage, lastStats_.traceMs},
+                                                     {kDdgiShadeStage, lastStats_.shadeMs},
+                                                     {kDdgiBlendStage, lastStats_.blendMs},
+                                                     {kDdgiBorderStage, lastStats_.borderMs},
+                                                     {kDdgiClassifyStage, lastStats_.classifyMs}};
     for (const auto& [stage, ms] : stages)
-        if (input.plan.runs(stage)) input.timers.addCpu(stage, ms);
-    if (gpu_->updatesProbes()) return;  // the GPU relocated and classified: its records are the newest
+        if (input.plan.runs(stage) && !(onGpu && stage != kDdgiShadeStage)) input.timers.addCpu(stage, ms);
+    if (onGpu) return;  // the GPU relocated and classified: its records are the newest
     if (backend) gpu_->uploadProbeData(system_->field());
     else gpu_->upload(system_->field());
 }

@@ -69,6 +69,9 @@ public:
         int active = 0, sleeping = 0, off = 0;
         // Wall time of each stage, the schedule counted with classification.
         double traceMs = 0.0, blendMs = 0.0, borderMs = 0.0, classifyMs = 0.0;
+        // The update (its frame number) the counts above describe: a GPU reads them back later
+        // (DdgiGpu::updateProbes); -1 while none has come back.
+        std::int64_t countedFrame = -1;
     };
     virtual UpdateReport updateProbes(ProbeField&, const RaySet&, std::uint32_t /*frame*/) { return {}; }
     // A backend that keeps the newest atlases (and, with updatesProbes, the probe records) to

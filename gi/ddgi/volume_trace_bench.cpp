@@ -101,6 +101,7 @@ void printVolumeUpdateBench(const RayTracer& tracer, DdgiDesc desc, glm::vec3 ey
         const auto t0 = std::chrono::steady_clock::now();
         const bool triangles = through == DdgiTrace::Bvh;
         gpu.traceOnGpu(tracer, system.field(), through);
+        gpu.waitForEachStage(true);  // per-stage wall and GPU times, this update's ray counts
         const double buildMs = msSince(t0);
         std::vector<double> total, trace, blend, border, classes, gpuTrace, gpuBlend, gpuBorder, gpuClassify, rays;
         for (int f = 0; f < frames + 2; ++f) {
