@@ -14,8 +14,8 @@
 # frames, to check the script itself on llvmpipe. The goals each log answers:
 #   ddgi.txt    issue 18: a 16x8x12 probe update <= 1 ms, >= 1 G probe-rays/s (trace = volume and bvh)
 #   clpv.txt    issue 17: Sponza's CLPV update at 3x32^3 <= 2 ms, 3x64^3 <= 4 ms; Sibenik's
-#               injection and blockers < 2 ms; and lpv.apply with lpv.tap_visibility (its cost
-#               is why it is off by default, docs/lpv.md)
+#               injection and blockers < 2 ms; and lpv.apply with lpv.tap_visibility=rays and
+#               =cells (their cost is why they are off by default, docs/lpv.md)
 #   isr.txt     issue 22: ISR at 1080p <= 1 ms, without and with the guard band
 #   sky.txt     issue 19: sky apply <= 0.5 ms at 1080p
 #   hybrid.txt  issue 20: the hybrid frame against clpv's
@@ -68,7 +68,9 @@ run() {
   for r in 32 64; do
     step clpv.txt bench clpv "${scenes[@]}" --sizes "$size" --variants gl "${frames[@]}" --set lpv.resolution=$r
   done
-  step clpv.txt bench clpv "${scenes[@]}" --sizes "$size" --variants gl "${frames[@]}" --set lpv.tap_visibility=true
+  for taps in rays cells; do
+    step clpv.txt bench clpv "${scenes[@]}" --sizes "$size" --variants gl "${frames[@]}" --set lpv.tap_visibility=$taps
+  done
   for band in 0 0.125 0.25; do
     step isr.txt bench isr "${scenes[@]}" --sizes "$size" "${frames[@]}" --set isr.guard_band=$band
   done

@@ -7,6 +7,9 @@
 #include <cstdlib>
 
 #include "gi/lpv/ordinates.h"
+#include "gi/lpv/tap_masks.h"
+#include "gi/raytrace/ray_tracer.h"
+#include "scenes/scene_loader.h"
 #include "gi/sampling/sequences.h"
 #include "shaders/shared/irradiance_cube.h"
 #include "shaders/shared/light_bricks.h"
@@ -470,4 +473,38 @@ TEST(LpvCubeRead, TheQuadraticReadsAHemisphereOfLightExactlyForEveryNormal) {
     }
     EXPECT_LT(worstQuadratic, 1e-5f);
     EXPECT_GT(worstAmbient, 0.1f);
+}
+
+// lpv.tap_visibility=cells: two parallel walls 0.7 m apart across 1 m cells. The side of the first
+// wall that faces the second sees nothing beyond it (the cells one step along +x), and keeps the
+// cells behind itself; its other side faces open space and sees everything; a cell without
+// surfaces sees everything.
+TEST(LpvOrdinates, TapMasksSeeTheCellsInFrontOfASideAndKeepThoseBehindIt) {
+    Scene s = parseSceneJson(R"({"camera": {"eye": [1, 1, 1], "target": [4, 4, 4]},
+        "materials": {"stone": {"albedo": 0.5}},
+        "meshes": [{"type": "quad", "material": "stone", "corners": [[3.5, 0, 0], [3.5, 8, 0], [3.5, 8, 8], [3.5, 0, 8]]},
+                   {"type": "quad", "material": "stone", "corners": [[4.2, 0, 0], [4.2, 8, 0], [4.2, 8, 8], [4.2, 0, 8]]}]})",
+                             "walls.json");
+    CascadeGrid grid;
+    grid.resolution = 8;
+    grid.cellSize = 1.0f;
+    BrickMap bricks(8);
+    bricks.allocateAll();
+    RayTracer tracer(s);
+    const std::vector<std::uint32_t> masks = traceTapMasks(s, tracer, grid, bricks);
+    auto mask = [&](glm::ivec3 cell, glm::vec3 n) {
+        return masks[BrickMap::brickCell(bricks.slotOf(cell), cell) * 6 + std::size_t(tapMaskClass(n))];
+    };
+    EXPECT_EQ(tapMaskClass({0.2f, -0.9f, 0.1f}), 3);  // -y
+    EXPECT_EQ(tapMaskClass({0.5f, 0.5f, 0.5f}), 0);   // ties go to x
+    const glm::ivec3 wall(3, 4, 4);
+    const std::uint32_t facing = mask(wall, {1, 0, 0}), away = mask(wall, {-1, 0, 0});
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy) {
+            EXPECT_FALSE((facing >> tapMaskBit({1, dy, dz})) & 1u) << "beyond the second wall " << dy << " " << dz;
+            EXPECT_TRUE((facing >> tapMaskBit({-1, dy, dz})) & 1u) << "behind the first wall " << dy << " " << dz;
+            EXPECT_TRUE((facing >> tapMaskBit({0, dy, dz})) & 1u) << "its own column " << dy << " " << dz;
+        }
+    EXPECT_EQ(away, kAllTapBits);
+    EXPECT_EQ(mask({1, 4, 4}, {1, 0, 0}), kAllTapBits);
 }

@@ -38,9 +38,15 @@ SettingsTable<LpvDesc> makeTable(bool cascaded) {
     t.number("inject_normal_offset", &D::injectNormalOffset, 0.0, 4.0, "VPL shift along the surfel normal, in cells");
     t.number("inject_light_offset", &D::injectLightOffset, 0.0, 4.0, "sh: VPL shift toward the light, in cells");
     t.number("apply_normal_offset", &D::applyNormalOffset, 0.0, 4.0, "lookup shift along the shading normal, in cells");
-    t.flag("tap_visibility", &D::tapVisibility,
-           "ordinates: drop the trilinear taps in front of a receiver that a ray to their cell centre finds blocked "
-           "(triangles' BVH on the GPU)");
+    t.choice("tap_visibility", &D::tapVisibility,
+             {{"off", TapVisibility::Off},
+              {"rays", TapVisibility::Rays},
+              {"cells", TapVisibility::Cells},
+              {"false", TapVisibility::Off},
+              {"true", TapVisibility::Rays}},
+             "ordinates: drop the trilinear taps in front of a receiver that a ray to their cell centre finds blocked; "
+             "rays: per pixel (triangles' BVH on the GPU); cells: per cell and side, traced once per cascade placement "
+             "(true = rays)");
     t.number("dampening", &D::dampening, 0.0, 100.0, "sh: gradient dampening strength (0 = off)");
     t.flag("glossy", &D::glossy, "glossy march of the finest cascade for specular or metallic materials with roughness < 0.6");
     t.number("forward_offset", &D::forwardOffset, 0.0, 0.5, "clpv: cascades centred this fraction of their size ahead of the camera");

@@ -23,6 +23,13 @@ enum class CascadeBounds { Camera, Scene };
 // that takes the six faces' values on the axis normals (closer for tilted normals, docs/lpv.md).
 enum class CubeRead { Ambient, Quadratic };
 
+// Which trilinear taps a receiver reads (ordinates). Off: all eight. Rays: each tap whose cell
+// centre lies in front of the receiver's surface is kept when a ray from the surface to the
+// centre meets no triangle (the scene's BVH on the GPU, per pixel); taps behind the surface are
+// kept. Cells: the same test made once per cascade placement from points on the surfaces of the
+// receiver's cell that face its side (gi/lpv/tap_masks.h).
+enum class TapVisibility { Off, Rays, Cells };
+
 struct LpvDesc {
     int resolution = 32;        // cells per side of every cascade (32^3, as CryEngine and seed 000)
     int cascades = 1;           // 1 for lpv, 3 for clpv
@@ -65,10 +72,8 @@ struct LpvDesc {
     // per sweep) at that many sweeps' cost each.
     int sweeps = kFittedInteger;
     CubeRead cubeRead = CubeRead::Ambient;  // ordinates: see CubeRead; clpv's default is Quadratic (lpvDefaults)
-    // ordinates: a receiver reads only the cells it sees. Each trilinear tap whose cell centre
-    // lies in front of the receiver's surface is kept when a ray from the surface to the centre
-    // meets no triangle (the scene's BVH on the GPU); taps behind the surface are kept as before.
-    bool tapVisibility = false;
+    // ordinates: a receiver reads only the cells it sees (TapVisibility).
+    TapVisibility tapVisibility = TapVisibility::Off;
 };
 
 // The table of `lpv` (cascaded = false: one volume) or `clpv`.

@@ -522,7 +522,8 @@ public:
                     {"light_bricks", double(o.bricks), "bricks"},
                     {"grid_bricks", double(o.gridBricks), "bricks"},
                     {"light_pool", double(o.poolBytes) / (1024.0 * 1024.0), "MiB"},
-                    {"reflections_left", o.leftWatts, "W"}};
+                    {"reflections_left", o.leftWatts, "W"},
+                    {"tap_masks", o.tapMasksMs, "ms"}};
         }
         if (desc.backend != Backend::Cpu) return {};
         return {{"propagate_operator", last.operatorMs, "ms"},

@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/lpv/gl_cascade_uniforms.h"
+#include "gi/lpv/tap_masks.h"
 #include "gi/raytrace/ray_tracer.h"
 #include "gi/raytrace/triangle_bvh.h"
 #include "gi/raytrace/triangle_bvh_gl.h"
@@ -18,19 +19,28 @@ namespace voxgi {
 
 namespace {
 // lpv.tap_visibility, where there are triangles to trace.
-bool tapsTested(const LpvDesc& desc, const Scene& scene) { return desc.tapVisibility && scene.triangleCount() > 0; }
+TapVisibility tapsTested(const LpvDesc& desc, const Scene& scene) {
+    return scene.triangleCount() > 0 ? desc.tapVisibility : TapVisibility::Off;
+}
+
+gl::Program::Defines applyDefines(TapVisibility taps) {
+    if (taps == TapVisibility::Rays) return {{"LPV_TAP_VISIBILITY", "1"}};
+    if (taps == TapVisibility::Cells) return {{"LPV_TAP_MASKS", "1"}};
+    return {};
+}
 }  // namespace
 
 OrdinatesLight::OrdinatesLight(const LpvDesc& desc, const Scene& scene)
     : desc_(desc),
       program_(gl::Program::graphics("frame/fullscreen.vert", "lpv/apply_ordinates.frag",
-                                     tapsTested(desc, scene) ? gl::Program::Defines{{"LPV_TAP_VISIBILITY", "1"}}
-                                                             : gl::Program::Defines{})) {
+                                     applyDefines(tapsTested(desc, scene)))),
+      scene_(scene) {
     if (desc_.backend == Backend::Gl) gl_ = std::make_unique<GlOrdinates>();
-    if (tapsTested(desc, scene)) {
+    if (tapsTested(desc, scene) == TapVisibility::Rays) {
         triangles_ = std::make_unique<TriangleBvhGl>(scene, buildTriangleBvh(scene));
         tapRayOffset_ = surfaceRayOffset(scene);
     }
+    if (tapsTested(desc, scene) == TapVisibility::Cells) maskTracer_ = std::make_unique<RayTracer>(scene);
 }
 
 OrdinatesLight::~OrdinatesLight() = default;
@@ -123,8 +133,9 @@ void OrdinatesLight::addSkyBounce(const SkyVolume& sky) {
 }
 
 void OrdinatesLight::solve() {
-    const auto t0 = std::chrono::steady_clock::now();
     stats_ = {};
+    if (maskTracer_) updateTapMasks();  // timed apart: only when a cascade moved
+    const auto t0 = std::chrono::steady_clock::now();
     // Fitted: every bounce now; a number of sweeps continues from the last update's reflections.
     const bool incremental = desc_.bounces && desc_.sweeps != kFittedInteger;
     const int maxBounces = !desc_.bounces ? 1 : incremental ? desc_.sweeps : 256;
@@ -201,6 +212,31 @@ void OrdinatesLight::layOutPool() {
     if (!all.empty()) glNamedBufferSubData(tables_.id(), 0, GLsizeiptr(all.size() * sizeof(int)), all.data());
 }
 
+void OrdinatesLight::updateTapMasks() {
+    const std::size_t count = transports_.size();
+    masks_.resize(count);
+    maskRevisions_.resize(count, 0);
+    std::vector<std::size_t> stale;
+    for (std::size_t c = 0; c < count; ++c)
+        if (masks_[c].empty() || maskRevisions_[c] != transports_[c]->geometryRevision()) stale.push_back(c);
+    if (stale.empty() && masksBuffer_) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t c : stale) {  // each traces in parallel inside
+        masks_[c] = traceTapMasks(scene_, *maskTracer_, transports_[c]->grid(), transports_[c]->bricks());
+        maskRevisions_[c] = transports_[c]->geometryRevision();
+    }
+    std::vector<std::uint32_t> all;
+    maskBase_.assign(count, 0);
+    for (std::size_t c = 0; c < count; ++c) {
+        maskBase_[c] = int(all.size() / 6);
+        all.insert(all.end(), masks_[c].begin(), masks_[c].end());
+    }
+    all.resize(std::max<std::size_t>(all.size(), 1), kAllTapBits);
+    gl::ensureBuffer(masksBuffer_, masksCap_, all.size() * sizeof(std::uint32_t), 1.0);
+    glNamedBufferSubData(masksBuffer_.id(), 0, GLsizeiptr(all.size() * sizeof(std::uint32_t)), all.data());
+    stats_.tapMasksMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
 IrradianceBricks OrdinatesLight::irradiance(std::size_t c) const {
     const std::size_t slots = transports_.at(c)->bricks().slots();
     IrradianceBricks sum = readBricks(pool_.id(), firstSlot_.at(2 * c), slots),
@@ -220,6 +256,7 @@ void OrdinatesLight::apply(const GBufferView& g) const {
         triangles_->bind(program_, 14);
         program_.set("uTapRayOffset", tapRayOffset_);
     }
+    if (maskTracer_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, masksBuffer_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, pool_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, tables_.id());
     program_.set("uEye", g.eye);
@@ -236,6 +273,7 @@ void OrdinatesLight::apply(const GBufferView& g) const {
         program_.set(("uRingSlot" + idx).c_str(), int(firstSlot_[2 * c]));
         program_.set(("uInnerSlot" + idx).c_str(), int(firstSlot_[2 * c + 1]));
         program_.set(("uSlots" + idx).c_str(), int(b.slots()));
+        if (maskTracer_) program_.set(("uMaskBase" + idx).c_str(), maskBase_[c]);
     }
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }

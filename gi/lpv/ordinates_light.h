@@ -19,6 +19,7 @@
 
 namespace voxgi {
 
+class RayTracer;
 class SkyVolume;
 class SparseGeometryVolume;
 class TriangleBvhGl;
@@ -54,6 +55,7 @@ public:
         std::size_t bricks = 0;      // allocated bricks, summed over cascades (each holds a ring and an inner slot)
         std::size_t gridBricks = 0;  // bricks the cascades' grids span (what lpv.sparse=false allocates)
         std::size_t poolBytes = 0;   // the brick pool: ring and inner irradiance cubes of every brick
+        double tapMasksMs = 0.0;     // lpv.tap_visibility=cells: masks traced this update (0: kept)
     };
     const Stats& stats() const { return stats_; }
     // The irradiance cube of cascade c, ring + inner, in its transport's bricks (dumps, tests).
@@ -79,8 +81,19 @@ private:
     std::vector<int> tableStart_;                // per cascade
     std::vector<std::uint64_t> tableRevisions_;  // per cascade: the transport geometry the tables hold
     gl::Program program_;
-    std::unique_ptr<TriangleBvhGl> triangles_;  // lpv.tap_visibility
+    std::unique_ptr<TriangleBvhGl> triangles_;  // lpv.tap_visibility=rays
     float tapRayOffset_ = 0.0f;
+    // lpv.tap_visibility=cells: per cascade, its cells' masks (gi/lpv/tap_masks.h) for the
+    // transport geometry they were traced for, and all of them on the GPU, cascade after cascade.
+    const Scene& scene_;
+    std::unique_ptr<RayTracer> maskTracer_;
+    std::vector<std::vector<std::uint32_t>> masks_;
+    std::vector<std::uint64_t> maskRevisions_;
+    gl::Handle masksBuffer_;
+    std::size_t masksCap_ = 0;
+    std::vector<int> maskBase_;  // per cascade: its first cell in masksBuffer_ (6 masks a cell)
+    // Traces the masks of cascades whose transport geometry changed and uploads them all.
+    void updateTapMasks();
     Stats stats_;
 };
 

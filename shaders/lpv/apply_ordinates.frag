@@ -16,6 +16,11 @@
 #include "common/triangle_bvh.glsl"
 uniform float uTapRayOffset;  // rays to the taps leave the surface this far along its normal
 #endif
+#ifdef LPV_TAP_MASKS
+// Per stored cell (from uMaskBase[c]) and side: the 27 neighbours its surfaces see (gi/lpv/tap_masks.h).
+layout(std430, binding = 15) readonly buffer TapMasks { uint tapMasks[]; };
+uniform int uMaskBase[kLpvMaxCascades];
+#endif
 const uint kAllTaps = 0xFFu;
 
 layout(std430, binding = 12) readonly buffer LightBricks { vec4 lightBricks[]; };     // per light set: [face][slot][brick cell]
@@ -70,6 +75,26 @@ uint visibleTaps(int c, vec3 uvw, vec3 surface, vec3 n) {
         BvhHit blocker;
         bool hidden = dot(centre - surface, n) > 0.0 && len > 0.0 && bvhTrace(o, d / len, 0.0, len, true, blocker);
         if (!hidden) mask |= 1u << k;
+    }
+    return mask;
+#elif defined(LPV_TAP_MASKS)
+    // The mask of the cell the surface point lies in, for the side n faces (tapMaskClass); taps
+    // beyond its 27 neighbours (an apply offset over half a cell) are kept.
+    ivec3 i0, i1;
+    vec3 f;
+    trilinearTaps(uvw, i0, i1, f);
+    ivec3 home = ivec3(floor((surface - uLpvMin[c]) / uCellSize[c]));
+    if (any(lessThan(home, ivec3(0))) || any(greaterThanEqual(home, ivec3(uResolution)))) return kAllTaps;
+    int cell = storedCell(c, home);
+    if (cell < 0) return kAllTaps;
+    vec3 a = abs(n);
+    int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    uint seen = tapMasks[(uMaskBase[c] + cell) * 6 + 2 * axis + (n[axis] < 0.0 ? 1 : 0)];
+    uint mask = 0u;
+    for (int k = 0; k < 8; ++k) {
+        ivec3 d = mix(i0, i1, bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0)) - home;
+        bool near = all(lessThanEqual(abs(d), ivec3(1)));
+        if (!near || ((seen >> ((d.x + 1) + 3 * (d.y + 1) + 9 * (d.z + 1))) & 1u) != 0u) mask |= 1u << k;
     }
     return mask;
 #else
