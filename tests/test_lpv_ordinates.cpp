@@ -491,14 +491,20 @@ TEST(LpvOrdinates, TapMasksSeeTheCellsInFrontOfASideAndKeepThoseBehindIt) {
     BrickMap bricks(8);
     bricks.allocateAll();
     RayTracer tracer(s);
-    const std::vector<std::uint32_t> masks = traceTapMasks(s, tracer, grid, bricks);
-    auto mask = [&](glm::ivec3 cell, glm::vec3 n) {
-        return masks[BrickMap::brickCell(bricks.slotOf(cell), cell) * 6 + std::size_t(tapMaskClass(n))];
+    const TapMasks masks = traceTapMasks(s, tracer, grid, bricks);
+    // The mask a receiver at p facing n reads: its cell's, for the half cell p lies in.
+    auto maskAt = [&](glm::vec3 p, glm::vec3 n) {
+        const glm::ivec3 cell = grid.cellOf(p);
+        const std::int32_t first = masks.cells[BrickMap::brickCell(bricks.slotOf(cell), cell)];
+        if (first < 0) return kAllTapBits;
+        const glm::ivec3 half = glm::ivec3(glm::floor((p - glm::floor(p)) * 2.0f));
+        return masks.masks[std::size_t(first) * kTapMasksPerCell + std::size_t((half.x + 2 * half.y + 4 * half.z) * 6) +
+                           std::size_t(tapMaskClass(n))];
     };
     EXPECT_EQ(tapMaskClass({0.2f, -0.9f, 0.1f}), 3);  // -y
     EXPECT_EQ(tapMaskClass({0.5f, 0.5f, 0.5f}), 0);   // ties go to x
-    const glm::ivec3 wall(3, 4, 4);
-    const std::uint32_t facing = mask(wall, {1, 0, 0}), away = mask(wall, {-1, 0, 0});
+    const glm::vec3 wall(3.5f, 4.25f, 4.7f);
+    const std::uint32_t facing = maskAt(wall, {1, 0, 0}), away = maskAt(wall, {-1, 0, 0});
     for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy) {
             EXPECT_FALSE((facing >> tapMaskBit({1, dy, dz})) & 1u) << "beyond the second wall " << dy << " " << dz;
@@ -506,5 +512,6 @@ TEST(LpvOrdinates, TapMasksSeeTheCellsInFrontOfASideAndKeepThoseBehindIt) {
             EXPECT_TRUE((facing >> tapMaskBit({0, dy, dz})) & 1u) << "its own column " << dy << " " << dz;
         }
     EXPECT_EQ(away, kAllTapBits);
-    EXPECT_EQ(mask({1, 4, 4}, {1, 0, 0}), kAllTapBits);
+    EXPECT_EQ(maskAt({1.5f, 4.5f, 4.5f}, {1, 0, 0}), kAllTapBits);
+    EXPECT_EQ(masks.cells[BrickMap::brickCell(bricks.slotOf({1, 4, 4}), {1, 4, 4})], -1);
 }

@@ -218,19 +218,26 @@ void OrdinatesLight::updateTapMasks() {
     maskRevisions_.resize(count, 0);
     std::vector<std::size_t> stale;
     for (std::size_t c = 0; c < count; ++c)
-        if (masks_[c].empty() || maskRevisions_[c] != transports_[c]->geometryRevision()) stale.push_back(c);
+        if (masks_[c].cells.empty() || maskRevisions_[c] != transports_[c]->geometryRevision()) stale.push_back(c);
     if (stale.empty() && masksBuffer_) return;
     const auto t0 = std::chrono::steady_clock::now();
-    for (std::size_t c : stale) {  // each traces in parallel inside
+    // The cascades side by side (each samples its points on one thread, then traces in parallel).
+    tbb::parallel_for(std::size_t(0), stale.size(), [&](std::size_t i) {
+        const std::size_t c = stale[i];
         masks_[c] = traceTapMasks(scene_, *maskTracer_, transports_[c]->grid(), transports_[c]->bricks());
         maskRevisions_[c] = transports_[c]->geometryRevision();
-    }
+    });
     std::vector<std::uint32_t> all;
     maskBase_.assign(count, 0);
+    std::size_t masked = 0;  // surface cells of the cascades before
     for (std::size_t c = 0; c < count; ++c) {
-        maskBase_[c] = int(all.size() / 6);
-        all.insert(all.end(), masks_[c].begin(), masks_[c].end());
+        maskBase_[c] = int(all.size());
+        for (std::int32_t first : masks_[c].cells)
+            all.push_back(first < 0 ? 0xFFFFFFFFu : std::uint32_t(masked + std::size_t(first)));
+        masked += masks_[c].masks.size() / kTapMasksPerCell;
     }
+    masksStart_ = int(all.size());
+    for (std::size_t c = 0; c < count; ++c) all.insert(all.end(), masks_[c].masks.begin(), masks_[c].masks.end());
     all.resize(std::max<std::size_t>(all.size(), 1), kAllTapBits);
     gl::ensureBuffer(masksBuffer_, masksCap_, all.size() * sizeof(std::uint32_t), 1.0);
     glNamedBufferSubData(masksBuffer_.id(), 0, GLsizeiptr(all.size() * sizeof(std::uint32_t)), all.data());
@@ -256,7 +263,10 @@ void OrdinatesLight::apply(const GBufferView& g) const {
         triangles_->bind(program_, 14);
         program_.set("uTapRayOffset", tapRayOffset_);
     }
-    if (maskTracer_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, masksBuffer_.id());
+    if (maskTracer_) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, masksBuffer_.id());
+        program_.set("uMasksStart", masksStart_);
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, pool_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, tables_.id());
     program_.set("uEye", g.eye);

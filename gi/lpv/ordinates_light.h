@@ -13,6 +13,7 @@
 #include "gi/lpv/gl_ordinates.h"
 #include "gi/lpv/lpv_desc.h"
 #include "gi/lpv/ordinates.h"
+#include "gi/lpv/tap_masks.h"
 #include "gi/technique.h"
 #include "gl/program.h"
 #include "gl/resources.h"
@@ -87,11 +88,14 @@ private:
     // transport geometry they were traced for, and all of them on the GPU, cascade after cascade.
     const Scene& scene_;
     std::unique_ptr<RayTracer> maskTracer_;
-    std::vector<std::vector<std::uint32_t>> masks_;
+    std::vector<TapMasks> masks_;
     std::vector<std::uint64_t> maskRevisions_;
     gl::Handle masksBuffer_;
     std::size_t masksCap_ = 0;
-    std::vector<int> maskBase_;  // per cascade: its first cell in masksBuffer_ (6 masks a cell)
+    // masksBuffer_: every cascade's cell table (TapMasks::cells, pointing into all the masks),
+    // then all the masks. Per cascade: where its table starts; and where the masks start.
+    std::vector<int> maskBase_;
+    int masksStart_ = 0;
     // Traces the masks of cascades whose transport geometry changed and uploads them all.
     void updateTapMasks();
     Stats stats_;

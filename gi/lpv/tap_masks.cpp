@@ -2,28 +2,31 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 
 #include "gi/raytrace/ray_tracer.h"
+#include "scenes/memory_limit.h"
 #include "scenes/scene.h"
 
 namespace voxgi {
 
 namespace {
 constexpr int kClasses = 6;
-constexpr int kKeptPoints = 8;
+constexpr int kKeptPoints = 4;
 // A triangle is sampled on a lattice of at most this many steps per edge (a few huge floor
 // triangles: points closer than that add nothing a cell's four kept points would not have).
 constexpr int kMaxSteps = 512;
 
+// A surface cell holds kTapMasksPerCell of these while its points are sampled.
 struct KeptPoints {
-    int seen = 0;  // points offered
-    int count = 0;
+    std::uint32_t seen = 0;  // points offered
     glm::vec3 points[kKeptPoints];
-    glm::vec3 normals[kKeptPoints];
+    std::int8_t normals[kKeptPoints][3];  // unit normals, in 127ths
+    int count() const { return int(std::min<std::uint32_t>(seen, kKeptPoints)); }
+    glm::vec3 normal(int i) const { return glm::normalize(glm::vec3(normals[i][0], normals[i][1], normals[i][2])); }
 };
+static_assert(sizeof(KeptPoints) == 64, "KeptPoints: what the memory check counts");
 
 std::uint32_t mix32(std::uint32_t x) {
     x ^= x >> 16;
@@ -40,26 +43,39 @@ int tapMaskClass(glm::vec3 n) {
     return 2 * axis + (n[axis] < 0.0f ? 1 : 0);
 }
 
-std::vector<std::uint32_t> traceTapMasks(const Scene& scene, const RayTracer& tracer, const CascadeGrid& grid,
-                                         const BrickMap& bricks) {
+TapMasks traceTapMasks(const Scene& scene, const RayTracer& tracer, const CascadeGrid& grid, const BrickMap& bricks) {
     const float h = grid.cellSize;
-    const std::size_t cells = bricks.slots() * std::size_t(shading::kBrickCells);
-    std::vector<std::uint32_t> masks(cells * kClasses, kAllTapBits);
-    // Up to kKeptPoints points per stored cell and side, kept as reservoir samples (a hash of the
-    // offer's number decides), so a cell's points spread over its surfaces whatever their order.
-    std::unordered_map<std::size_t, KeptPoints> kept;
+    TapMasks out;
+    out.cells.assign(bricks.slots() * std::size_t(shading::kBrickCells), -1);
+    // Up to kKeptPoints points per stored cell, subcell and side, kept as reservoir samples (a
+    // hash of the offer's number decides), so they spread over its surfaces whatever their order:
+    // kTapMasksPerCell of them for each cell a surface touches (the cell's TapMasks::cells entry
+    // numbers them while sampling), kept[first * kTapMasksPerCell + subcell * 6 + class].
+    std::vector<KeptPoints> kept;
     auto offer = [&](glm::vec3 x, glm::vec3 n) {
-        const glm::ivec3 local = grid.cellOf(x);
+        const glm::vec3 at = x / h - glm::vec3(grid.origin);
+        const glm::ivec3 local = glm::ivec3(glm::floor(at));
         const int slot = bricks.slotOf(local);
         if (slot < 0) return;
-        const std::size_t key = BrickMap::brickCell(slot, local) * kClasses + std::size_t(tapMaskClass(n));
+        const glm::ivec3 half = glm::clamp(glm::ivec3(glm::floor((at - glm::vec3(local)) * 2.0f)), glm::ivec3(0), glm::ivec3(1));
+        const std::size_t sub = std::size_t(half.x + 2 * half.y + 4 * half.z);
+        std::int32_t& first = out.cells[BrickMap::brickCell(slot, local)];
+        if (first < 0) {
+            if (kept.size() == kept.capacity()) {
+                const std::size_t grown = std::max<std::size_t>(2 * kept.capacity(), 1024 * kTapMasksPerCell);
+                requireMemory(double(grown) * sizeof(KeptPoints), "lpv.tap_visibility=cells: points of the surface cells");
+                kept.reserve(grown);
+            }
+            first = std::int32_t(kept.size() / kTapMasksPerCell);
+            kept.resize(kept.size() + kTapMasksPerCell);
+        }
+        const std::size_t key = std::size_t(first) * kTapMasksPerCell + sub * kClasses + std::size_t(tapMaskClass(n));
         KeptPoints& k = kept[key];
-        int at = k.count < kKeptPoints ? k.count++ : int(mix32(std::uint32_t(key * 2654435761u) ^ std::uint32_t(k.seen)) %
-                                                          std::uint32_t(k.seen + 1));
+        const std::uint32_t put = k.seen < kKeptPoints ? k.seen : mix32(std::uint32_t(key * 2654435761u) ^ k.seen) % (k.seen + 1);
         ++k.seen;
-        if (at < kKeptPoints) {
-            k.points[at] = x;
-            k.normals[at] = n;
+        if (put < kKeptPoints) {
+            k.points[put] = x;
+            for (int a = 0; a < 3; ++a) k.normals[put][a] = std::int8_t(std::lround(127.0f * n[a]));
         }
     };
     for (const Mesh& mesh : scene.meshes) {
@@ -72,7 +88,7 @@ std::vector<std::uint32_t> traceTapMasks(const Scene& scene, const RayTracer& tr
             if (!(len > 0.0f)) continue;
             const glm::vec3 n = cr / len;
             const float edge = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
-            const int m = std::clamp(int(std::ceil(edge / (0.5f * h))), 1, kMaxSteps);
+            const int m = std::clamp(int(std::ceil(edge / (0.25f * h))), 1, kMaxSteps);
             // The centroids of the m^2 triangles of the lattice that cuts each edge into m.
             for (int i = 0; i < m; ++i)
                 for (int j = 0; i + j < m; ++j)
@@ -85,13 +101,16 @@ std::vector<std::uint32_t> traceTapMasks(const Scene& scene, const RayTracer& tr
                     }
         }
     }
-    std::vector<std::pair<std::size_t, const KeptPoints*>> entries;
-    entries.reserve(kept.size());
-    for (const auto& [key, k] : kept) entries.push_back({key, &k});
+    // Each surface cell's stored-cell index, for its position.
+    std::vector<std::size_t> surfaceCells(kept.size() / kTapMasksPerCell);
+    for (std::size_t cell = 0; cell < out.cells.size(); ++cell)
+        if (out.cells[cell] >= 0) surfaceCells[std::size_t(out.cells[cell])] = cell;
+    out.masks.assign(kept.size(), kAllTapBits);
     const float offset = surfaceRayOffset(scene);
-    tbb::parallel_for(std::size_t(0), entries.size(), [&](std::size_t e) {
-        const auto [key, k] = entries[e];
-        const std::size_t cell = key / kClasses;
+    tbb::parallel_for(std::size_t(0), kept.size(), [&](std::size_t key) {
+        const KeptPoints* k = &kept[key];
+        if (k->seen == 0) return;
+        const std::size_t cell = surfaceCells[key / kTapMasksPerCell];
         const int slot = int(cell / std::size_t(shading::kBrickCells));
         const glm::ivec3 home = bricks.slotOrigins()[std::size_t(slot)] +
                                 glm::ivec3(int(cell % 8), int(cell / 8 % 8), int(cell / 64 % 8));
@@ -101,20 +120,19 @@ std::vector<std::uint32_t> traceTapMasks(const Scene& scene, const RayTracer& tr
                 for (int dx = -1; dx <= 1; ++dx) {
                     const glm::ivec3 d(dx, dy, dz);
                     const glm::vec3 centre = grid.cellCenter(home + d);
-                    int seen = 0;
-                    for (int p = 0; p < k->count; ++p) {
-                        const glm::vec3 x = k->points[p], n = k->normals[p];
+                    bool seen = false;
+                    for (int p = 0; p < k->count() && !seen; ++p) {
+                        const glm::vec3 x = k->points[p], n = k->normal(p);
                         const glm::vec3 o = x + n * offset;
                         const glm::vec3 to = centre - o;
                         const float dist = glm::length(to);
-                        const bool behind = glm::dot(centre - x, n) <= 0.0f;
-                        if (behind || !(dist > 0.0f) || !tracer.occluded(o, to / dist, 0.0f, dist)) ++seen;
+                        seen = glm::dot(centre - x, n) <= 0.0f || !(dist > 0.0f) || !tracer.occluded(o, to / dist, 0.0f, dist);
                     }
-                    if (seen > 0) mask |= 1u << tapMaskBit(d);
+                    if (seen) mask |= 1u << tapMaskBit(d);
                 }
-        masks[key] = mask;
+        out.masks[key] = mask;
     });
-    return masks;
+    return out;
 }
 
 }  // namespace voxgi

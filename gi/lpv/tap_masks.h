@@ -24,12 +24,24 @@ int tapMaskClass(glm::vec3 n);
 inline int tapMaskBit(glm::ivec3 d) { return (d.x + 1) + 3 * (d.y + 1) + 9 * (d.z + 1); }
 constexpr std::uint32_t kAllTapBits = (1u << 27) - 1u;
 
-// Per stored cell of `bricks` (BrickMap::brickCell) and class: bit tapMaskBit(d) set where the
-// cell's surfaces facing that side see the centre of the cell at offset d, or where that centre
-// lies behind them. Points sampled on the scene's triangles, at most h / 2 apart (both sides of
-// each), up to four kept per cell and side; a neighbour counts as seen when at least half of them
-// see it. Cells without surfaces of a side see everything. `tracer` traces `scene`'s triangles.
-std::vector<std::uint32_t> traceTapMasks(const Scene& scene, const RayTracer& tracer, const CascadeGrid& grid,
-                                         const BrickMap& bricks);
+// A receiver's mask is that of the half-cell its surface point lies in (subcell: x + 2 y + 4 z,
+// each 1 in the upper half of the cell along that axis) and of its class.
+constexpr int kTapSubcells = 8;
+constexpr int kTapMasksPerCell = kTapSubcells * 6;
+
+struct TapMasks {
+    // Per stored cell of the bricks (BrickMap::brickCell): where its kTapMasksPerCell masks start
+    // in `masks`, over kTapMasksPerCell; -1 for a cell without surfaces (it sees everything).
+    std::vector<std::int32_t> cells;
+    // Per surface cell, subcell and class: bit tapMaskBit(d) set where the subcell's surfaces
+    // facing that side see the centre of the cell at offset d from theirs, or where that centre
+    // lies behind them (kAllTapBits where it has no such surfaces).
+    std::vector<std::uint32_t> masks;
+};
+
+// Points sampled on the scene's triangles, at most h / 4 apart (both sides of each), up to four
+// kept per subcell and side; a neighbour counts as seen when any of them sees it. `tracer`
+// traces `scene`'s triangles.
+TapMasks traceTapMasks(const Scene& scene, const RayTracer& tracer, const CascadeGrid& grid, const BrickMap& bricks);
 
 }  // namespace voxgi

@@ -17,9 +17,12 @@
 uniform float uTapRayOffset;  // rays to the taps leave the surface this far along its normal
 #endif
 #ifdef LPV_TAP_MASKS
-// Per stored cell (from uMaskBase[c]) and side: the 27 neighbours its surfaces see (gi/lpv/tap_masks.h).
+// gi/lpv/tap_masks.h: per cascade (from uMaskBase[c]) and stored cell, where its masks start
+// (over 48; ~0u: no surfaces), then from uMasksStart per subcell and side the 27 neighbours its
+// surfaces see.
 layout(std430, binding = 15) readonly buffer TapMasks { uint tapMasks[]; };
 uniform int uMaskBase[kLpvMaxCascades];
+uniform int uMasksStart;
 #endif
 const uint kAllTaps = 0xFFu;
 
@@ -78,18 +81,23 @@ uint visibleTaps(int c, vec3 uvw, vec3 surface, vec3 n) {
     }
     return mask;
 #elif defined(LPV_TAP_MASKS)
-    // The mask of the cell the surface point lies in, for the side n faces (tapMaskClass); taps
-    // beyond its 27 neighbours (an apply offset over half a cell) are kept.
+    // The mask of the half cell the surface point lies in, for the side n faces (tapMaskClass);
+    // taps beyond its cell's 27 neighbours (an apply offset over half a cell) are kept.
     ivec3 i0, i1;
     vec3 f;
     trilinearTaps(uvw, i0, i1, f);
-    ivec3 home = ivec3(floor((surface - uLpvMin[c]) / uCellSize[c]));
+    vec3 at = (surface - uLpvMin[c]) / uCellSize[c];
+    ivec3 home = ivec3(floor(at));
     if (any(lessThan(home, ivec3(0))) || any(greaterThanEqual(home, ivec3(uResolution)))) return kAllTaps;
     int cell = storedCell(c, home);
     if (cell < 0) return kAllTaps;
+    uint first = tapMasks[uMaskBase[c] + cell];
+    if (first == 0xFFFFFFFFu) return kAllTaps;
+    ivec3 sub = clamp(ivec3(floor((at - vec3(home)) * 2.0)), ivec3(0), ivec3(1));
     vec3 a = abs(n);
     int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-    uint seen = tapMasks[(uMaskBase[c] + cell) * 6 + 2 * axis + (n[axis] < 0.0 ? 1 : 0)];
+    uint seen = tapMasks[uint(uMasksStart) + first * 48u + uint((sub.x + 2 * sub.y + 4 * sub.z) * 6 + 2 * axis) +
+                         (n[axis] < 0.0 ? 1u : 0u)];
     uint mask = 0u;
     for (int k = 0; k < 8; ++k) {
         ivec3 d = mix(i0, i1, bvec3((k & 1) != 0, (k & 2) != 0, (k & 4) != 0)) - home;
