@@ -525,6 +525,18 @@ Scene mirrorUnderCeiling(const char* ceilingMaterial = R"({"albedo": 0.8, "specu
     return parseSceneJson(json, "mirror.json");
 }
 
+// `samples` per pixel of `scene` with caustics and without (light subpaths off in both: without
+// caustics none are traced), the same options otherwise.
+std::pair<Image, Image> withAndWithoutCaustics(const Scene& scene, PathTracerOptions options, int samples) {
+    options.lightPaths = false;
+    PathTracer with(scene, options);
+    with.render(samples);
+    options.caustics = false;
+    PathTracer without(scene, options);
+    without.render(samples);
+    return {with.image(), without.image()};
+}
+
 TEST(PathTracer, WithoutCausticsACeilingLitOnlyThroughAMirrorGetsNothing) {
     // The light faces down, so the ceiling point (2, 1, 0) sees it only in the mirror.
     Scene s = mirrorUnderCeiling();
@@ -558,30 +570,20 @@ TEST(PathTracer, WithoutCausticsWhatTheCameraSeesInAMirrorAndDiffuseLightStayThe
                              "mirror-wall.json");
     PathTracerOptions o;
     o.maxBounces = 2;
-    o.lightPaths = false;
-    PathTracer with(s, o);
-    with.render(4);
-    o.caustics = false;
-    PathTracer without(s, o);
-    without.render(4);
-    EXPECT_EQ(with.image().find("beauty")->data, without.image().find("beauty")->data);
+    const auto [with, without] = withAndWithoutCaustics(s, o, 4);
+    EXPECT_EQ(with.find("beauty")->data, without.find("beauty")->data);
     // The lit floor in the mirror: light after two scatterings, the indirect layer.
-    const std::vector<float>& floor = with.image().find("indirect")->data;
+    const std::vector<float>& floor = with.find("indirect")->data;
     EXPECT_GT(*std::max_element(floor.begin(), floor.end()), 0.05f);
     // And a diffuse Cornell box at any depth.
     Scene box = test::cornellBox();
     for (Material& m : box.materials) m.specular = 0.0f;
     PathTracerOptions b;
     b.width = b.height = 24;
-    b.lightPaths = false;
-    PathTracer boxWith(box, b);
-    boxWith.render(2);
-    b.caustics = false;
-    PathTracer boxWithout(box, b);
-    boxWithout.render(2);
-    EXPECT_EQ(boxWith.image().find("beauty")->data, boxWithout.image().find("beauty")->data);
+    const auto [boxWith, boxWithout] = withAndWithoutCaustics(box, b, 2);
+    EXPECT_EQ(boxWith.find("beauty")->data, boxWithout.find("beauty")->data);
     double sum = 0.0;
-    for (float v : boxWith.image().find("indirect")->data) sum += v;
+    for (float v : boxWith.find("indirect")->data) sum += v;
     EXPECT_GT(sum, 0.0);
 }
 

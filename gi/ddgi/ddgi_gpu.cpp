@@ -372,14 +372,14 @@ BlendBackend::UpdateReport DdgiGpu::updateProbes(ProbeField& field, const RaySet
         lastCounts_.off = int(counts[shading::kDdgiCountStates + shading::kProbeOff]);
         lastCounts_.countedFrame = std::int64_t(countedFrame);
     }
-    report.blended = lastCounts_.blended;
-    report.fixedOnly = lastCounts_.fixedOnly;
-    report.active = lastCounts_.active;
-    report.sleeping = lastCounts_.sleeping;
-    report.off = lastCounts_.off;
-    report.countedFrame = lastCounts_.countedFrame;
+    // The newest counts that came back, with this update's times.
+    UpdateReport out = lastCounts_;
+    out.traceMs = report.traceMs;
+    out.blendMs = report.blendMs;
+    out.borderMs = report.borderMs;
+    out.classifyMs = report.classifyMs;
     cpuStale_ = true;
-    return report;
+    return out;
 }
 
 void DdgiGpu::syncToCpu(ProbeField& field) {
