@@ -10,6 +10,7 @@ constexpr GLbitfield kMapFlags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MA
 
 bool finished(GLsync fence, GLuint64 timeoutNs) {
     const GLenum r = glClientWaitSync(fence, timeoutNs > 0 ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, timeoutNs);
+    if (r == GL_WAIT_FAILED) throw std::runtime_error("ReadbackRing: glClientWaitSync failed");
     return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
 }
 
