@@ -14,8 +14,9 @@ namespace voxgi {
 namespace {
 constexpr int kClasses = 6;
 constexpr int kKeptPoints = 4;
-// A triangle is sampled on a lattice of at most this many steps per edge (a few huge floor
-// triangles: points closer than that add nothing a cell's four kept points would not have).
+// A triangle is sampled on a lattice of at most this many steps per edge, to bound the work a
+// huge triangle makes; on one more than 128 cells long some half cells get no point, and keep
+// every tap there.
 constexpr int kMaxSteps = 512;
 
 // A surface cell holds kTapMasksPerCell of these while its points are sampled.
