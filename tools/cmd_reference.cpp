@@ -22,8 +22,9 @@ const char* kUsage =
     "  --max-bounces: scattering events per path (1 = direct light only; default unlimited, Russian roulette)\n"
     "  --unidirectional: camera paths only, without connections to light subpaths from point and spot\n"
     "  lights (the same image in expectation, noisier; docs/reference.md)\n"
-    "  --no-caustics: leave out light reaching a surface through mirrors and clear glass (what methods that\n"
-    "  trace only the camera's reflections aim at; not the physical image, docs/reference.md)" VOXGI_DISPLAY_USAGE;
+    "  --no-caustics: leave out caustics, light that reaches a diffuse surface by a specular reflection or a\n"
+    "  refraction (what methods that trace only the camera's reflections aim at; not the physical image,\n"
+    "  docs/reference.md)" VOXGI_DISPLAY_USAGE;
 
 using Clock = std::chrono::steady_clock;
 
