@@ -78,21 +78,26 @@ void expectIndirectIsTheUpsample(const Scene& scene, const FrameRenderer& render
     const IsrPasses& passes = isr.passes();
     const IsrCoarseBuffers coarse = readIsrCoarse(passes);
     const int w = scene.camera.width, h = scene.camera.height;
+    // The targets hold the picture in their middle when the frame draws a guard band.
+    const FrameRenderer::Textures targets = renderer.textures();
+    const int tw = targets.width;
     const std::vector<glm::vec4> result = readIsrTexture(passes, passes.result());
-    const std::vector<float> position = gl::readTexture(renderer.textures().position, w, h, 4);
-    const std::vector<float> far = isr.farFieldLight() ? gl::readTexture(isr.farFieldLight(), w, h, 4) : std::vector<float>();
+    const std::vector<float> position = gl::readTexture(targets.position, tw, targets.height, 4);
+    const std::vector<float> far =
+        isr.farFieldLight() ? gl::readTexture(isr.farFieldLight(), tw, targets.height, 4) : std::vector<float>();
     const glm::vec3 forward = glm::normalize(scene.camera.target - scene.camera.eye);
     int checked = 0;
     double farSum = 0.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const std::size_t at = (std::size_t(y) * std::size_t(w) + std::size_t(x)) * 4;
+            const glm::ivec2 texel = glm::ivec2(x, y) + targets.pictureOrigin;
+            const std::size_t at = (std::size_t(texel.y) * std::size_t(tw) + std::size_t(texel.x)) * 4;
             const float* p = &position[at];
             if (p[3] <= 0.0f) continue;
             const int row = h - 1 - y;  // images are stored top row first
             const glm::vec3 normal = image.rgb("normal", x, row);
             const float depth = glm::dot(glm::vec3(p[0], p[1], p[2]) - scene.camera.eye, forward);
-            const glm::vec4 e = isrUpsampleCpu(coarse, result, passes.desc().downsample, {x, y}, depth, normal);
+            const glm::vec4 e = isrUpsampleCpu(coarse, result, passes.desc().downsample, texel, depth, normal);
             const float occlusion = glm::clamp(e.w, 0.0f, 1.0f);
             glm::vec3 expected = image.rgb("albedo", x, row) * shading::kInvPi * glm::vec3(e) *
                                  (1.0f - passes.desc().aoStrength * occlusion);
@@ -122,7 +127,8 @@ TEST_F(IsrTest, GatherAndUpsampleMatchTheCpuReference) {
     const Image image = renderer.resolve();
     const auto* isr = dynamic_cast<const IsrTechnique*>(renderer.technique());
     ASSERT_NE(isr, nullptr);
-    ASSERT_EQ(isr->passes().coarseSize().x, 48);
+    // The default guard band (0.125) draws 96 x 1.25 pixels across, in 2 x 2 coarse pixels.
+    ASSERT_EQ(isr->passes().coarseSize().x, 60);
     expectGatherIsTheCpuGather(isr->passes(), 0, false);
     expectIndirectIsTheUpsample(scene, renderer, image, *isr);
 }
@@ -132,6 +138,7 @@ TEST_F(IsrTest, GatherAndUpsampleMatchTheCpuReference) {
 // patch's radiance is its pixel's: the far field's light is exactly what it adds.
 TEST_F(IsrTest, FarFieldLightIsSentOnAndFillsTheOpenHemisphere) {
     Scene plain = cornell(48);
+    plain.gi.set("isr.guard_band", "0");  // the far field's texture is read at the picture's size
     plain.gi.set("isr.downsample", "1");
     plain.gi.set("isr.ao_strength", "0.5");
     Scene withFar = plain;
@@ -188,6 +195,7 @@ TEST_F(IsrTest, CornellBoxCloserToThePathTracerThanDirectLight) {
 // are the same rays, so every layer but ISR's own light is the picture drawn without it.
 TEST_F(IsrTest, GuardBandLeavesThePicturesPixelsAsTheyWere) {
     Scene plain = cornell(48), banded = plain;
+    plain.gi.set("isr.guard_band", "0");
     banded.gi.set("isr.guard_band", "0.5");
     FrameRenderer a(plain, unjittered(), "isr"), b(banded, unjittered(), "isr");
     a.renderFrame();
@@ -344,6 +352,7 @@ TEST_F(IsrTest, TemporalReuseLowersEachFramesErrorAndFlicker) {
         Scene s = scene;
         s.gi.set("isr.patches", patches);
         s.gi.set("isr.temporal_frames", frames);
+        s.gi.set("isr.guard_band", "0");  // the targets are read at the picture's size
         FrameRenderer r(s, FrameOptions{}, "isr");
         Result out;
         std::vector<float> last, sum(std::size_t(64 * 64 * 4), 0.0f);
@@ -400,7 +409,9 @@ TEST_F(IsrTest, PlanFollowsTheSettings) {
     EXPECT_THROW(planFrame(s, "isr", 1), InputError);
     // The guard band is the plan's, for the frame to draw.
     s.gi.set("isr.far_field", "none");
-    EXPECT_EQ(planFrame(s, "isr", 1).technique.guardBand, 0.0f);
+    EXPECT_EQ(planFrame(s, "isr", 1).technique.guardBand, 0.125f);
     s.gi.set("isr.guard_band", "0.25");
     EXPECT_EQ(planFrame(s, "isr", 1).technique.guardBand, 0.25f);
+    s.gi.set("isr.guard_band", "0");
+    EXPECT_EQ(planFrame(s, "isr", 1).technique.guardBand, 0.0f);
 }

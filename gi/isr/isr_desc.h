@@ -33,8 +33,10 @@ struct IsrDesc {
     // The frame's guard band (TechniquePlan::guardBand): this fraction of the picture's width and
     // height is drawn beyond each edge too, so surfaces just off screen send light. A view filled
     // by one wall, or looking out of the Cornell box, has no lit sender on screen (docs/isr.md).
-    // The frame draws (1 + 2 x band)^2 times the pixels.
-    float guardBand = 0.0f;
+    // The frame draws (1 + 2 x band)^2 times the pixels: 1.56x at 0.125, the narrowest band
+    // with which ISR beats direct light in at least 95 % of 100 views of every scene (seed 003's
+    // protocol; 0.25 does too, at 2.25x the pixels and by an estimate past 1 ms at 1080p).
+    float guardBand = 0.125f;
 };
 
 const SettingsTable<IsrDesc>& isrSettings();

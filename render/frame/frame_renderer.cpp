@@ -598,8 +598,14 @@ void FrameRenderer::setMethod(const std::string& method) {
 }
 const FramePlan& FrameRenderer::plan() const { return impl_->plan; }
 FrameRenderer::Textures FrameRenderer::textures() const {
-    return {impl_->accum.id(), impl_->indirectAccum.id(), impl_->gAlbedo.id(), impl_->gNormal.id(),
-            impl_->gPosition.id()};
+    return {impl_->accum.id(),
+            impl_->indirectAccum.id(),
+            impl_->gAlbedo.id(),
+            impl_->gNormal.id(),
+            impl_->gPosition.id(),
+            impl_->targetWidth(),
+            impl_->targetHeight(),
+            {impl_->bandX, impl_->bandY}};
 }
 
 }  // namespace voxgi

@@ -62,6 +62,8 @@ public:
     void setMethod(const std::string& method);
     struct Textures {
         GLuint direct = 0, indirect = 0, albedo = 0, normal = 0, position = 0;
+        int width = 0, height = 0;     // the targets' size: the picture's and a guard band's
+        glm::ivec2 pictureOrigin{0};   // the picture's first pixel in them (GBufferView's)
     };
     Textures textures() const;
 
