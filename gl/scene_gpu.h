@@ -31,8 +31,9 @@ public:
     void draw() const;
 
     std::size_t triangleCount() const { return triangles_; }
-    // The sky's table (uploadSkyTexture).
+    // The sky's table (uploadSkyTexture), and its upload again when the sky changed (followSun).
     GLuint skyTexture() const { return sky_.id(); }
+    void updateSky(const Sky& sky) { sky_ = uploadSkyTexture(sky); }
     static constexpr int kTextureSize = 512;  // albedo maps are resampled to this square size
 
 private:

@@ -102,6 +102,12 @@ void Texture::prefetch(glm::vec2 uv) const {
         __builtin_prefetch(&rgba[(std::size_t(wrapTexel(row, height)) * std::size_t(width) + x) * 4]);
 }
 
+bool operator==(const Light& a, const Light& b) {
+    return a.type == b.type && a.name == b.name && a.position == b.position && a.direction == b.direction &&
+           a.emission == b.emission && a.innerConeDegrees == b.innerConeDegrees && a.outerConeDegrees == b.outerConeDegrees &&
+           a.angularDiameterDegrees == b.angularDiameterDegrees && a.edgeU == b.edgeU && a.edgeV == b.edgeV;
+}
+
 Bounds Scene::bounds() const {
     Bounds b;
     for (const Mesh& m : meshes)

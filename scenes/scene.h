@@ -51,6 +51,9 @@ struct Light {
     glm::vec3 quadNormal() const { return glm::normalize(glm::cross(edgeU, edgeV)); }
     glm::vec3 quadCenter() const { return position + 0.5f * (edgeU + edgeV); }
 };
+// Every field alike: methods that keep their light between frames compare the lights with it.
+bool operator==(const Light& a, const Light& b);
+inline bool operator!=(const Light& a, const Light& b) { return !(a == b); }
 
 // What rays that leave the scene see: radiance in W/(m^2 sr) by direction. A constant sky is
 // `radiance` alone; atmosphere and environment-map skies are an equirectangular table
@@ -58,12 +61,26 @@ struct Light {
 // then holds.
 enum class SkyType { Constant, Atmosphere, Envmap };
 
+// A clear-sky atmosphere (scenes/sky_model.h makes its table and its sun).
+struct AtmosphereDesc {
+    glm::vec3 sunDirection{0.0f, -1.0f, 0.0f};  // unit, the way sunlight travels (downward)
+    float turbidity = 3.0f;
+    float groundAlbedo = 0.3f;   // the ground below the horizon, lit by the sun and the sky
+    float sunIrradiance = 10.0f; // W/m^2 on a surface facing the sun above the atmosphere
+    int width = 512;             // table columns (rows: half as many)
+};
+
 struct Sky {
     bool enabled = false;
     SkyType type = SkyType::Constant;
     glm::vec3 radiance{0.0f};
     int width = 0, height = 0;      // the table's size; 0 for a constant sky
     std::vector<glm::vec3> table;   // width * height texels, row 0 at the zenith
+    // An atmosphere's own description, so its table can follow its sun (followSun).
+    AtmosphereDesc atmosphere;
+    // Counts the table's changes after loading (followSun): the frame uploads the table again
+    // and rebuilds what was lit by the old one (the sky-lighting volume).
+    int revision = 0;
 
     bool tabulated() const { return !table.empty(); }
     // The radiance arriving from unit direction `towardSky` (zero when disabled).

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <tbb/parallel_for.h>
+
 #include "scenes/errors.h"
 #include "scenes/image.h"
 #include "shaders/shared/sky.h"
@@ -134,25 +136,28 @@ AtmosphereSky makeAtmosphere(const AtmosphereDesc& desc) {
     Sky& sky = out.sky;
     sky.enabled = true;
     sky.type = SkyType::Atmosphere;
+    sky.atmosphere = desc;
     sky.width = std::max(desc.width, 8);
     sky.height = std::max(sky.width / 2, 4);
     sky.table.assign(std::size_t(sky.width) * std::size_t(sky.height), glm::vec3(0.0f));
     const glm::vec3 toSun = -glm::normalize(desc.sunDirection);
     out.sunIrradiance = desc.sunIrradiance * sunTransmittance(std::acos(std::clamp(toSun.y, -1.0f, 1.0f)), desc.turbidity);
 
-    // The sky above the horizon, and its irradiance on the ground.
-    glm::dvec3 skyOnGround(0.0);
+    // The sky above the horizon, and its irradiance on the ground: rows in parallel (the viewer
+    // remakes the table while the sun is dragged), their sums added in order.
     const double cellSolidAngle = (2.0 * kPi / double(sky.width)) * (kPi / double(sky.height));
-    std::vector<int> groundRows;
-    for (int y = 0; y < sky.height; ++y) {
+    std::vector<glm::dvec3> rowOnGround(std::size_t(sky.height), glm::dvec3(0.0));
+    tbb::parallel_for(0, sky.height, [&](int y) {
         for (int x = 0; x < sky.width; ++x) {
             const glm::vec3 d = shading::skyDirection(glm::vec2((float(x) + 0.5f) / float(sky.width), (float(y) + 0.5f) / float(sky.height)));
             if (d.y <= 0.0f) continue;
             const glm::vec3 l = atmosphereRadiance(desc, d);
             sky.table[std::size_t(y) * std::size_t(sky.width) + std::size_t(x)] = l;
-            skyOnGround += glm::dvec3(l) * (double(d.y) * cellSolidAngle * std::sqrt(std::max(0.0, 1.0 - double(d.y) * d.y)));
+            rowOnGround[std::size_t(y)] += glm::dvec3(l) * (double(d.y) * cellSolidAngle * std::sqrt(std::max(0.0, 1.0 - double(d.y) * d.y)));
         }
-    }
+    });
+    glm::dvec3 skyOnGround(0.0);
+    for (const glm::dvec3& row : rowOnGround) skyOnGround += row;
     // Below the horizon: a diffuse ground of the given albedo under the sun and the sky.
     const glm::vec3 ground = desc.groundAlbedo / float(kPi) * (out.sunIrradiance * toSun.y + glm::vec3(skyOnGround));
     for (int y = 0; y < sky.height; ++y)
@@ -162,6 +167,27 @@ AtmosphereSky makeAtmosphere(const AtmosphereDesc& desc) {
         }
     computeMeanRadiance(sky);
     return out;
+}
+
+bool followSun(Scene& scene) {
+    Sky& sky = scene.sky;
+    if (!sky.enabled || sky.type != SkyType::Atmosphere) return false;
+    for (Light& sun : scene.lights) {
+        if (sun.type != LightType::Directional || sun.name != "sun") continue;
+        // The loader gives the light the table's own (unit) direction.
+        if (sun.direction == sky.atmosphere.sunDirection || !(glm::length(sun.direction) > 0.0f)) return false;
+        AtmosphereDesc desc = sky.atmosphere;
+        desc.sunDirection = glm::normalize(sun.direction);
+        if (!(desc.sunDirection.y < 0.0f)) return false;
+        const int revision = sky.revision;
+        AtmosphereSky made = makeAtmosphere(desc);
+        sky = std::move(made.sky);
+        sky.revision = revision + 1;
+        sun.direction = desc.sunDirection;
+        sun.emission = made.sunIrradiance;
+        return true;
+    }
+    return false;
 }
 
 Sky loadEnvmap(const std::string& path, float scale) {

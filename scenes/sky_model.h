@@ -22,14 +22,6 @@ constexpr double kSolarIlluminanceLux = 128000.0;
 // atmosphere's sun light, whose shadows it softens.
 constexpr float kSunAngularDiameterDegrees = 0.53f;
 
-struct AtmosphereDesc {
-    glm::vec3 sunDirection{0.0f, -1.0f, 0.0f};  // unit, the way sunlight travels (downward)
-    float turbidity = 3.0f;
-    float groundAlbedo = 0.3f;   // the ground below the horizon, lit by the sun and the sky
-    float sunIrradiance = 10.0f; // W/m^2 on a surface facing the sun above the atmosphere
-    int width = 512;             // table columns (rows: half as many)
-};
-
 struct AtmosphereSky {
     Sky sky;
     glm::vec3 sunIrradiance{0.0f};  // at the ground, on a surface facing the sun (W/m^2)
@@ -38,6 +30,13 @@ struct AtmosphereSky {
 // The sky's table and the sun at the ground. Throws InputError when the sun is not above the
 // horizon or the turbidity is outside the model's range.
 AtmosphereSky makeAtmosphere(const AtmosphereDesc& desc);
+
+// The atmosphere's sun is the directional light named "sun" (the loader adds it). When that
+// light points another way than the sky's table was made for (the viewer moved it), remakes
+// the table and the light's colour and irradiance for the new direction, counts the change in
+// sky.revision and returns true. A sun at or below the horizon, outside the model's range,
+// keeps the last table and colour (false).
+bool followSun(Scene& scene);
 
 // Radiance of the clear sky (no ground, no sun disc) arriving from unit direction `towardSky`
 // above the horizon, in W/(m^2 sr) for the desc's sun irradiance.

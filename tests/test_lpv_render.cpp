@@ -243,3 +243,34 @@ TEST_F(LpvRender, GlossyMarchAddsReflectionsOnShinyMaterialsOnly) {
         EXPECT_NEAR(on.rgb("indirect", 24, 20).g, off.rgb("indirect", 24, 20).g, 1e-6f);
     }
 }
+
+// A light that moves between frames (the viewer drags it; lpv.reuse is on by default) is new
+// light: the next frame's indirect layer is what a renderer made with the moved light gives.
+TEST_F(LpvRender, AMovedLightIsPropagatedAgain) {
+    for (const char* method : {"lpv", "clpv"}) {
+        Scene scene = test::cornellBox();
+        scene.camera.width = scene.camera.height = 32;
+        scene.gi.set("lpv.resolution", "16");
+        FrameOptions options;
+        options.jitter = false;
+        FrameRenderer moving(scene, options, method);
+        moving.renderFrame();
+        const Image before = moving.resolve();
+        for (Light& light : scene.lights) light.position += glm::vec3(0.15f, -0.2f, 0.1f);
+        moving.resetAccumulation();
+        moving.renderFrame();
+        FrameRenderer fresh(scene, options, method);
+        fresh.renderFrame();
+        const Image moved = moving.resolve(), expected = fresh.resolve();
+        auto difference = [&](const Image& x) {
+            const std::vector<float>&a = x.find("indirect")->data, &b = expected.find("indirect")->data;
+            double sum = 0.0;
+            for (std::size_t i = 0; i < a.size(); ++i) sum += std::fabs(double(a[i]) - double(b[i]));
+            return sum;
+        };
+        const double total = layerMean(expected, "indirect");
+        EXPECT_GT(total, 0.0) << method;
+        EXPECT_GT(difference(before), 0.1 * total) << method;  // the move changes the light
+        EXPECT_LT(difference(moved), 1e-4 * difference(before)) << method;
+    }
+}

@@ -246,6 +246,40 @@ TEST(SkySceneFormat, AtmosphereAddsItsSunAndRefusesWhatTheModelCannotDo) {
     EXPECT_NE(errorOf(skyScene(R"({"type": "cloudy"})")).find("/sky/type: expected one of"), std::string::npos);
 }
 
+// The viewer moves the atmosphere's sun: the table and the sun's colour follow it, counted in
+// the sky's revision; a sun at the horizon, outside the model, leaves both as they were.
+TEST(Atmosphere, FollowSunRemakesTheSkyForTheMovedSun) {
+    Scene s = parseSceneJson(skyScene(R"({"type": "atmosphere", "sun_direction": [0.3, -1, 0.2], "resolution": 64})"),
+                             "s.json");
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_FALSE(followSun(s));  // the sun is where the table was made for it
+    EXPECT_EQ(s.sky.revision, 0);
+    s.lights[0].direction = glm::vec3(0.9f, -0.4f, 0.0f);  // lower: a redder, dimmer sun
+    ASSERT_TRUE(followSun(s));
+    EXPECT_EQ(s.sky.revision, 1);
+    AtmosphereDesc expected = s.sky.atmosphere;
+    expected.sunDirection = glm::normalize(glm::vec3(0.9f, -0.4f, 0.0f));
+    const AtmosphereSky made = makeAtmosphere(expected);
+    EXPECT_EQ(s.lights[0].direction, expected.sunDirection);
+    EXPECT_EQ(s.lights[0].emission, made.sunIrradiance);
+    ASSERT_EQ(s.sky.table.size(), made.sky.table.size());
+    for (std::size_t i = 0; i < made.sky.table.size(); ++i) ASSERT_EQ(s.sky.table[i], made.sky.table[i]) << i;
+    EXPECT_EQ(s.sky.radiance, made.sky.radiance);
+    EXPECT_FALSE(followSun(s));
+    // Below the horizon: nothing changes.
+    const std::vector<glm::vec3> table = s.sky.table;
+    const glm::vec3 emission = s.lights[0].emission;
+    s.lights[0].direction = glm::vec3(1.0f, 0.1f, 0.0f);
+    EXPECT_FALSE(followSun(s));
+    EXPECT_EQ(s.sky.revision, 1);
+    EXPECT_EQ(s.sky.table, table);
+    EXPECT_EQ(s.lights[0].emission, emission);
+    // Without an atmosphere there is nothing to follow.
+    Scene constant = parseSceneJson(skyScene(R"({"type": "constant", "radiance": [1, 1, 1]})"), "s.json");
+    constant.lights.push_back(s.lights[0]);
+    EXPECT_FALSE(followSun(constant));
+}
+
 TEST(SkySceneFormat, EnvmapReadsAnExrAndNamesAMissingOne) {
     const std::string dir = test::makeTempDir("sky-envmap");
     const Sky synthetic = syntheticEnvmap();

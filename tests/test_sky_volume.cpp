@@ -14,6 +14,7 @@
 #include "render/frame/frame_plan.h"
 #include "render/frame/frame_renderer.h"
 #include "scenes/primitives.h"
+#include "scenes/sky_model.h"
 #include "shaders/shared/constants.h"
 #include "support/test_support.h"
 
@@ -146,6 +147,57 @@ TEST_F(SkyLightPass, TheFrameShowsAlbedoTimesTheSkyOnOpenGround) {
     const glm::vec3 cpu = s.materials[0].albedo / shading::kPi *
                           volume.sampleIrradiance(glm::vec3(7.0f, 0.0f, -7.0f), glm::vec3(0, 1, 0));
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], cpu[k], 0.01f * cpu[k]);
+}
+
+// The sun moves (the viewer, followSun): the frame uploads the new sky's table at once and traces
+// the sky volume again over frames within sky.update_ms, lit meanwhile by the old volume. Once it
+// is whole the frame is what a renderer made under the new sky draws, for the sky_light pass
+// and for CLPV, whose sky bounce reads the volume.
+TEST_F(SkyLightPass, AMovedSunTracesTheVolumeAgainOverFrames) {
+    for (const char* method : {"direct", "clpv"}) {
+        Scene s = groundUnderSky();
+        s.sky = makeAtmosphere(AtmosphereDesc{glm::normalize(glm::vec3(0.2f, -1.0f, 0.3f)), 3.0f, 0.3f, 10.0f, 64}).sky;
+        Light sun;
+        sun.type = LightType::Directional;
+        sun.name = "sun";
+        sun.direction = s.sky.atmosphere.sunDirection;
+        s.lights.push_back(sun);
+        s.camera.width = s.camera.height = 16;
+        s.gi.set("sky.resolution", "8");
+        s.gi.set("sky.update_ms", "0.001");  // one batch of cells a frame
+        s.gi.set("lpv.resolution", "8");
+        FrameOptions options;
+        options.jitter = false;
+        FrameRenderer moving(s, options, method);
+        moving.renderFrame();
+        s.lights[0].direction = glm::normalize(glm::vec3(0.8f, -0.5f, -0.2f));
+        ASSERT_TRUE(followSun(s));
+        FrameRenderer fresh(s, options, method);
+        fresh.renderFrame();
+        const Image expected = fresh.resolve();
+        auto difference = [&](const Image& x) {
+            double sum = 0.0, total = 0.0;
+            for (const char* layer : {"direct", "indirect"}) {
+                const std::vector<float>&a = x.find(layer)->data, &b = expected.find(layer)->data;
+                for (std::size_t i = 0; i < a.size(); ++i) {
+                    sum += std::fabs(double(a[i]) - double(b[i]));
+                    total += std::fabs(double(b[i]));
+                }
+            }
+            return sum / total;
+        };
+        int frames = 0;
+        double first = 0.0, last = 1.0;
+        while (frames < 400 && last > 1e-5) {
+            moving.resetAccumulation();
+            moving.renderFrame();
+            last = difference(moving.resolve());
+            if (frames++ == 0) first = last;
+        }
+        EXPECT_GT(frames, 2) << method;     // spread over frames
+        EXPECT_GT(first, 1e-3) << method;   // the old volume lit them meanwhile
+        EXPECT_LE(last, 1e-5) << method;    // then the new one, as a fresh renderer's
+    }
 }
 
 // DDGI in a frame that lights surfaces with the sky volume: its indirect layer holds only light

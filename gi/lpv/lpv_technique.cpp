@@ -19,6 +19,7 @@
 #include "gi/lpv/rsm.h"
 #include "gi/lpv/sky_bounce.h"
 #include "gi/lpv/static_blockers.h"
+#include "gi/sky/sky_volume.h"
 #include "gi/sky/sky_volume_texture.h"
 #include "gl/program.h"
 #include "gl/resources.h"
@@ -94,6 +95,9 @@ class LpvTechnique final : public GiTechnique {
     std::unique_ptr<OrdinatesLight> ordinatesLight;  // lpv.transport=ordinates: replaces the SH volumes
     std::unique_ptr<SkyBounceFace> skyBounce;      // made on the first update that runs lpv.sky_bounce
     glm::vec3 skyBounceEye{0.0f}, skyBounceForward{0.0f};  // the view the sky bounce was injected from
+    // The lights and the sky (its volume's Sky::revision, -1 without one) the light was made with.
+    std::vector<Light> lastLights;
+    int lastSkyRevision = -1;
     bool valid = false;
     bool complete = true;  // no bounces left to carry into the next update (lpv.sweeps=N)
 
@@ -170,8 +174,13 @@ public:
         const glm::vec3 forward = viewForward(g.viewProjection);
         // (The ordinates bounce the sky off every voxelized surface, whatever the view.)
         const bool viewChanged = bounceSky && !ordinatesLight && (g.eye != skyBounceEye || forward != skyBounceForward);
-        // Static scene, lights and placement: the propagated light is still valid.
-        if (desc.reuse && valid && complete && !placementChanged() && !viewChanged) return;
+        // Static scene, lights and placement: the propagated light is still valid. The viewer
+        // moves lights between frames, and a sky that changed arrives as a new volume.
+        const int skyRevision = input.sky ? input.sky->volume().skyRevision() : -1;
+        const bool lightChanged = input.scene.lights != lastLights || skyRevision != lastSkyRevision;
+        if (desc.reuse && valid && complete && !placementChanged() && !viewChanged && !lightChanged) return;
+        lastLights = input.scene.lights;
+        lastSkyRevision = skyRevision;
         skyBounceEye = g.eye;
         skyBounceForward = forward;
         lastOrigins.clear();

@@ -21,6 +21,8 @@ const SettingsTable<SkyVolumeDesc>& skyVolumeSettings() {
         t.flag("light", &D::light, "the frame lights surfaces with the sky-lighting volume (sky_light pass)");
         t.integer("resolution", &D::resolution, 2, 512, "sky-lighting volume: cells along the scene's longest side");
         t.integer("rays", &D::rays, 8, 4096, "sky-lighting volume: rays per cell");
+        t.number("update_ms", &D::updateMs, 0.0, 1000.0,
+                 "sky-lighting volume: CPU ms a frame for tracing it again after the sky changes (0: whole at once)");
         return t;
     }();
     return table;
@@ -29,7 +31,7 @@ const SettingsTable<SkyVolumeDesc>& skyVolumeSettings() {
 SkyVolumeDesc readSkyVolumeDesc(const GiSettings& gi) { return skyVolumeSettings().read(gi); }
 
 SkyVolume::SkyVolume(const RayTracer& tracer, const SkyVolumeDesc& desc)
-    : tracer_(tracer), scene_(tracer.scene()), desc_(desc) {
+    : tracer_(tracer), scene_(tracer.scene()), desc_(desc), skyRevision_(tracer.scene().sky.revision) {
     const Bounds b = scene_.bounds();
     const glm::vec3 extent = b.valid() ? b.extent() : glm::vec3(1.0f);
     cellSize_ = std::max(std::max(extent.x, std::max(extent.y, extent.z)), 1e-6f) / float(desc.resolution);
@@ -84,6 +86,16 @@ void SkyVolume::markBricks() {
     }
     // Columns for an atlas about as wide (7 texels a cell) as it is deep.
     atlasColumns_ = std::max(1, int(std::ceil(std::sqrt(double(bricks_.size()) / 7.0))));
+}
+
+std::unique_ptr<SkyVolume> SkyVolume::sameBricks() const {
+    requireMemory(double(packed_.size()) * double(sizeof(glm::vec4)), "the sky-lighting volume traced again");
+    std::unique_ptr<SkyVolume> v(new SkyVolume(*this));
+    std::fill(v->packed_.begin(), v->packed_.end(), glm::vec4(0.0f));
+    v->next_ = 0;
+    v->buildMs_ = 0.0;
+    v->skyRevision_ = scene_.sky.revision;
+    return v;
 }
 
 glm::ivec3 SkyVolume::atlasSize() const {
@@ -145,16 +157,20 @@ void SkyVolume::traceCell(std::size_t work) {
 
 bool SkyVolume::update(double budgetMs) {
     const auto start = std::chrono::steady_clock::now();
-    // Batches of cells in parallel until the budget is spent: 32 cells of 128 rays are about a
-    // millisecond on 2 cores, so a budget of a few milliseconds is kept to within one batch.
+    // Batches of cells in parallel while another batch, as long as the last one, still fits in
+    // the budget: 32 cells of 128 rays are about a millisecond on 2 cores, so a budget of a few
+    // milliseconds is kept unless one batch alone exceeds it.
     constexpr std::size_t kBatch = 32;
-    const std::size_t slice = kBatch;
+    double lastBatchMs = 0.0;
     while (!complete()) {
-        const std::size_t end = std::min(tracedCells(), next_ + slice);
+        const auto batchStart = std::chrono::steady_clock::now();
+        const std::size_t end = std::min(tracedCells(), next_ + kBatch);
         tbb::parallel_for(next_, end, [&](std::size_t cell) { traceCell(cell); });
         next_ = end;
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        if (budgetMs > 0.0 && ms >= budgetMs) break;
+        const auto now = std::chrono::steady_clock::now();
+        lastBatchMs = std::chrono::duration<double, std::milli>(now - batchStart).count();
+        const double ms = std::chrono::duration<double, std::milli>(now - start).count();
+        if (budgetMs > 0.0 && ms + lastBatchMs > budgetMs) break;
     }
     buildMs_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return complete();

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -28,6 +29,10 @@ struct SkyVolumeDesc {
     bool light = true;    // the frame's sky_light pass (false: surfaces get no light from the sky)
     int resolution = 32;  // cells along the scene's longest side (the others in proportion)
     int rays = 128;       // per cell
+    // After the sky changes (the viewer moves the atmosphere's sun), the volume is traced again
+    // over frames, this many CPU milliseconds a frame (the sky issue's per-frame budget), and
+    // the old one lights the frames until the new one is whole. The first build is whole.
+    float updateMs = 2.0f;
 };
 const SettingsTable<SkyVolumeDesc>& skyVolumeSettings();
 SkyVolumeDesc readSkyVolumeDesc(const GiSettings& gi);
@@ -37,11 +42,17 @@ public:
     // Sizes the grid (nothing traced yet); `tracer` (and its scene) must outlive the volume.
     SkyVolume(const RayTracer& tracer, const SkyVolumeDesc& desc);
 
-    // Traces cells until all are done or `budgetMs` has passed (at least one batch of 32 cells
-    // per call; a budget of 0 or less does every cell). Returns true once the volume is complete. The sky
-    // or the geometry changing is a new volume.
+    // Traces cells until all are done or another batch, as long as the last, would pass
+    // `budgetMs` (at least one batch of 32 cells per call; a budget of 0 or less does every
+    // cell). Returns true once the volume is complete. The sky changing is a new volume
+    // (sameBricks), the geometry changing one made anew.
     bool update(double budgetMs = 0.0);
     bool complete() const { return next_ == tracedCells(); }
+    // A volume over the same bricks with nothing traced yet, for the scene's sky as it is now:
+    // the sky changed, the geometry did not.
+    std::unique_ptr<SkyVolume> sameBricks() const;
+    // The scene's sky.revision when this volume was made: the sky its cells hold.
+    int skyRevision() const { return skyRevision_; }
 
     glm::ivec3 dims() const { return dims_; }     // the whole grid, cells
     glm::vec3 origin() const { return origin_; }  // centre of cell (0, 0, 0)
@@ -76,6 +87,7 @@ public:
     double buildMs() const { return buildMs_; }  // the time update() has spent in all
 
 private:
+    SkyVolume(const SkyVolume&) = default;  // sameBricks
     static constexpr std::size_t kCellsPerBrick = std::size_t(kBrickCells) * kBrickCells * kBrickCells;
     void markBricks();
     void traceCell(std::size_t work);
@@ -94,6 +106,7 @@ private:
     std::vector<glm::vec4> packed_;
     std::size_t next_ = 0;
     double buildMs_ = 0.0;
+    int skyRevision_ = 0;
 };
 
 }  // namespace voxgi

@@ -71,6 +71,10 @@ struct FrameRenderer::Impl {
     std::unique_ptr<RayTracer> skyTracer;
     std::unique_ptr<SkyVolume> skyVolume;
     std::unique_ptr<SkyVolumeTexture> skyTexture;
+    // When the sky changes (Sky::revision): its table is uploaded again at once, and the volume
+    // is traced again over frames (sky.update_ms a frame) while the old one still lights them.
+    int skyRevision = 0;
+    std::unique_ptr<SkyVolume> nextSkyVolume;
     gl::Handle gbufferFbo, gPosition, gNormal, gAlbedo, gEmission, gDepth;
     gl::Handle accumFbo, accum, indirectFbo, indirectAccum;
     gl::Handle shadowFbo, shadowDepth;
@@ -86,6 +90,7 @@ struct FrameRenderer::Impl {
           height(o.height > 0 ? o.height : s.camera.height), gpu(s), plan(std::move(p)),
           technique(createTechnique(plan.method, s)),
           hasSun(std::any_of(s.lights.begin(), s.lights.end(), [](const Light& l) { return l.type == LightType::Directional; })) {
+        skyRevision = s.sky.revision;  // the table SceneGpu uploaded
         Bounds b = s.bounds();
         sceneCenter = b.valid() ? b.center() : glm::vec3(0.0f);
         sceneRadius = b.valid() ? std::max(0.5f * glm::length(b.extent()), 1e-6f) : 1.0f;
@@ -475,9 +480,36 @@ struct FrameRenderer::Impl {
         const auto t0 = std::chrono::steady_clock::now();
         skyTracer = std::make_unique<RayTracer>(scene);
         skyVolume = std::make_unique<SkyVolume>(*skyTracer, readSkyVolumeDesc(scene.gi));
-        skyVolume->update();  // the whole volume: nothing changes the sky or the geometry later
+        skyVolume->update();  // the first build is whole: no frame is drawn without the sky's light
         skyTexture = std::make_unique<SkyVolumeTexture>(*skyVolume);
         timers.addCpu("sky_volume", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+
+    // The sky changed since the last frame (followSun): a new table now, a new volume over frames.
+    void followSky() {
+        if (scene.sky.revision == skyRevision) return;
+        skyRevision = scene.sky.revision;
+        gpu.updateSky(scene.sky);
+        if (skyVolume) nextSkyVolume = skyVolume->sameBricks();
+    }
+
+    void traceNextSkyVolume() {
+        const auto t0 = std::chrono::steady_clock::now();
+        const bool done = nextSkyVolume->update(readSkyVolumeDesc(scene.gi).updateMs);
+        timers.addCpu("sky_volume", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        if (!done) return;
+        // The texture refers to its volume: the old pair goes together.
+        skyTexture = std::make_unique<SkyVolumeTexture>(*nextSkyVolume);
+        skyVolume = std::move(nextSkyVolume);
+        // The frames so far were lit by the old volume.
+        clearAccumulation();
+    }
+
+    void clearAccumulation() {
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(accumFbo.id(), GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(indirectFbo.id(), GL_COLOR, 0, zero);
+        frames = 0;
     }
 
     void renderSkyLight() {
@@ -497,8 +529,10 @@ struct FrameRenderer::Impl {
 
     void renderFrame() {
         gpu.updateLights(scene.lights);
+        followSky();
         if (plan.runs("gbuffer")) renderGBuffer();
         if (plan.runs("sky_volume") && !skyTexture) buildSkyVolume();
+        if (nextSkyVolume) traceNextSkyVolume();
         FrameInput input{scene, gpu, frames, timers, plan.technique, skyTexture.get()};
         GBufferView view = gbufferView();
         if (technique) technique->update(input, view);
@@ -581,12 +615,7 @@ int FrameRenderer::height() const { return impl_->height; }
 Image FrameRenderer::resolve() { return impl_->resolve(); }
 gl::StageTimers& FrameRenderer::timers() { return impl_->timers; }
 GiTechnique* FrameRenderer::technique() { return impl_->technique.get(); }
-void FrameRenderer::resetAccumulation() {
-    const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(impl_->accumFbo.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(impl_->indirectFbo.id(), GL_COLOR, 0, zero);
-    impl_->frames = 0;
-}
+void FrameRenderer::resetAccumulation() { impl_->clearAccumulation(); }
 void FrameRenderer::setMethod(const std::string& method) {
     FramePlan plan = planFrame(impl_->scene, method, 1);
     std::unique_ptr<GiTechnique> technique = createTechnique(method, impl_->scene);

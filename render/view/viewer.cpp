@@ -24,6 +24,7 @@
 #include "render/view/viewer_state.h"
 #include "scenes/errors.h"
 #include "scenes/image.h"
+#include "scenes/sky_model.h"
 
 namespace voxgi::view {
 
@@ -352,6 +353,8 @@ int runViewer(Scene& scene, const ViewerOptions& options) {
             s.viewChanged = true;
         }
         serveRequests(s);
+        // A moved sun takes its sky along (an atmosphere's colours follow the sun's height).
+        if (followSun(scene)) s.viewChanged = true;
         if (s.viewChanged) {
             s.renderer->resetAccumulation();
             s.viewChanged = false;
