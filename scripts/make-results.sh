@@ -81,8 +81,8 @@ done
 "$voxgi" eval cornell-box --methods direct,clpv,isr --views 100 --presets medium --width 64 --height 64 --spp 256 \
   --frames 6 --warmup 2 --cache "$cache" -o "$out/views-far-field" --set isr.far_field=clpv --set lpv.resolution=32 \
   --set lpv.steps=fit --set lpv.cascades=3 --set lpv.reuse=false
-# ISR with a guard band of a quarter of the picture beyond each edge (docs/isr.md "Guard band",
-# not the default): direct light and ISR over the same 100 views of each scene.
+# ISR with a guard band of a quarter of the picture beyond each edge (docs/isr.md "Guard band";
+# the default is an eighth): direct light and ISR over the same 100 views of each scene.
 "$voxgi" eval "${views_scenes[@]}" --methods direct,isr --views 100 --presets medium --width 64 --height 64 \
   --spp 256 --frames 6 --warmup 2 --cache "$cache" -o "$out/views-guard-band" --set isr.guard_band=0.25
 
