@@ -250,7 +250,7 @@ void readSky(const Reader& sky, const fs::path& dir, Scene& scene) {
             // The sun as the scene's directional light: its irradiance is what the atmosphere lets through.
             Light sun;
             sun.type = LightType::Directional;
-            sun.name = "sun";
+            sun.name = kAtmosphereSunName;
             sun.direction = a.sunDirection;
             sun.emission = atmosphere.sunIrradiance;
             sun.angularDiameterDegrees = kSunAngularDiameterDegrees;

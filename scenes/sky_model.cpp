@@ -169,25 +169,28 @@ AtmosphereSky makeAtmosphere(const AtmosphereDesc& desc) {
     return out;
 }
 
+Light* atmosphereSun(Scene& scene) {
+    if (!scene.sky.enabled || scene.sky.type != SkyType::Atmosphere) return nullptr;
+    for (Light& light : scene.lights)
+        if (light.type == LightType::Directional && light.name == kAtmosphereSunName) return &light;
+    return nullptr;
+}
+
 bool followSun(Scene& scene) {
+    Light* sun = atmosphereSun(scene);
     Sky& sky = scene.sky;
-    if (!sky.enabled || sky.type != SkyType::Atmosphere) return false;
-    for (Light& sun : scene.lights) {
-        if (sun.type != LightType::Directional || sun.name != "sun") continue;
-        // The loader gives the light the table's own (unit) direction.
-        if (sun.direction == sky.atmosphere.sunDirection || !(glm::length(sun.direction) > 0.0f)) return false;
-        AtmosphereDesc desc = sky.atmosphere;
-        desc.sunDirection = glm::normalize(sun.direction);
-        if (!(desc.sunDirection.y < 0.0f)) return false;
-        const int revision = sky.revision;
-        AtmosphereSky made = makeAtmosphere(desc);
-        sky = std::move(made.sky);
-        sky.revision = revision + 1;
-        sun.direction = desc.sunDirection;
-        sun.emission = made.sunIrradiance;
-        return true;
-    }
-    return false;
+    // The loader gives the light the table's own (unit) direction.
+    if (!sun || sun->direction == sky.atmosphere.sunDirection || !(glm::length(sun->direction) > 0.0f)) return false;
+    AtmosphereDesc desc = sky.atmosphere;
+    desc.sunDirection = glm::normalize(sun->direction);
+    if (!(desc.sunDirection.y < 0.0f)) return false;
+    const int revision = sky.revision;
+    AtmosphereSky made = makeAtmosphere(desc);
+    sky = std::move(made.sky);
+    sky.revision = revision + 1;
+    sun->direction = desc.sunDirection;
+    sun->emission = made.sunIrradiance;
+    return true;
 }
 
 Sky loadEnvmap(const std::string& path, float scale) {

@@ -31,8 +31,12 @@ struct AtmosphereSky {
 // horizon or the turbidity is outside the model's range.
 AtmosphereSky makeAtmosphere(const AtmosphereDesc& desc);
 
-// The atmosphere's sun is the directional light named "sun" (the loader adds it). When that
-// light points another way than the sky's table was made for (the viewer moved it), remakes
+// The atmosphere's sun: the directional light of this name, which the loader adds.
+constexpr const char* kAtmosphereSunName = "sun";
+// That light when the sky is an atmosphere and the scene has it, else null.
+Light* atmosphereSun(Scene& scene);
+
+// When the atmosphere's sun (atmosphereSun) points another way than the sky's table was made for (the viewer moved it), remakes
 // the table and the light's colour and irradiance for the new direction, counts the change in
 // sky.revision and returns true. A sun at or below the horizon, outside the model's range,
 // keeps the last table and colour (false).

@@ -29,9 +29,9 @@ namespace {
 const char* kUsage =
     "voxgi bench sky [SCENE...] [--size 512] [--turn 15] [--method direct] [--set k=v]...\n"
     "  SCENE: default outdoor and, when ../shared/scenes is there, sponza-noon and sibenik-noon (a\n"
-    "  scene needs an atmosphere and its sun). The CPU ms of the\n"
-    "  sky-lighting volume's whole build, of the sky's table when the sun turns by --turn degrees\n"
-    "  about the vertical, and of each frame that traces the volume again (sky.update_ms a frame)";
+    "  scene needs an atmosphere and its sun). The CPU ms of the sky-lighting volume's whole build,\n"
+    "  of the sky's table when the sun turns by --turn degrees about the vertical, and of each frame\n"
+    "  that traces the volume again (sky.update_ms a frame)";
 
 // The CPU samples of the frame's `sky_volume` stage so far.
 std::size_t skySamples(FrameRenderer& r) {
@@ -53,9 +53,7 @@ int benchSky(const std::vector<std::string>& argv) {
         std::optional<Scene> scene = loadBenchScene(name);
         if (!scene) continue;
         applySceneOverrides(args, *scene);
-        const bool sun = std::any_of(scene->lights.begin(), scene->lights.end(),
-                                     [](const Light& l) { return l.type == LightType::Directional && l.name == "sun"; });
-        if (scene->sky.type != SkyType::Atmosphere || !sun) {
+        if (!atmosphereSun(*scene)) {
             if (given) throw InputError(name + ": the sky benchmark needs an atmosphere sky with its sun");
             std::printf("%s: skipped (no atmosphere with a sun)\n", name.c_str());
             continue;
@@ -72,9 +70,8 @@ int benchSky(const std::vector<std::string>& argv) {
         FrameRenderer r(scene, options, method);
         r.renderFrame();
         const double whole = skySamples(r) > 0 ? r.timers().samples().at("sky_volume").cpuMs.back() : 0.0;
-        for (Light& l : scene.lights)
-            if (l.type == LightType::Directional && l.name == "sun")
-                l.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(turn), glm::vec3(0, 1, 0)) * glm::vec4(l.direction, 0.0f));
+        Light& sun = *atmosphereSun(scene);
+        sun.direction = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(turn), glm::vec3(0, 1, 0)) * glm::vec4(sun.direction, 0.0f));
         const auto t0 = std::chrono::steady_clock::now();
         const bool moved = followSun(scene);
         const double table = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

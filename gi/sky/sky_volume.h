@@ -53,6 +53,7 @@ public:
     std::unique_ptr<SkyVolume> sameBricks() const;
     // The scene's sky.revision when this volume was made: the sky its cells hold.
     int skyRevision() const { return skyRevision_; }
+    const SkyVolumeDesc& desc() const { return desc_; }
 
     glm::ivec3 dims() const { return dims_; }     // the whole grid, cells
     glm::vec3 origin() const { return origin_; }  // centre of cell (0, 0, 0)

@@ -495,7 +495,7 @@ struct FrameRenderer::Impl {
 
     void traceNextSkyVolume() {
         const auto t0 = std::chrono::steady_clock::now();
-        const bool done = nextSkyVolume->update(readSkyVolumeDesc(scene.gi).updateMs);
+        const bool done = nextSkyVolume->update(nextSkyVolume->desc().updateMs);
         timers.addCpu("sky_volume", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         if (!done) return;
         // The texture refers to its volume: the old pair goes together.
